@@ -1,0 +1,44 @@
+# Velvet — the two commands a newcomer needs are `make run` and `make test`.
+# `make` alone builds Release into build/ (executable: build/bin/velvet).
+
+BUILD_DIR ?= build
+BUILD_TYPE ?= Release
+GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
+JOBS ?= $(shell nproc)
+
+.PHONY: all deps configure build run test format clean goldens
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+$(BUILD_DIR)/CMakeCache.txt:
+	cmake -S . -B $(BUILD_DIR) -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+
+configure: deps $(BUILD_DIR)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# Opens the editor on the default scene; without a display says so and points to the CLI.
+run: build
+	@if [ -z "$$DISPLAY" ] && [ -z "$$WAYLAND_DISPLAY" ]; then \
+	  echo "velvet: no display found (DISPLAY/WAYLAND_DISPLAY unset); render headless with: $(BUILD_DIR)/bin/velvet render -o out.png"; \
+	else \
+	  $(BUILD_DIR)/bin/velvet; \
+	fi
+
+# Builds and runs the whole suite headless (widget tests under xvfb-run, render tests on EGL).
+test: build
+	cd $(BUILD_DIR) && QT_QPA_PLATFORM= ctest --output-on-failure -j $(JOBS)
+
+# Regenerates the golden images from the current renderer (review the diff before committing).
+goldens: build
+	VELVET_UPDATE_GOLDENS=1 ctest --test-dir $(BUILD_DIR) -R golden --output-on-failure
+
+format:
+	find core render ui app tests -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD_DIR)

@@ -1,0 +1,176 @@
+#include "core/material.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace velvet {
+namespace {
+
+constexpr std::array<std::string_view, 3> kDistributionNames{"ggx", "beckmann", "blinn-phong"};
+constexpr std::array<std::string_view, 7> kVisibilityNames{
+    "smith-ggx-separable", "smith-ggx-correlated", "schlick-ggx", "cook-torrance",
+    "implicit",            "neumann",              "kelemen"};
+constexpr std::array<std::string_view, 3> kFresnelNames{"schlick", "schlick-sg", "exact-dielectric"};
+constexpr std::array<std::string_view, 2> kDiffuseNames{"lambert", "burley"};
+constexpr std::array<std::string_view, 3> kSheenModelNames{"charlie-conty-kulla", "charlie-ashikhmin",
+                                                           "charlie-neubelt"};
+
+constexpr ParamMeta scalar(std::string_view id, std::string_view label, std::string_view group,
+                           float min, float max, float def, std::string_view unit,
+                           std::string_view tooltip, float softMax = 0.0f) {
+    ParamMeta m{};
+    m.id = id;
+    m.label = label;
+    m.group = group;
+    m.type = ParamType::Float;
+    m.min = min;
+    m.max = max;
+    m.defaultValue = glm::vec3(def);
+    m.unit = unit;
+    m.tooltip = tooltip;
+    m.softMax = softMax;
+    return m;
+}
+
+constexpr ParamMeta color(std::string_view id, std::string_view label, std::string_view group,
+                          glm::vec3 def, std::string_view tooltip) {
+    ParamMeta m{};
+    m.id = id;
+    m.label = label;
+    m.group = group;
+    m.type = ParamType::Color;
+    m.min = 0.0f;
+    m.max = 1.0f;
+    m.defaultValue = def;
+    m.colorSpace = ColorSpace::Linear;
+    m.tooltip = tooltip;
+    return m;
+}
+
+template <size_t N>
+constexpr ParamMeta choice(std::string_view id, std::string_view label,
+                           const std::array<std::string_view, N>& names, std::string_view tooltip) {
+    ParamMeta m{};
+    m.id = id;
+    m.label = label;
+    m.group = "BRDF";
+    m.type = ParamType::Choice;
+    m.min = 0.0f;
+    m.max = static_cast<float>(N - 1);
+    m.defaultValue = glm::vec3(0.0f);
+    m.tooltip = tooltip;
+    m.choices = std::span<const std::string_view>(names.data(), N);
+    return m;
+}
+
+// Ranges and defaults follow glTF 2.0 and its KHR_materials_* extensions, so that a preset with
+// defaults exports as a plain glTF material.
+const std::array<ParamMeta, kParamCount> kParams{
+    color("lobes.base.color", "Base colour", "Base", glm::vec3(0.8f),
+          "Diffuse albedo of dielectrics, specular colour of metals (glTF baseColorFactor)."),
+    scalar("lobes.base.metallic", "Metallic", "Base", 0, 1, 0, "",
+           "0 for dielectrics, 1 for metals (glTF metallicFactor)."),
+    scalar("lobes.base.roughness", "Roughness", "Base", 0, 1, 0.5f, "",
+           "Perceptual roughness; alpha = roughness^2 (glTF roughnessFactor)."),
+    scalar("lobes.base.specularWeight", "Specular weight", "Base", 0, 1, 1, "",
+           "Strength of the dielectric specular reflection (KHR_materials_specular)."),
+    color("lobes.base.specularColor", "Specular colour", "Base", glm::vec3(1.0f),
+          "Tint of the dielectric F0 (KHR_materials_specular specularColorFactor)."),
+    scalar("lobes.base.ior", "IOR", "Base", 1, 3, 1.5f, "",
+           "Index of refraction; 1.5 gives F0 = 0.04 (KHR_materials_ior)."),
+    scalar("lobes.base.normalScale", "Normal strength", "Base", 0, 2, 1, "",
+           "Scale of the normal map's XY (glTF normalTexture.scale)."),
+    scalar("lobes.base.occlusionStrength", "Occlusion strength", "Base", 0, 1, 1, "",
+           "How much the occlusion map darkens indirect light (glTF occlusionTexture.strength)."),
+    color("lobes.emission.color", "Emissive colour", "Emission", glm::vec3(0.0f),
+          "Emitted radiance before strength (glTF emissiveFactor)."),
+    scalar("lobes.emission.strength", "Emissive strength", "Emission", 0, 1000, 1, "nits",
+           "Multiplier on the emissive colour (KHR_materials_emissive_strength).", 20.0f),
+    scalar("lobes.clearcoat.weight", "Clearcoat", "Clearcoat", 0, 1, 0, "",
+           "Weight of the clear coat layer over the base (KHR_materials_clearcoat)."),
+    scalar("lobes.clearcoat.roughness", "Clearcoat roughness", "Clearcoat", 0, 1, 0.03f, "",
+           "Perceptual roughness of the coat (clearcoatRoughnessFactor)."),
+    scalar("lobes.clearcoat.normalScale", "Clearcoat normal strength", "Clearcoat", 0, 2, 1, "",
+           "Scale of the clearcoat normal map's XY."),
+    scalar("lobes.sheen.weight", "Sheen", "Sheen", 0, 1, 0, "",
+           "Weight of the sheen lobe; the exported sheenColorFactor is weight x colour."),
+    color("lobes.sheen.color", "Sheen colour", "Sheen", glm::vec3(1.0f),
+          "Colour of the fibre retro-reflection (KHR_materials_sheen sheenColorFactor)."),
+    scalar("lobes.sheen.roughness", "Sheen roughness", "Sheen", 0, 1, 0.3f, "",
+           "Spread of the sheen lobe (KHR_materials_sheen sheenRoughnessFactor)."),
+    choice("brdf.distribution", "Distribution (D)", kDistributionNames,
+           "Microfacet normal distribution: GGX (Walter 2007), Beckmann (1963), Blinn-Phong."),
+    choice("brdf.visibility", "Geometry (G/V)", kVisibilityNames,
+           "Masking-shadowing term; the glTF specification uses separable Smith-GGX."),
+    choice("brdf.fresnel", "Fresnel (F)", kFresnelNames,
+           "Fresnel reflectance: Schlick 1994, its spherical-gaussian form, or exact dielectric."),
+    choice("brdf.diffuse", "Diffuse", kDiffuseNames,
+           "Diffuse term: Lambert, or Burley 2012 (Disney) with retro-reflection."),
+    choice("brdf.sheen", "Sheen model", kSheenModelNames,
+           "Charlie D (Estevez & Kulla 2017) with Conty-Kulla, Ashikhmin or Neubelt visibility."),
+};
+
+const std::array<TextureSlotMeta, kTextureSlotCount> kSlots{{
+    {"baseColor", "Base colour", true, "RGB base colour, A alpha."},
+    {"metallicRoughness", "Metallic / roughness", false, "glTF packing: G roughness, B metallic."},
+    {"specRoughMetal", "Specular / roughness / metallic", false,
+     "Material atlas packing: R specular, G roughness, B metallic."},
+    {"normal", "Normal", false, "Tangent-space normal map (OpenGL convention, +Y up)."},
+    {"occlusion", "Occlusion", false, "R: ambient occlusion."},
+    {"emissive", "Emissive", true, "RGB emission."},
+    {"clearcoat", "Clearcoat", false, "R: clearcoat weight."},
+    {"clearcoatRoughness", "Clearcoat roughness", false, "G: clearcoat roughness."},
+    {"clearcoatNormal", "Clearcoat normal", false, "Tangent-space normal of the coat."},
+    {"sheenColor", "Sheen colour", true, "RGB sheen colour."},
+    {"sheenRoughness", "Sheen roughness", false, "A: sheen roughness."},
+    {"specular", "Specular", false, "A: specular weight."},
+    {"specularColor", "Specular colour", true, "RGB specular colour."},
+}};
+
+} // namespace
+
+std::span<const ParamMeta> paramMetas() { return kParams; }
+
+const ParamMeta& paramMeta(ParamId id) { return kParams[static_cast<size_t>(id)]; }
+
+ParamId paramIdFromString(std::string_view id) {
+    for (int i = 0; i < kParamCount; ++i)
+        if (kParams[i].id == id)
+            return static_cast<ParamId>(i);
+    return ParamId::Count;
+}
+
+std::span<const TextureSlotMeta> textureSlotMetas() { return kSlots; }
+
+const TextureSlotMeta& textureSlotMeta(TextureSlot slot) { return kSlots[static_cast<size_t>(slot)]; }
+
+Material::Material() {
+    for (int i = 0; i < kParamCount; ++i)
+        m_values[i] = kParams[i].defaultValue;
+}
+
+void Material::setValue(ParamId id, glm::vec3 v) {
+    const ParamMeta& m = paramMeta(id);
+    auto clampOne = [&](float x) {
+        if (!std::isfinite(x))
+            x = m.defaultValue.x;
+        return std::clamp(x, m.min, m.max);
+    };
+    switch (m.type) {
+    case ParamType::Float:
+        v = glm::vec3(clampOne(v.x));
+        break;
+    case ParamType::Color:
+        v = glm::vec3(clampOne(v.x), clampOne(v.y), clampOne(v.z));
+        break;
+    case ParamType::Choice:
+        v = glm::vec3(std::round(clampOne(v.x)));
+        break;
+    }
+    m_values[index(id)] = v;
+}
+
+void Material::resetValue(ParamId id) { m_values[index(id)] = paramMeta(id).defaultValue; }
+
+} // namespace velvet

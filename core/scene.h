@@ -1,0 +1,82 @@
+#pragma once
+/// @file scene.h
+/// A scene: camera, lights, environment, preview mesh, the material assigned to it, post chain.
+
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/material.h"
+#include "core/post_chain.h"
+
+namespace velvet {
+
+/// An orbit camera around a target (yaw/pitch in degrees, Y up, right-handed).
+struct Camera {
+    glm::vec3 target{0.0f};
+    float yawDeg = 0.0f;     ///< rotation about +Y; 0 looks down -Z from +Z
+    float pitchDeg = 10.0f;  ///< elevation, positive looks down on the target
+    float distance = 3.2f;   ///< metres from target
+    float fovYDeg = 35.0f;   ///< vertical field of view (perspective)
+    float nearPlane = 0.05f;
+    float farPlane = 100.0f;
+    bool orthographic = false;
+    float orthoHeight = 2.2f; ///< visible height in metres (orthographic)
+    bool operator==(const Camera&) const = default;
+};
+
+/// Light types. Units (docs/units.md): directional in lux, point/spot in candela,
+/// area in nits, ambient as a multiplier of scene-linear white.
+enum class LightType : int { Directional, Point, Spot, Area, Ambient };
+enum class AreaShape : int { Sphere, Rectangle };
+
+struct Light {
+    LightType type = LightType::Directional;
+    std::string name;
+    glm::vec3 color{1.0f};            ///< scene-linear Rec.709
+    float intensity = 3.0f;
+    glm::vec3 position{0.0f, 2.0f, 0.0f};
+    glm::vec3 direction{-0.4f, -0.7f, -0.6f}; ///< the way the light travels (directional, spot, area)
+    float range = 10.0f;              ///< influence radius in metres (point, spot, area)
+    float innerConeDeg = 20.0f;       ///< spot: full intensity inside this half-angle
+    float outerConeDeg = 30.0f;       ///< spot: zero outside this half-angle
+    AreaShape shape = AreaShape::Sphere;
+    glm::vec2 size{0.5f};             ///< area: radius (sphere, x) or width × height (rectangle)
+    bool operator==(const Light&) const = default;
+};
+
+/// How the environment appears behind the mesh.
+enum class BackgroundMode : int { Sharp, Blurred, SolidColor, ProceduralFbm };
+
+struct Environment {
+    std::string hdri;                 ///< equirectangular HDR/EXR path; empty: uniform `color`
+    glm::vec3 color{1.0f};            ///< uniform radiance when no HDRI is set
+    float intensity = 1.0f;           ///< multiplier on the environment's radiance
+    float rotationDeg = 0.0f;         ///< rotation about +Y
+    BackgroundMode background = BackgroundMode::Sharp;
+    glm::vec3 backgroundColor{0.18f}; ///< for BackgroundMode::SolidColor
+    bool operator==(const Environment&) const = default;
+};
+
+enum class PreviewMeshKind : int { Sphere, Cube, RoundedCube, Plane, ClothDrape, ShaderBall, Custom };
+
+struct MeshRef {
+    PreviewMeshKind kind = PreviewMeshKind::Sphere;
+    std::string file; ///< for Custom
+    bool operator==(const MeshRef&) const = default;
+};
+
+struct Scene {
+    Camera camera;
+    std::vector<Light> lights;
+    Environment environment;
+    MeshRef mesh;
+    Material material;
+    std::string materialPreset; ///< where `material` came from, if a preset file (informational)
+    PostChain post;
+    bool operator==(const Scene&) const = default;
+};
+
+} // namespace velvet

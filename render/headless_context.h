@@ -1,0 +1,30 @@
+#pragma once
+/// @file headless_context.h
+/// An OpenGL 4.5 core context without a window system: EGL on Mesa's surfaceless platform (no X
+/// server), or the EGL device platform on NVIDIA. EGL headers stay in the .cpp.
+
+#include <memory>
+#include <string>
+
+namespace velvet::render {
+
+class HeadlessContext {
+public:
+    /// Creates and makes current a GL 4.5 core context; nullptr + message when none can be made.
+    static std::unique_ptr<HeadlessContext> create(std::string* error);
+    ~HeadlessContext();
+    bool makeCurrent();
+
+    /// GL_VENDOR, GL_RENDERER, GL_VERSION of the context, and the EGL platform used.
+    std::string vendor() const;
+    std::string renderer() const;
+    std::string version() const;
+    std::string platform() const;
+
+private:
+    HeadlessContext();
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace velvet::render
