@@ -1,1 +1,135 @@
-// (being written)
+#include "app/cli.h"
+
+#include <array>
+#include <iostream>
+#include <sstream>
+
+namespace velvet::cli {
+
+std::string Arguments::value(const std::string& name, const std::string& fallback) const {
+    auto it = options.find(name);
+    return it == options.end() ? fallback : it->second;
+}
+
+std::optional<Arguments> parseArguments(const std::vector<std::string>& args,
+                                        const std::vector<OptionSpec>& specs, std::string* error) {
+    Arguments out;
+    bool onlyPositional = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (onlyPositional || a.size() < 2 || a[0] != '-') {
+            out.positional.push_back(a);
+            continue;
+        }
+        if (a == "--") {
+            onlyPositional = true;
+            continue;
+        }
+        // --name, --name=value, -x
+        std::string name = a;
+        std::optional<std::string> inlineValue;
+        const OptionSpec* spec = nullptr;
+        if (a.rfind("--", 0) == 0) {
+            name = a.substr(2);
+            if (auto eq = name.find('='); eq != std::string::npos) {
+                inlineValue = name.substr(eq + 1);
+                name = name.substr(0, eq);
+            }
+            for (const auto& s : specs)
+                if (s.longName == name)
+                    spec = &s;
+        } else if (a.size() == 2) {
+            for (const auto& s : specs)
+                if (s.shortName == a[1])
+                    spec = &s;
+        }
+        if (!spec) {
+            *error = "unknown option '" + a + "'";
+            return std::nullopt;
+        }
+        std::string value;
+        if (spec->takesValue) {
+            if (inlineValue) {
+                value = *inlineValue;
+            } else if (i + 1 < args.size()) {
+                value = args[++i];
+            } else {
+                *error = "option '" + a + "' needs a value (" + std::string(spec->valueName) + ")";
+                return std::nullopt;
+            }
+        } else if (inlineValue) {
+            *error = "option '--" + name + "' takes no value";
+            return std::nullopt;
+        }
+        out.options[std::string(spec->longName)] = value;
+    }
+    return out;
+}
+
+std::string optionsHelp(const std::vector<OptionSpec>& specs) {
+    std::ostringstream s;
+    s << "Options:\n";
+    for (const auto& o : specs) {
+        std::string left = "  ";
+        left += o.shortName ? std::string("-") + o.shortName + ", " : "    ";
+        left += "--" + std::string(o.longName);
+        if (o.takesValue)
+            left += " " + std::string(o.valueName);
+        if (left.size() < 28)
+            left.resize(28, ' ');
+        else
+            left += "  ";
+        s << left << o.help << "\n";
+    }
+    return s.str();
+}
+
+namespace {
+struct Subcommand {
+    std::string_view name;
+    std::string_view summary;
+    int (*run)(const std::vector<std::string>&);
+};
+const std::array<Subcommand, 4> kSubcommands{{
+    {"render", "render a scene or material preset to an image, headless", runRender},
+    {"validate", "check presets and scenes, printing every problem", runValidate},
+    {"info", "version, headless OpenGL and dependency versions", runInfo},
+    {"schema", "print the JSON Schema of material presets or scenes", runSchema},
+}};
+} // namespace
+
+bool isSubcommand(std::string_view name) {
+    for (const auto& c : kSubcommands)
+        if (c.name == name)
+            return true;
+    return false;
+}
+
+std::string topLevelHelp() {
+    std::ostringstream s;
+    s << "Usage: velvet [FILE] [--screenshot OUT]   open the editor (on FILE, or the default scene)\n"
+         "       velvet COMMAND [ARGS]             run a headless command\n\n"
+         "Commands:\n";
+    for (const auto& c : kSubcommands) {
+        std::string name(c.name);
+        name.resize(10, ' ');
+        s << "  " << name << c.summary << "\n";
+    }
+    s << "\nEditor options:\n"
+         "  --screenshot OUT          save the window after its first frame to OUT, then exit\n"
+         "  -h, --help                this text\n"
+         "  --version                 print the version\n\n"
+         "Run 'velvet COMMAND --help' for a command's options.\n"
+         "Exit codes: 0 success, 1 usage error, 2 bad input, 3 rendering failure.\n";
+    return s.str();
+}
+
+int run(const std::vector<std::string>& args) {
+    for (const auto& c : kSubcommands)
+        if (!args.empty() && c.name == args[0])
+            return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
+    std::cerr << "velvet: unknown command '" << (args.empty() ? "" : args[0]) << "'\n";
+    return UsageError;
+}
+
+} // namespace velvet::cli

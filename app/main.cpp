@@ -1,1 +1,51 @@
-int main() { return 0; }
+// velvet: the editor when run alone (or with a FILE), a headless CLI with a subcommand.
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "app/resource_root.h"
+#include "ui/editor.h"
+
+int main(int argc, char** argv) {
+    velvet::app::locateResources(argv[0]);
+    std::vector<std::string> args(argv + 1, argv + argc);
+
+    if (!args.empty() && velvet::cli::isSubcommand(args[0]))
+        return velvet::cli::run(args);
+
+    // Editor: velvet [FILE] [--screenshot OUT]
+    velvet::ui::EditorOptions options;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "-h" || a == "--help") {
+            std::cout << velvet::cli::topLevelHelp();
+            return velvet::cli::Ok;
+        }
+        if (a == "--version") {
+            std::cout << "velvet " << VELVET_VERSION << "\n";
+            return velvet::cli::Ok;
+        }
+        if (a == "--screenshot") {
+            if (i + 1 >= args.size()) {
+                std::cerr << "velvet: --screenshot needs a file name\n";
+                return velvet::cli::UsageError;
+            }
+            options.screenshotFile = args[++i];
+        } else if (a.rfind("-", 0) == 0 && a.size() > 1) {
+            // Qt's own options (-platform, -style …) pass through to QApplication.
+            if (a.rfind("--", 0) == 0) {
+                std::cerr << "velvet: unknown option '" << a << "'\n" << velvet::cli::topLevelHelp();
+                return velvet::cli::UsageError;
+            }
+        } else if (options.openFile.empty()) {
+            options.openFile = a;
+        } else {
+            std::cerr << "velvet: unknown command '" << options.openFile << "' or more than one FILE\n"
+                      << "Run 'velvet --help' for usage.\n";
+            return velvet::cli::UsageError;
+        }
+    }
+    return velvet::ui::runEditor(argc, argv, options);
+}

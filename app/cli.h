@@ -1,0 +1,53 @@
+#pragma once
+/// @file cli.h
+/// The headless command-line interface: `velvet render|validate|info|schema …`.
+/// Exit codes (DESIGN.md): 0 success, 1 usage error, 2 bad input, 3 rendering failure.
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace velvet::cli {
+
+enum ExitCode : int { Ok = 0, UsageError = 1, BadInput = 2, RenderFailure = 3 };
+
+/// Parsed arguments of one subcommand: positionals and `--name value` / `-x value` options.
+struct Arguments {
+    std::vector<std::string> positional;
+    std::map<std::string, std::string> options; ///< keyed by the long name, without dashes
+    bool has(const std::string& name) const { return options.count(name) != 0; }
+    std::string value(const std::string& name, const std::string& fallback = {}) const;
+};
+
+/// One option a subcommand accepts.
+struct OptionSpec {
+    std::string_view longName;  ///< "output"
+    char shortName;             ///< 'o', or 0
+    bool takesValue;
+    std::string_view valueName; ///< "FILE" for help
+    std::string_view help;
+};
+
+/// Parses @p args (after the subcommand name) against @p specs. On an unknown option or a
+/// missing value returns nullopt and fills @p error.
+std::optional<Arguments> parseArguments(const std::vector<std::string>& args,
+                                        const std::vector<OptionSpec>& specs, std::string* error);
+/// The options part of a --help text.
+std::string optionsHelp(const std::vector<OptionSpec>& specs);
+
+/// True when @p name is a subcommand (so main() takes the CLI path, not the editor).
+bool isSubcommand(std::string_view name);
+/// Runs subcommand args[0] with the rest. Returns the process exit code.
+int run(const std::vector<std::string>& args);
+/// The top-level `velvet --help` text.
+std::string topLevelHelp();
+
+// Subcommands (one file each).
+int runRender(const std::vector<std::string>& args);
+int runValidate(const std::vector<std::string>& args);
+int runInfo(const std::vector<std::string>& args);
+int runSchema(const std::vector<std::string>& args);
+
+} // namespace velvet::cli

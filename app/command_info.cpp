@@ -1,0 +1,43 @@
+// velvet info: version, the headless OpenGL context, dependency versions.
+#include <iostream>
+
+#include <QtGlobal>
+
+#include "app/cli.h"
+#include "core/versions.h"
+#include "render/headless_context.h"
+
+namespace velvet::cli {
+
+int runInfo(const std::vector<std::string>& argv) {
+    const std::vector<OptionSpec> options{{"help", 'h', false, "", "this text"}};
+    std::string error;
+    auto args = parseArguments(argv, options, &error);
+    if (!args || !args->positional.empty()) {
+        std::cerr << "velvet info: " << (args ? "takes no FILE" : error) << "\n";
+        return UsageError;
+    }
+    if (args->has("help")) {
+        std::cout << "Usage: velvet info\nPrints Velvet's version, the headless OpenGL context "
+                     "(vendor, renderer, version) and dependency versions.\n\n"
+                  << optionsHelp(options);
+        return Ok;
+    }
+    std::cout << "Velvet " << VELVET_VERSION << "\n";
+    int code = Ok;
+    if (auto context = render::HeadlessContext::create(&error)) {
+        std::cout << "OpenGL (headless, EGL " << context->platform() << ")\n"
+                  << "  vendor:   " << context->vendor() << "\n"
+                  << "  renderer: " << context->renderer() << "\n"
+                  << "  version:  " << context->version() << "\n";
+    } else {
+        std::cout << "OpenGL (headless): unavailable: " << error << "\n";
+        code = RenderFailure;
+    }
+    std::cout << "Dependencies\n  Qt: " << qVersion() << "\n";
+    for (const auto& [name, version] : dependencyVersions())
+        std::cout << "  " << name << ": " << version << "\n";
+    return code;
+}
+
+} // namespace velvet::cli

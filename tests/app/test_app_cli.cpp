@@ -1,0 +1,202 @@
+// The CLI's contract (DESIGN.md): exit codes 0 success, 1 usage error, 2 bad input (one line per
+// problem on stderr, nothing written), 3 rendering failure; no crash and no hang on any input.
+// Runs the real `velvet` binary on real files.
+#include <QDir>
+#include <QFileInfo>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include "core/image.h"
+
+namespace {
+
+struct Result {
+    int exitCode = -1;
+    QProcess::ExitStatus status = QProcess::CrashExit;
+    QString out, err;
+};
+
+/// Runs velvet with no display (the CLI must not need one) and a time limit (no hang).
+Result velvet(const QStringList& args, const QString& workingDir = {}) {
+    QProcess p;
+    if (!workingDir.isEmpty())
+        p.setWorkingDirectory(workingDir);
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.remove("DISPLAY");
+    env.remove("WAYLAND_DISPLAY");
+    p.setProcessEnvironment(env);
+    p.start(VELVET_BINARY, args);
+    Result r;
+    if (!p.waitForFinished(120000)) {
+        p.kill();
+        p.waitForFinished();
+        return r;
+    }
+    r.exitCode = p.exitCode();
+    r.status = p.exitStatus();
+    r.out = QString::fromUtf8(p.readAllStandardOutput());
+    r.err = QString::fromUtf8(p.readAllStandardError());
+    return r;
+}
+
+QString data(const QString& rel) { return QStringLiteral(VELVET_TEST_DATA "/") + rel; }
+QString source(const QString& rel) { return QStringLiteral(VELVET_SOURCE_DIR "/") + rel; }
+
+} // namespace
+
+class TestAppCli : public QObject {
+    Q_OBJECT
+private slots:
+    void helpForEveryCommand_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::newRow("top") << QStringList{"--help"};
+        for (const char* c : {"render", "validate", "info", "schema"})
+            QTest::newRow(c) << QStringList{c, "--help"};
+    }
+    void helpForEveryCommand() {
+        QFETCH(QStringList, args);
+        Result r = velvet(args);
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QCOMPARE(r.exitCode, 0);
+        QVERIFY2(r.out.contains("Usage"), qPrintable(r.out));
+    }
+
+    void usageErrors_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::newRow("render without -o") << QStringList{"render"};
+        QTest::newRow("unknown option") << QStringList{"render", "-o", "x.png", "--frobnicate"};
+        QTest::newRow("bad size") << QStringList{"render", "-o", "x.png", "--size", "12by4"};
+        QTest::newRow("zero size") << QStringList{"render", "-o", "x.png", "--size", "0x10"};
+        QTest::newRow("huge size") << QStringList{"render", "-o", "x.png", "--size", "90000x10"};
+        QTest::newRow("bad extension") << QStringList{"render", "-o", "x.bmpx"};
+        QTest::newRow("bad tonemap") << QStringList{"render", "-o", "x.png", "--tonemap", "warm"};
+        QTest::newRow("option without value") << QStringList{"render", "-o"};
+        QTest::newRow("two files") << QStringList{"render", "a.json", "b.json", "-o", "x.png"};
+        QTest::newRow("validate nothing") << QStringList{"validate"};
+        QTest::newRow("schema of what") << QStringList{"schema", "texture"};
+        QTest::newRow("unknown editor option") << QStringList{"--frobnicate"};
+    }
+    void usageErrors() {
+        QFETCH(QStringList, args);
+        QTemporaryDir dir; // a wrongly accepted command would write x.png here
+        Result r = velvet(args, dir.path());
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY(!r.err.isEmpty());
+        QVERIFY(QDir(dir.path()).isEmpty());
+    }
+
+    /// Every malformed file in the corpus: exit 2 from validate and from render, a message that
+    /// names the file, and no output written.
+    void malformedFilesAreBadInput_data() {
+        QTest::addColumn<QString>("file");
+        const QDir dir(data("malformed"));
+        const auto files = dir.entryInfoList(QDir::Files, QDir::Name);
+        QVERIFY2(files.size() >= 15, "the malformed corpus should hold at least 15 files");
+        for (const QFileInfo& f : files)
+            QTest::newRow(qPrintable(f.fileName())) << f.absoluteFilePath();
+        QTest::newRow("missing file") << data("malformed/does-not-exist.json");
+    }
+    void malformedFilesAreBadInput() {
+        QFETCH(QString, file);
+        Result v = velvet({"validate", file});
+        QCOMPARE(v.status, QProcess::NormalExit);
+        QCOMPARE(v.exitCode, 2);
+        QVERIFY2(v.err.contains(QFileInfo(file).fileName()), qPrintable(v.err));
+
+        QTemporaryDir dir;
+        const QString out = dir.filePath("out.png");
+        Result r = velvet({"render", file, "-o", out, "--size", "16x16"});
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY(!r.err.isEmpty());
+        QVERIFY2(QDir(dir.path()).isEmpty(), "bad input must write nothing");
+    }
+
+    void outputFolderMissingIsBadInput() {
+        Result r = velvet({"render", "-o", "/nonexistent-velvet-dir/out.png", "--size", "8x8"});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY(r.err.contains("does not exist"));
+    }
+
+    void validateShippedPresets() {
+        const auto files = QDir(source("resources/presets")).entryInfoList({"*.json"}, QDir::Files);
+        QVERIFY(files.size() >= 12);
+        QStringList args{"validate"};
+        for (const QFileInfo& f : files)
+            args << f.absoluteFilePath();
+        Result r = velvet(args);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(r.out.count(": ok"), files.size());
+    }
+
+    void validateMixedFilesReportsEachAndFails() {
+        const QString good = source("resources/presets/crimson_velvet.json");
+        const auto bad = QDir(data("malformed")).entryInfoList(QDir::Files, QDir::Name);
+        QVERIFY(!bad.isEmpty());
+        Result r = velvet({"validate", good, bad.first().absoluteFilePath()});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY(r.out.contains("crimson_velvet.json: ok"));
+        QVERIFY(r.err.contains(bad.first().fileName()));
+    }
+
+    /// The default scene renders headless to a PNG that is not blank.
+    void renderDefaultScenePng() {
+        QTemporaryDir dir;
+        const QString out = dir.filePath("default.png");
+        Result r = velvet({"render", "-o", out, "--size", "64x48"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        velvet::Image image;
+        std::string error;
+        QVERIFY2(velvet::readImage(out.toStdString(), image, &error), error.c_str());
+        QCOMPARE(image.width, 64);
+        QCOMPARE(image.height, 48);
+        // Not blank: the sphere in the middle differs from the corner, and pixels vary.
+        const glm::vec4 centre = image.rgba(32, 24), corner = image.rgba(1, 1);
+        QVERIFY(glm::length(glm::vec3(centre) - glm::vec3(corner)) > 0.05f);
+        float minV = 1, maxV = 0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                minV = std::min(minV, image.rgba(x, y).r);
+                maxV = std::max(maxV, image.rgba(x, y).r);
+            }
+        QVERIFY(maxV - minV > 0.2f);
+    }
+
+    /// A preset renders in the default scene; EXR output is linear half float.
+    void renderPresetExr() {
+        QTemporaryDir dir;
+        const QString out = dir.filePath("gold.exr");
+        Result r = velvet({"render", source("resources/presets/gold.json"), "-o", out, "--size", "32x32"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        velvet::Image image;
+        std::string error;
+        QVERIFY2(velvet::readImage(out.toStdString(), image, &error), error.c_str());
+        QCOMPARE(image.width, 32);
+        // Gold reflects more red than blue at the sphere's centre.
+        const glm::vec4 c = image.rgba(16, 16);
+        QVERIFY2(c.r > c.b, qPrintable(QString("r=%1 b=%2").arg(c.r).arg(c.b)));
+    }
+
+    void infoReportsHeadlessGl() {
+        Result r = velvet({"info"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err + r.out));
+        QVERIFY(r.out.contains("OpenGL"));
+        QVERIFY(r.out.contains("version:"));
+        QVERIFY(r.out.contains("OpenImageIO"));
+    }
+
+    void schemaMatchesShippedFile() {
+        for (const QString kind : {"material", "scene"}) {
+            Result r = velvet({"schema", kind});
+            QCOMPARE(r.exitCode, 0);
+            QFile shipped(source("resources/schemas/" + kind + ".schema.json"));
+            QVERIFY(shipped.open(QIODevice::ReadOnly));
+            QCOMPARE(r.out, QString::fromUtf8(shipped.readAll()));
+        }
+    }
+};
+
+QTEST_GUILESS_MAIN(TestAppCli)
+#include "test_app_cli.moc"

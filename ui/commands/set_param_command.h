@@ -1,0 +1,43 @@
+#pragma once
+/// @file set_param_command.h
+/// Undoable change of one material parameter.
+
+#include <QUndoCommand>
+
+#include <glm/vec3.hpp>
+
+#include "core/material.h"
+
+namespace velvet::ui {
+
+class DocumentController;
+
+/// Sets one parameter through DocumentController::setParam. Commands with the same parameter and
+/// the same non-zero merge key (one slider drag) merge; a merge back to the old value makes the
+/// command obsolete, so the stack drops it.
+class SetParamCommand : public QUndoCommand {
+public:
+    /// Command id for QUndoCommand::id(): merging is further restricted by parameter and key.
+    static constexpr int kId = 0x5e7;
+
+    SetParamCommand(DocumentController* controller, ParamId param, glm::vec3 oldValue,
+                    glm::vec3 newValue, int mergeKey, QUndoCommand* parent = nullptr);
+
+    void undo() override;
+    void redo() override;
+    int id() const override { return kId; }
+    bool mergeWith(const QUndoCommand* other) override;
+
+    ParamId param() const { return m_param; }
+    glm::vec3 oldValue() const { return m_oldValue; }
+    glm::vec3 newValue() const { return m_newValue; }
+
+private:
+    DocumentController* m_controller;
+    ParamId m_param;
+    glm::vec3 m_oldValue;
+    glm::vec3 m_newValue;
+    int m_mergeKey;
+};
+
+} // namespace velvet::ui

@@ -1,0 +1,135 @@
+#include "ui/document_controller.h"
+
+#include <QFileInfo>
+#include <QUndoStack>
+
+#include "core/document_io.h"
+#include "ui/commands/set_param_command.h"
+
+namespace velvet::ui {
+namespace {
+
+std::filesystem::path toPath(const QString& path) { return std::filesystem::path(path.toStdString()); }
+
+QStringList problemLines(const Problems& problems, const QString& file) {
+    QStringList lines;
+    for (const Problem& p : problems.items)
+        if (p.severity == Problem::Severity::Error)
+            lines << QString::fromStdString(p.toString());
+    if (lines.isEmpty())
+        lines << QStringLiteral("%1: could not be read").arg(file);
+    return lines;
+}
+
+} // namespace
+
+DocumentController::DocumentController(QObject* parent)
+    : QObject(parent), m_undoStack(new QUndoStack(this)) {
+    connect(m_undoStack, &QUndoStack::cleanChanged, this,
+            [this](bool clean) { emit dirtyChanged(!clean); });
+}
+
+DocumentController::~DocumentController() = default;
+
+QString DocumentController::displayName() const {
+    return m_filePath.isEmpty() ? tr("Untitled") : QFileInfo(m_filePath).fileName();
+}
+
+bool DocumentController::isDirty() const { return !m_undoStack->isClean(); }
+
+void DocumentController::editParam(ParamId id, glm::vec3 value, int mergeKey) {
+    // Compare against what the model would store, so a no-op edit (clamped, or the same value)
+    // never creates a command.
+    Material probe = m_scene.material;
+    probe.setValue(id, value);
+    if (probe.value(id) == m_scene.material.value(id))
+        return;
+    m_undoStack->push(new SetParamCommand(this, id, m_scene.material.value(id), probe.value(id),
+                                          mergeKey));
+}
+
+void DocumentController::resetParam(ParamId id) {
+    const glm::vec3 def = paramMeta(id).defaultValue;
+    if (m_scene.material.value(id) == def)
+        return;
+    auto* cmd = new SetParamCommand(this, id, m_scene.material.value(id), def, 0);
+    cmd->setText(tr("Reset %1").arg(QString::fromUtf8(paramMeta(id).label)));
+    m_undoStack->push(cmd);
+}
+
+void DocumentController::setParam(ParamId id, glm::vec3 value) {
+    m_scene.material.setValue(id, value);
+    emit paramChanged(id);
+    emit sceneChanged();
+}
+
+void DocumentController::newDocument() {
+    Problems problems; // the default scene falls back silently; problems go to the log issue
+    setDocument(defaultScene(&problems), QString());
+}
+
+bool DocumentController::openFile(const QString& path, QStringList* problems) {
+    Problems found;
+    const std::filesystem::path file = toPath(path);
+    std::optional<Scene> scene;
+    const DocumentKind kind = detectDocumentKind(file);
+    switch (kind) {
+    case DocumentKind::Material:
+        if (std::optional<Material> material = loadMaterialFile(file, found)) {
+            scene = sceneWithMaterial(std::move(*material));
+            scene->materialPreset = file.string();
+        }
+        break;
+    case DocumentKind::Scene:
+    case DocumentKind::Unknown: // the scene loader reports what is wrong with the file
+        scene = loadSceneFile(file, found);
+        break;
+    }
+    if (!scene || found.hasErrors()) {
+        if (problems)
+            *problems = problemLines(found, path);
+        return false;
+    }
+    // A preset is not a scene: saving it writes a new scene file, never over the preset.
+    const bool isPreset = kind == DocumentKind::Material;
+    setDocument(std::move(*scene), isPreset ? QString() : QFileInfo(path).absoluteFilePath());
+    return true;
+}
+
+bool DocumentController::save(QString* error) {
+    if (m_filePath.isEmpty()) {
+        if (error)
+            *error = tr("The document has no file yet: use Save As.");
+        return false;
+    }
+    return saveAs(m_filePath, error);
+}
+
+bool DocumentController::saveAs(const QString& path, QString* error) {
+    std::string message;
+    if (!saveSceneFile(m_scene, toPath(path), &message)) {
+        if (error)
+            *error = QString::fromStdString(message);
+        return false;
+    }
+    const QString absolute = QFileInfo(path).absoluteFilePath();
+    if (absolute != m_filePath) {
+        m_filePath = absolute;
+        emit fileChanged(m_filePath);
+    }
+    m_undoStack->setClean();
+    return true;
+}
+
+void DocumentController::setDocument(Scene scene, const QString& filePath) {
+    m_scene = std::move(scene);
+    m_undoStack->clear(); // the old document's commands point at values that no longer exist
+    m_undoStack->setClean();
+    m_filePath = filePath;
+    emit fileChanged(m_filePath);
+    emit documentReplaced();
+    emit sceneChanged();
+    emit dirtyChanged(false);
+}
+
+} // namespace velvet::ui

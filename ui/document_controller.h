@@ -1,0 +1,90 @@
+#pragma once
+/// @file document_controller.h
+/// The open document as the editor sees it: the Scene, its file, its undo stack and dirty state.
+/// Panels edit through the controller (edit* functions push a QUndoCommand); commands apply their
+/// change through the set* functions; views listen to the signals.
+
+#include <QObject>
+#include <QString>
+#include <QStringList>
+
+#include <glm/vec3.hpp>
+
+#include "core/scene.h"
+
+class QUndoStack;
+
+namespace velvet::ui {
+
+class DocumentController : public QObject {
+    Q_OBJECT
+public:
+    explicit DocumentController(QObject* parent = nullptr);
+    ~DocumentController() override;
+
+    /// @name The document
+    /// @{
+    const Scene& scene() const { return m_scene; }
+    const Material& material() const { return m_scene.material; }
+    glm::vec3 param(ParamId id) const { return m_scene.material.value(id); }
+    /// The file the document was read from or last saved to; empty for a new document.
+    QString filePath() const { return m_filePath; }
+    /// The file name shown in the title ("Untitled" for a new document).
+    QString displayName() const;
+    QUndoStack* undoStack() const { return m_undoStack; }
+    /// True when the undo stack is not at its clean index.
+    bool isDirty() const;
+    /// @}
+
+    /// @name Edits from panels (each pushes one undoable command)
+    /// @{
+    /// Sets a parameter. Edits sharing a non-zero @p mergeKey (one slider drag) and the same
+    /// parameter merge into one command. Does nothing when the value would not change.
+    void editParam(ParamId id, glm::vec3 value, int mergeKey = 0);
+    /// Puts a parameter back to its metadata default (one command, "Reset <label>").
+    void resetParam(ParamId id);
+    /// A fresh key for editParam's merging; call once when a drag starts.
+    int newMergeKey() { return ++m_lastMergeKey; }
+    /// @}
+
+    /// @name Applied by undo commands (not undoable by themselves)
+    /// @{
+    /// Sets a parameter (clamped to its hard range by Material) and notifies.
+    void setParam(ParamId id, glm::vec3 value);
+    /// @}
+
+    /// @name Whole documents (clear the undo stack; never half-applied)
+    /// @{
+    /// Replaces the document with the built-in default scene.
+    void newDocument();
+    /// Opens a scene, or a material preset shown in the default scene. On failure the current
+    /// document is untouched and @p problems gets one "file: path: message" line per problem.
+    bool openFile(const QString& path, QStringList* problems);
+    /// Saves to filePath() (which must not be empty). False + @p error on failure.
+    bool save(QString* error);
+    /// Saves as a scene to @p path and makes it the document's file. False + @p error on failure.
+    bool saveAs(const QString& path, QString* error);
+    /// Takes @p scene as a new, clean document (used by newDocument/openFile and tests).
+    void setDocument(Scene scene, const QString& filePath);
+    /// @}
+
+signals:
+    /// Anything in the scene changed (one parameter, or the whole document).
+    void sceneChanged();
+    /// One material parameter changed (undo, redo or edit).
+    void paramChanged(velvet::ParamId id);
+    /// The whole document was replaced (new or open); views reset their view state.
+    void documentReplaced();
+    /// The file path or display name changed.
+    void fileChanged(const QString& filePath);
+    /// The undo stack left or reached its clean state.
+    void dirtyChanged(bool dirty);
+
+private:
+    Scene m_scene;
+    QString m_filePath;
+    QUndoStack* m_undoStack = nullptr;
+    int m_lastMergeKey = 0;
+};
+
+} // namespace velvet::ui
