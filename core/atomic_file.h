@@ -11,7 +11,8 @@
 
 namespace velvet {
 
-/// Reads @p file; refuses files larger than @p maxBytes before reading. nullopt + @p error on failure.
+/// Reads @p file; refuses files larger than @p maxBytes before reading. nullopt + @p error on
+/// failure.
 std::optional<std::string> readWholeFile(const std::filesystem::path& file, std::uintmax_t maxBytes,
                                          std::string* error);
 /// As readWholeFile, but @p reason gets the failure without the file name ("is a folder", "is

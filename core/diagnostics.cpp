@@ -24,7 +24,8 @@ bool Problems::hasErrors() const {
 }
 
 void Problems::error(std::string file, std::string path, std::string message) {
-    items.push_back({Problem::Severity::Error, std::move(file), std::move(path), std::move(message)});
+    items.push_back(
+        {Problem::Severity::Error, std::move(file), std::move(path), std::move(message)});
 }
 
 void Problems::warning(std::string file, std::string path, std::string message) {

@@ -4,14 +4,14 @@
 /// Loading validates everything first and builds the model only when there is no error, so a
 /// caller never sees a half-read document. Every problem carries the file and its JSON path.
 
+#include "core/diagnostics.h"
+#include "core/material.h"
+#include "core/scene.h"
+
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
-
-#include "core/diagnostics.h"
-#include "core/material.h"
-#include "core/scene.h"
 
 namespace velvet {
 

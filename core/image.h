@@ -4,24 +4,26 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <glm/vec4.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec4.hpp>
 
 namespace velvet {
 
 struct Image {
     int width = 0;
     int height = 0;
-    int channels = 4;           ///< 1 to 4
-    std::vector<float> pixels;  ///< width * height * channels, row-major, top row first
+    int channels = 4;          ///< 1 to 4
+    std::vector<float> pixels; ///< width * height * channels, row-major, top row first
 
     Image() = default;
-    Image(int w, int h, int c) : width(w), height(h), channels(c), pixels(size_t(w) * h * c, 0.0f) {}
+    Image(int w, int h, int c)
+        : width(w), height(h), channels(c), pixels(size_t(w) * h * c, 0.0f) {}
     bool empty() const { return width == 0 || height == 0; }
     float* at(int x, int y) { return pixels.data() + (size_t(y) * width + x) * channels; }
-    const float* at(int x, int y) const { return pixels.data() + (size_t(y) * width + x) * channels; }
+    const float* at(int x, int y) const {
+        return pixels.data() + (size_t(y) * width + x) * channels;
+    }
     /// The pixel as RGBA (grey -> RRR, missing alpha -> 1).
     glm::vec4 rgba(int x, int y) const;
 };

@@ -8,13 +8,18 @@ namespace velvet {
 namespace {
 
 constexpr std::array<std::string_view, 3> kDistributionNames{"ggx", "beckmann", "blinn-phong"};
-constexpr std::array<std::string_view, 7> kVisibilityNames{
-    "smith-ggx-separable", "smith-ggx-correlated", "schlick-ggx", "cook-torrance",
-    "implicit",            "neumann",              "kelemen"};
-constexpr std::array<std::string_view, 3> kFresnelNames{"schlick", "schlick-sg", "exact-dielectric"};
+constexpr std::array<std::string_view, 7> kVisibilityNames{"smith-ggx-separable",
+                                                           "smith-ggx-correlated",
+                                                           "schlick-ggx",
+                                                           "cook-torrance",
+                                                           "implicit",
+                                                           "neumann",
+                                                           "kelemen"};
+constexpr std::array<std::string_view, 3> kFresnelNames{"schlick", "schlick-sg",
+                                                        "exact-dielectric"};
 constexpr std::array<std::string_view, 2> kDiffuseNames{"lambert", "burley"};
-constexpr std::array<std::string_view, 3> kSheenModelNames{"charlie-conty-kulla", "charlie-ashikhmin",
-                                                           "charlie-neubelt"};
+constexpr std::array<std::string_view, 3> kSheenModelNames{"charlie-conty-kulla",
+                                                           "charlie-ashikhmin", "charlie-neubelt"};
 
 constexpr ParamMeta scalar(std::string_view id, std::string_view label, std::string_view group,
                            float min, float max, float def, std::string_view unit,
@@ -130,9 +135,13 @@ const std::array<TextureSlotMeta, kTextureSlotCount> kSlots{{
 
 } // namespace
 
-std::span<const ParamMeta> paramMetas() { return kParams; }
+std::span<const ParamMeta> paramMetas() {
+    return kParams;
+}
 
-const ParamMeta& paramMeta(ParamId id) { return kParams[static_cast<size_t>(id)]; }
+const ParamMeta& paramMeta(ParamId id) {
+    return kParams[static_cast<size_t>(id)];
+}
 
 ParamId paramIdFromString(std::string_view id) {
     for (int i = 0; i < kParamCount; ++i)
@@ -141,9 +150,13 @@ ParamId paramIdFromString(std::string_view id) {
     return ParamId::Count;
 }
 
-std::span<const TextureSlotMeta> textureSlotMetas() { return kSlots; }
+std::span<const TextureSlotMeta> textureSlotMetas() {
+    return kSlots;
+}
 
-const TextureSlotMeta& textureSlotMeta(TextureSlot slot) { return kSlots[static_cast<size_t>(slot)]; }
+const TextureSlotMeta& textureSlotMeta(TextureSlot slot) {
+    return kSlots[static_cast<size_t>(slot)];
+}
 
 Material::Material() {
     for (int i = 0; i < kParamCount; ++i)
@@ -171,6 +184,8 @@ void Material::setValue(ParamId id, glm::vec3 v) {
     m_values[index(id)] = v;
 }
 
-void Material::resetValue(ParamId id) { m_values[index(id)] = paramMeta(id).defaultValue; }
+void Material::resetValue(ParamId id) {
+    m_values[index(id)] = paramMeta(id).defaultValue;
+}
 
 } // namespace velvet

@@ -4,15 +4,15 @@
 /// _specular, _ior and _emissive_strength, plus the BRDF term choices of the seed documents.
 /// Values are addressed by ParamId; their metadata comes from paramMeta().
 
+#include "core/param_meta.h"
+#include "core/texture_ref.h"
+
 #include <array>
+#include <glm/vec3.hpp>
 #include <span>
 #include <string>
 #include <string_view>
-
-#include <glm/vec3.hpp>
-
-#include "core/param_meta.h"
-#include "core/texture_ref.h"
+#include <vector>
 
 namespace velvet {
 
@@ -81,6 +81,8 @@ public:
     Material();
 
     std::string name = "Untitled";
+    /// Free-form search words for the material library ("fabric", "metal", "glossy").
+    std::vector<std::string> tags;
 
     float scalar(ParamId id) const { return m_values[index(id)].x; }
     glm::vec3 color(ParamId id) const { return m_values[index(id)]; }
@@ -96,14 +98,18 @@ public:
     /// Back to the metadata default.
     void resetValue(ParamId id);
 
-    Distribution distribution() const { return static_cast<Distribution>(choice(ParamId::Distribution)); }
+    Distribution distribution() const {
+        return static_cast<Distribution>(choice(ParamId::Distribution));
+    }
     Visibility visibility() const { return static_cast<Visibility>(choice(ParamId::Visibility)); }
     Fresnel fresnel() const { return static_cast<Fresnel>(choice(ParamId::Fresnel)); }
     Diffuse diffuse() const { return static_cast<Diffuse>(choice(ParamId::Diffuse)); }
     SheenModel sheenModel() const { return static_cast<SheenModel>(choice(ParamId::SheenModel)); }
 
     const TextureRef& texture(TextureSlot slot) const { return m_textures[slotIndex(slot)]; }
-    void setTexture(TextureSlot slot, TextureRef ref) { m_textures[slotIndex(slot)] = std::move(ref); }
+    void setTexture(TextureSlot slot, TextureRef ref) {
+        m_textures[slotIndex(slot)] = std::move(ref);
+    }
 
     bool operator==(const Material&) const = default;
 

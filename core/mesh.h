@@ -3,11 +3,10 @@
 /// Triangle meshes with tangents, and the procedural preview meshes.
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+#include <vector>
 
 namespace velvet {
 

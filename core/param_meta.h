@@ -3,10 +3,9 @@
 /// Parameter metadata: the single description of every material parameter from which property
 /// panels, serializers, JSON Schemas and validation are generated (DESIGN.md, "Parameters").
 
+#include <glm/vec3.hpp>
 #include <span>
 #include <string_view>
-
-#include <glm/vec3.hpp>
 
 namespace velvet {
 
@@ -26,18 +25,18 @@ enum class ColorSpace {
 
 /// Metadata of one parameter. All strings are static; tables of these live in .cpp files.
 struct ParamMeta {
-    std::string_view id;      ///< JSON path inside the document, e.g. "lobes.base.roughness"
-    std::string_view label;   ///< shown to the artist, e.g. "Roughness"
-    std::string_view group;   ///< panel group, e.g. "Base", "Clearcoat", "Sheen", "BRDF"
+    std::string_view id;    ///< JSON path inside the document, e.g. "lobes.base.roughness"
+    std::string_view label; ///< shown to the artist, e.g. "Roughness"
+    std::string_view group; ///< panel group, e.g. "Base", "Clearcoat", "Sheen", "BRDF"
     ParamType type = ParamType::Float;
-    float min = 0.0f;         ///< hard minimum (each channel for colours, first index for choices)
-    float max = 1.0f;         ///< hard maximum (each channel for colours, last index for choices)
+    float min = 0.0f; ///< hard minimum (each channel for colours, first index for choices)
+    float max = 1.0f; ///< hard maximum (each channel for colours, last index for choices)
     glm::vec3 defaultValue{0.0f}; ///< x holds the scalar or the choice index
-    std::string_view unit;    ///< "" when unitless, else e.g. "nits", "°"
+    std::string_view unit;        ///< "" when unitless, else e.g. "nits", "°"
     ColorSpace colorSpace = ColorSpace::None;
-    std::string_view tooltip; ///< one sentence, shown on hover and in docs
+    std::string_view tooltip;                    ///< one sentence, shown on hover and in docs
     std::span<const std::string_view> choices{}; ///< names of a Choice parameter, in index order
-    float softMax = 0.0f;     ///< slider end when smaller than max (0: same as max)
+    float softMax = 0.0f; ///< slider end when smaller than max (0: same as max)
 };
 
 } // namespace velvet

@@ -12,7 +12,7 @@ namespace velvet {
 
 /// One effect in the chain. Parameters are numbers or number lists keyed by parameter id.
 struct EffectInstance {
-    std::string type;   ///< effect type id, e.g. "bloom", "tonemap", "vignette"
+    std::string type; ///< effect type id, e.g. "bloom", "tonemap", "vignette"
     bool enabled = true;
     std::map<std::string, std::vector<float>> params;
     bool operator==(const EffectInstance&) const = default;

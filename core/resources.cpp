@@ -14,7 +14,9 @@ std::filesystem::path& appRoot() {
 }
 } // namespace
 
-void setRoot(const std::filesystem::path& r) { appRoot() = r; }
+void setRoot(const std::filesystem::path& r) {
+    appRoot() = r;
+}
 
 std::filesystem::path root() {
     if (const char* env = std::getenv("VELVET_RESOURCES"); env && *env)
@@ -24,6 +26,8 @@ std::filesystem::path root() {
     return VELVET_RESOURCE_DIR;
 }
 
-std::filesystem::path path(const std::filesystem::path& relative) { return root() / relative; }
+std::filesystem::path path(const std::filesystem::path& relative) {
+    return root() / relative;
+}
 
 } // namespace velvet::resources

@@ -1,8 +1,8 @@
 #pragma once
 /// @file resources.h
 /// Where shaders, schemas, presets and HDRIs live. Lookup order: the VELVET_RESOURCES environment
-/// variable, a root set by the application (e.g. a resources/ folder beside the executable), then the
-/// source tree's resources/ folder compiled in.
+/// variable, a root set by the application (e.g. a resources/ folder beside the executable), then
+/// the source tree's resources/ folder compiled in.
 
 #include <filesystem>
 

@@ -2,24 +2,25 @@
 /// @file scene.h
 /// A scene: camera, lights, environment, preview mesh, the material assigned to it, post chain.
 
-#include <string>
-#include <vector>
+#include "core/material.h"
+#include "core/post_chain.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-
-#include "core/material.h"
-#include "core/post_chain.h"
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace velvet {
 
 /// An orbit camera around a target (yaw/pitch in degrees, Y up, right-handed).
 struct Camera {
     glm::vec3 target{0.0f};
-    float yawDeg = 0.0f;     ///< rotation about +Y; 0 looks down -Z from +Z
-    float pitchDeg = 10.0f;  ///< elevation, positive looks down on the target
-    float distance = 3.2f;   ///< metres from target
-    float fovYDeg = 35.0f;   ///< vertical field of view (perspective)
+    float yawDeg = 0.0f;    ///< rotation about +Y; 0 looks down -Z from +Z
+    float pitchDeg = 10.0f; ///< elevation, positive looks down on the target
+    float distance = 4.5f;  ///< metres from target (a unit sphere fills ~70 % of the height)
+    float fovYDeg = 35.0f;  ///< vertical field of view (perspective)
     float nearPlane = 0.05f;
     float farPlane = 100.0f;
     bool orthographic = false;
@@ -35,15 +36,16 @@ enum class AreaShape : int { Sphere, Rectangle };
 struct Light {
     LightType type = LightType::Directional;
     std::string name;
-    glm::vec3 color{1.0f};            ///< scene-linear Rec.709
+    glm::vec3 color{1.0f}; ///< scene-linear Rec.709
     float intensity = 3.0f;
     glm::vec3 position{0.0f, 2.0f, 0.0f};
-    glm::vec3 direction{-0.4f, -0.7f, -0.6f}; ///< the way the light travels (directional, spot, area)
-    float range = 10.0f;              ///< influence radius in metres (point, spot, area)
-    float innerConeDeg = 20.0f;       ///< spot: full intensity inside this half-angle
-    float outerConeDeg = 30.0f;       ///< spot: zero outside this half-angle
+    glm::vec3 direction{-0.4f, -0.7f,
+                        -0.6f}; ///< the way the light travels (directional, spot, area)
+    float range = 10.0f;        ///< influence radius in metres (point, spot, area)
+    float innerConeDeg = 20.0f; ///< spot: full intensity inside this half-angle
+    float outerConeDeg = 30.0f; ///< spot: zero outside this half-angle
     AreaShape shape = AreaShape::Sphere;
-    glm::vec2 size{0.5f};             ///< area: radius (sphere, x) or width × height (rectangle)
+    glm::vec2 size{0.5f}; ///< area: radius (sphere, x) or width × height (rectangle)
     bool operator==(const Light&) const = default;
 };
 
@@ -51,16 +53,24 @@ struct Light {
 enum class BackgroundMode : int { Sharp, Blurred, SolidColor, ProceduralFbm };
 
 struct Environment {
-    std::string hdri;                 ///< equirectangular HDR/EXR path; empty: uniform `color`
-    glm::vec3 color{1.0f};            ///< uniform radiance when no HDRI is set
-    float intensity = 1.0f;           ///< multiplier on the environment's radiance
-    float rotationDeg = 0.0f;         ///< rotation about +Y
+    std::string hdri;         ///< equirectangular HDR/EXR path; empty: uniform `color`
+    glm::vec3 color{1.0f};    ///< uniform radiance when no HDRI is set
+    float intensity = 1.0f;   ///< multiplier on the environment's radiance
+    float rotationDeg = 0.0f; ///< rotation about +Y
     BackgroundMode background = BackgroundMode::Sharp;
     glm::vec3 backgroundColor{0.18f}; ///< for BackgroundMode::SolidColor
     bool operator==(const Environment&) const = default;
 };
 
-enum class PreviewMeshKind : int { Sphere, Cube, RoundedCube, Plane, ClothDrape, ShaderBall, Custom };
+enum class PreviewMeshKind : int {
+    Sphere,
+    Cube,
+    RoundedCube,
+    Plane,
+    ClothDrape,
+    ShaderBall,
+    Custom
+};
 
 struct MeshRef {
     PreviewMeshKind kind = PreviewMeshKind::Sphere;
@@ -78,5 +88,12 @@ struct Scene {
     PostChain post;
     bool operator==(const Scene&) const = default;
 };
+
+/// File and panel names of the enumerations above, lowercase-hyphenated, in enum order
+/// ("directional", "rounded-cube", "solid-color", …).
+std::span<const std::string_view> lightTypeNames();
+std::span<const std::string_view> areaShapeNames();
+std::span<const std::string_view> backgroundModeNames();
+std::span<const std::string_view> previewMeshKindNames();
 
 } // namespace velvet

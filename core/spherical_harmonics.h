@@ -4,11 +4,10 @@
 /// they give (Ramamoorthi & Hanrahan 2001, "An Efficient Representation for Irradiance
 /// Environment Maps"). The CPU reference for the renderer's diffuse ambient term.
 
-#include <array>
-
-#include <glm/vec3.hpp>
-
 #include "core/image.h"
+
+#include <array>
+#include <glm/vec3.hpp>
 
 namespace velvet {
 

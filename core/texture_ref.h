@@ -11,19 +11,19 @@
 namespace velvet {
 
 enum class TextureSlot : int {
-    BaseColor,         ///< RGB colour, A alpha (sRGB texture)
-    MetallicRoughness, ///< glTF packing: G roughness, B metallic (raw)
-    SpecRoughMetal,    ///< seed-document material atlas: R specular, G roughness, B metallic (raw)
-    Normal,            ///< tangent-space normal map (raw)
-    Occlusion,         ///< R ambient occlusion (raw)
-    Emissive,          ///< RGB emission (sRGB texture)
-    Clearcoat,         ///< R clearcoat weight (raw)
-    ClearcoatRoughness,///< G clearcoat roughness (raw)
-    ClearcoatNormal,   ///< clearcoat normal map (raw)
-    SheenColor,        ///< RGB sheen colour (sRGB texture)
-    SheenRoughness,    ///< A sheen roughness (raw)
-    Specular,          ///< A specular weight (raw)
-    SpecularColor,     ///< RGB specular colour (sRGB texture)
+    BaseColor,          ///< RGB colour, A alpha (sRGB texture)
+    MetallicRoughness,  ///< glTF packing: G roughness, B metallic (raw)
+    SpecRoughMetal,     ///< seed-document material atlas: R specular, G roughness, B metallic (raw)
+    Normal,             ///< tangent-space normal map (raw)
+    Occlusion,          ///< R ambient occlusion (raw)
+    Emissive,           ///< RGB emission (sRGB texture)
+    Clearcoat,          ///< R clearcoat weight (raw)
+    ClearcoatRoughness, ///< G clearcoat roughness (raw)
+    ClearcoatNormal,    ///< clearcoat normal map (raw)
+    SheenColor,         ///< RGB sheen colour (sRGB texture)
+    SheenRoughness,     ///< A sheen roughness (raw)
+    Specular,           ///< A specular weight (raw)
+    SpecularColor,      ///< RGB specular colour (sRGB texture)
     Count
 };
 inline constexpr int kTextureSlotCount = static_cast<int>(TextureSlot::Count);
@@ -46,10 +46,10 @@ struct AtlasRegion {
 
 /// What fills a texture slot. Empty file: the slot is unused and the parameter value applies.
 struct TextureRef {
-    std::string file;        ///< image path (absolute, or relative to the document that names it)
-    bool useRegion = false;  ///< true: only `region` of `file` (an atlas) is used
+    std::string file;       ///< image path (absolute, or relative to the document that names it)
+    bool useRegion = false; ///< true: only `region` of `file` (an atlas) is used
     AtlasRegion region;
-    std::string colorSpace;  ///< input colour space name; empty: the slot's default
+    std::string colorSpace; ///< input colour space name; empty: the slot's default
     bool empty() const { return file.empty(); }
     bool operator==(const TextureRef&) const = default;
 };

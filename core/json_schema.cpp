@@ -1,0 +1,348 @@
+// JSON Schemas (draft 2020-12) of presets and scenes, generated from the same metadata tables the
+// readers use, so the shipped schemas in resources/schemas/ cannot describe a different format
+// (a test compares them with this output).
+#include "core/document_io.h"
+#include "core/material_json.h"
+#include "core/scene_fields.h"
+
+#include <cmath>
+
+namespace velvet {
+namespace {
+
+JsonValue str(std::string_view s) {
+    return JsonValue::makeString(std::string(s));
+}
+
+JsonValue strings(std::span<const std::string_view> names) {
+    JsonValue a = JsonValue::makeArray();
+    for (std::string_view n : names)
+        a.push(str(n));
+    return a;
+}
+
+JsonValue object() {
+    return JsonValue::makeObject();
+}
+
+void addRange(JsonValue& o, const NumberRange& r) {
+    if (std::isfinite(r.min))
+        o.add(r.minExclusive ? "exclusiveMinimum" : "minimum", JsonValue::makeFloat(r.min));
+    if (std::isfinite(r.max))
+        o.add(r.maxExclusive ? "exclusiveMaximum" : "maximum", JsonValue::makeFloat(r.max));
+}
+
+JsonValue numberSchema(const NumberRange& r) {
+    JsonValue o = object();
+    o.add("type", str("number"));
+    addRange(o, r);
+    return o;
+}
+
+JsonValue vectorSchema(size_t n, const NumberRange& r) {
+    JsonValue o = object();
+    o.add("type", str("array"));
+    o.add("items", numberSchema(r));
+    o.add("minItems", JsonValue::makeNumber(static_cast<double>(n)));
+    o.add("maxItems", JsonValue::makeNumber(static_cast<double>(n)));
+    return o;
+}
+
+JsonValue floats(glm::vec3 v, int n) {
+    JsonValue a = JsonValue::makeArray();
+    for (int i = 0; i < n; ++i)
+        a.push(JsonValue::makeFloat(v[i]));
+    return a;
+}
+
+JsonValue paramSchema(const ParamMeta& m) {
+    JsonValue o = object();
+    std::string description(m.tooltip);
+    if (!m.unit.empty())
+        description += " Unit: " + std::string(m.unit) + ".";
+    o.add("description", JsonValue::makeString(description));
+    const NumberRange range = closedRange(m.min, m.max);
+    switch (m.type) {
+    case ParamType::Float:
+        o.add("type", str("number"));
+        addRange(o, range);
+        o.add("default", JsonValue::makeFloat(m.defaultValue.x));
+        break;
+    case ParamType::Color: {
+        JsonValue v = vectorSchema(3, range);
+        for (JsonMember& member : v.members)
+            o.add(member.key, std::move(member.value));
+        o.add("default", floats(m.defaultValue, 3));
+        break;
+    }
+    case ParamType::Choice:
+        o.add("enum", strings(m.choices));
+        o.add("default", str(m.choices[static_cast<size_t>(m.defaultValue.x)]));
+        break;
+    }
+    return o;
+}
+
+JsonValue closedObject() {
+    JsonValue o = object();
+    o.add("type", str("object"));
+    o.add("additionalProperties", JsonValue::makeBool(false));
+    return o;
+}
+
+void addParamProperties(const ParamNode& node, JsonValue& properties) {
+    for (const ParamNode& child : node.children) {
+        if (child.param >= 0) {
+            properties.add(std::string(child.key),
+                           paramSchema(paramMeta(static_cast<ParamId>(child.param))));
+        } else {
+            JsonValue o = closedObject();
+            addParamProperties(child, o.add("properties", object()));
+            properties.add(std::string(child.key), std::move(o));
+        }
+    }
+}
+
+JsonValue formatSchema(std::string_view format) {
+    JsonValue o = object();
+    o.add("const", str(format));
+    return o;
+}
+
+JsonValue versionSchema(int current) {
+    JsonValue o = object();
+    o.add("type", str("integer"));
+    o.add("minimum", JsonValue::makeNumber(1));
+    o.add("maximum", JsonValue::makeNumber(current));
+    return o;
+}
+
+JsonValue textureSchema() {
+    JsonValue o = closedObject();
+    o.add("required", strings(std::array<std::string_view, 1>{"file"}));
+    JsonValue& p = o.add("properties", object());
+    JsonValue& file = p.add("file", object());
+    file.add("type", str("string"));
+    file.add("minLength", JsonValue::makeNumber(1));
+    file.add("description", str("Image path, relative to the document's folder."));
+    JsonValue& region = p.add("region", object());
+    region.add("description", str("Atlas rectangle in pixels: [x, y, width, height]."));
+    region.add("type", str("array"));
+    JsonValue& items = region.add("prefixItems", JsonValue::makeArray());
+    for (int i = 0; i < 4; ++i) {
+        JsonValue n = object();
+        n.add("type", str("integer"));
+        n.add("minimum", JsonValue::makeNumber(i < 2 ? 0 : 1));
+        items.push(std::move(n));
+    }
+    region.add("items", JsonValue::makeBool(false));
+    region.add("minItems", JsonValue::makeNumber(4));
+    JsonValue& cs = p.add("colorSpace", object());
+    cs.add("type", str("string"));
+    cs.add("minLength", JsonValue::makeNumber(1));
+    cs.add("description", str("Input colour space; omitted: the slot's default."));
+    return o;
+}
+
+JsonValue tagsSchema() {
+    JsonValue o = object();
+    o.add("type", str("array"));
+    JsonValue& items = o.add("items", object());
+    items.add("type", str("string"));
+    items.add("minLength", JsonValue::makeNumber(1));
+    return o;
+}
+
+JsonValue materialV2Schema() {
+    JsonValue o = closedObject();
+    o.add("description", str("A material, version 2: parameters nested by their ids."));
+    JsonValue& p = o.add("properties", object());
+    p.add("format", formatSchema(kMaterialFormat));
+    p.add("version", versionSchema(kMaterialVersion));
+    p.add("name", object()).add("type", str("string"));
+    p.add("tags", tagsSchema());
+    addParamProperties(paramTree(), p);
+    JsonValue& textures = p.add("textures", closedObject());
+    JsonValue& slots = textures.add("properties", object());
+    for (const TextureSlotMeta& slot : textureSlotMetas()) {
+        JsonValue ref = object();
+        ref.add("$ref", str("#/$defs/texture"));
+        ref.add("description", str(slot.tooltip));
+        slots.add(std::string(slot.id), std::move(ref));
+    }
+    return o;
+}
+
+JsonValue materialV1Schema() {
+    JsonValue o = closedObject();
+    o.add("description",
+          str("The seed documents' flat material, version 1; migrated to version 2 on load."));
+    JsonValue& p = o.add("properties", object());
+    p.add("format", formatSchema(kMaterialFormat));
+    p.add("version", object()).add("const", JsonValue::makeNumber(1));
+    p.add("name", object()).add("type", str("string"));
+    p.add("albedo", vectorSchema(3, closedRange(0, 1)));
+    for (std::string_view key : {"specular", "roughness", "metallic"})
+        p.add(std::string(key), numberSchema(closedRange(0, 1)));
+    return o;
+}
+
+/// Chooses the version-1 or version-2 shape by the "version" key.
+void addMaterialDispatch(JsonValue& o) {
+    JsonValue& ifs = o.add("if", object());
+    ifs.add("required", strings(std::array<std::string_view, 1>{"version"}));
+    ifs.add("properties", object()).add("version", object()).add("const", JsonValue::makeNumber(1));
+    o.add("then", object()).add("$ref", str("#/$defs/materialV1"));
+    o.add("else", object()).add("$ref", str("#/$defs/material"));
+}
+
+void addMaterialDefs(JsonValue& defs) {
+    defs.add("material", materialV2Schema());
+    defs.add("materialV1", materialV1Schema());
+    defs.add("texture", textureSchema());
+}
+
+JsonValue header(std::string_view title, std::string_view description) {
+    JsonValue o = object();
+    o.add("$schema", str("https://json-schema.org/draft/2020-12/schema"));
+    o.add("title", str(title));
+    o.add("description", str(description));
+    return o;
+}
+
+JsonValue materialSchema() {
+    JsonValue o = header("Velvet material preset",
+                         "A physically based material (docs/file-formats.md). Colours are "
+                         "scene-linear Rec.709.");
+    o.add("type", str("object"));
+    o.add("required", strings(std::array<std::string_view, 3>{"format", "version", "name"}));
+    addMaterialDispatch(o);
+    addMaterialDefs(o.add("$defs", object()));
+    return o;
+}
+
+template <class S>
+JsonValue fieldsSchema(std::span<const Field<S>> fields) {
+    static const S def{};
+    JsonValue o = closedObject();
+    JsonValue required = JsonValue::makeArray();
+    JsonValue& props = o.add("properties", object());
+    for (const Field<S>& f : fields) {
+        JsonValue p = object();
+        p.add("description", str(f.description));
+        switch (f.kind) {
+        case FieldKind::Number:
+            p.add("type", str("number"));
+            addRange(p, f.range);
+            p.add("default", JsonValue::makeFloat(def.*f.number));
+            break;
+        case FieldKind::Vec2:
+        case FieldKind::Vec3: {
+            const bool three = f.kind == FieldKind::Vec3;
+            JsonValue v = vectorSchema(three ? 3 : 2, f.range);
+            for (JsonMember& m : v.members)
+                p.add(m.key, std::move(m.value));
+            p.add("default",
+                  three ? floats(def.*f.vec3, 3) : floats(glm::vec3(def.*f.vec2, 0.0f), 2));
+            break;
+        }
+        case FieldKind::Bool:
+            p.add("type", str("boolean"));
+            p.add("default", JsonValue::makeBool(def.*f.flag));
+            break;
+        case FieldKind::Text:
+        case FieldKind::Path:
+            p.add("type", str("string"));
+            break;
+        case FieldKind::Choice:
+            p.add("enum", strings(f.choices));
+            if (!f.required)
+                p.add("default", str(f.choices[static_cast<size_t>(f.getChoice(def))]));
+            break;
+        }
+        if (f.required)
+            required.push(str(f.key));
+        props.add(std::string(f.key), std::move(p));
+    }
+    if (!required.items.empty())
+        o.add("required", std::move(required));
+    return o;
+}
+
+JsonValue postSchema() {
+    JsonValue effect = closedObject();
+    effect.add("required", strings(std::array<std::string_view, 1>{"type"}));
+    JsonValue& p = effect.add("properties", object());
+    JsonValue& type = p.add("type", object());
+    type.add("type", str("string"));
+    type.add("minLength", JsonValue::makeNumber(1));
+    type.add("description", str("Effect type id, e.g. \"bloom\", \"tonemap\", \"vignette\"."));
+    JsonValue& enabled = p.add("enabled", object());
+    enabled.add("type", str("boolean"));
+    enabled.add("default", JsonValue::makeBool(true));
+    JsonValue& params = p.add("params", object());
+    params.add("type", str("object"));
+    JsonValue& values = params.add("additionalProperties", object());
+    values.add("type", str("array"));
+    values.add("items", object()).add("type", str("number"));
+    values.add("minItems", JsonValue::makeNumber(1));
+
+    JsonValue o = closedObject();
+    JsonValue& effects = o.add("properties", object()).add("effects", object());
+    effects.add("type", str("array"));
+    effects.add("items", std::move(effect));
+    return o;
+}
+
+JsonValue sceneSchema() {
+    JsonValue o =
+        header("Velvet scene", "Camera, lights, environment, preview mesh, material and post chain "
+                               "(docs/file-formats.md). Colours are scene-linear Rec.709.");
+    o.add("type", str("object"));
+    o.add("required", strings(std::array<std::string_view, 2>{"format", "version"}));
+    o.add("additionalProperties", JsonValue::makeBool(false));
+    JsonValue& p = o.add("properties", object());
+    p.add("format", formatSchema(kSceneFormat));
+    p.add("version", versionSchema(kSceneVersion));
+    p.add("camera", fieldsSchema(cameraFields()));
+    JsonValue& lights = p.add("lights", object());
+    lights.add("type", str("array"));
+    lights.add("items", fieldsSchema(lightFields()));
+    p.add("environment", fieldsSchema(environmentFields()));
+    p.add("mesh", fieldsSchema(meshFields()));
+    JsonValue& material = p.add("material", object());
+    material.add("description", str("A preset file path (relative to the scene) or an inline "
+                                    "material (format, version and name optional)."));
+    JsonValue& oneOf = material.add("oneOf", JsonValue::makeArray());
+    JsonValue& path = oneOf.push(object());
+    path.add("type", str("string"));
+    path.add("minLength", JsonValue::makeNumber(1));
+    oneOf.push(object()).add("$ref", str("#/$defs/inlineMaterial"));
+    JsonValue& preset = p.add("materialPreset", object());
+    preset.add("type", str("string"));
+    preset.add("description", str("The preset an inline material came from (informational)."));
+    p.add("post", postSchema());
+
+    JsonValue& defs = o.add("$defs", object());
+    JsonValue& inlineMaterial = defs.add("inlineMaterial", object());
+    inlineMaterial.add("type", str("object"));
+    addMaterialDispatch(inlineMaterial);
+    addMaterialDefs(defs);
+    return o;
+}
+
+} // namespace
+
+std::string jsonSchema(DocumentKind kind) {
+    switch (kind) {
+    case DocumentKind::Material:
+        return writeJson(materialSchema());
+    case DocumentKind::Scene:
+        return writeJson(sceneSchema());
+    case DocumentKind::Unknown:
+        break;
+    }
+    return {};
+}
+
+} // namespace velvet

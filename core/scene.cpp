@@ -1,0 +1,36 @@
+#include "core/scene.h"
+
+#include <array>
+
+namespace velvet {
+namespace {
+
+constexpr std::array<std::string_view, 5> kLightTypes{"directional", "point", "spot", "area",
+                                                      "ambient"};
+constexpr std::array<std::string_view, 2> kAreaShapes{"sphere", "rectangle"};
+constexpr std::array<std::string_view, 4> kBackgroundModes{"sharp", "blurred", "solid-color",
+                                                           "procedural-fbm"};
+constexpr std::array<std::string_view, 7> kMeshKinds{
+    "sphere", "cube", "rounded-cube", "plane", "cloth-drape", "shader-ball", "custom"};
+
+static_assert(kLightTypes.size() == static_cast<size_t>(LightType::Ambient) + 1);
+static_assert(kAreaShapes.size() == static_cast<size_t>(AreaShape::Rectangle) + 1);
+static_assert(kBackgroundModes.size() == static_cast<size_t>(BackgroundMode::ProceduralFbm) + 1);
+static_assert(kMeshKinds.size() == static_cast<size_t>(PreviewMeshKind::Custom) + 1);
+
+} // namespace
+
+std::span<const std::string_view> lightTypeNames() {
+    return kLightTypes;
+}
+std::span<const std::string_view> areaShapeNames() {
+    return kAreaShapes;
+}
+std::span<const std::string_view> backgroundModeNames() {
+    return kBackgroundModes;
+}
+std::span<const std::string_view> previewMeshKindNames() {
+    return kMeshKinds;
+}
+
+} // namespace velvet
