@@ -14,6 +14,8 @@ public:
     static std::unique_ptr<HeadlessContext> create(std::string* error);
     ~HeadlessContext();
     bool makeCurrent();
+    /// Whether any EGL context is current on this thread (renderSceneOffscreen reuses it).
+    static bool isAnyContextCurrent();
 
     /// GL_VENDOR, GL_RENDERER, GL_VERSION of the context, and the EGL platform used.
     std::string vendor() const;

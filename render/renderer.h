@@ -15,7 +15,10 @@
 namespace velvet::render {
 
 /// What the final pass shows (the renderer issue adds every G-buffer and lighting view).
-enum class DebugView { Final, Albedo, Normal, Depth, Roughness, Metallic };
+/// Debug views write raw values to the linear image (readLinear): Albedo linear base colour, Normal
+/// world normal, Depth view-space distance along -Z in metres, Roughness, Metallic, Position world
+/// position; the display image maps them for viewing.
+enum class DebugView { Final, Albedo, Normal, Depth, Roughness, Metallic, Position };
 
 /// Tone-mapping operators (the post-chain issue adds more and the OCIO display transform).
 enum class ToneMapper { KhronosPbrNeutral, AcesFitted, Reinhard, Linear };

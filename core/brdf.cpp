@@ -1,0 +1,216 @@
+#include "core/brdf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+#include <numbers>
+
+namespace velvet::brdf {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+float max3(glm::vec3 v) {
+    return std::max(v.x, std::max(v.y, v.z));
+}
+float saturate(float x) {
+    return std::clamp(x, 0.0f, 1.0f);
+}
+
+} // namespace
+
+// Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces" (GGX /
+// Trowbridge-Reitz)
+float distributionGGX(float NdotH, float alpha) {
+    const float a2 = alpha * alpha;
+    const float f = NdotH * NdotH * (a2 - 1.0f) + 1.0f;
+    return a2 / (kPi * f * f);
+}
+
+// Smith 1967 with GGX G1, separable form of glTF 2.0 Appendix B: V = G / (4 |n.l| |n.v|)
+float visibilitySmithGGXSeparable(float NdotL, float NdotV, float alpha) {
+    const float a2 = alpha * alpha;
+    const float gl = NdotL + std::sqrt(a2 + (1.0f - a2) * NdotL * NdotL);
+    const float gv = NdotV + std::sqrt(a2 + (1.0f - a2) * NdotV * NdotV);
+    return 1.0f / (gl * gv);
+}
+
+// Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering"
+glm::vec3 fresnelSchlick(glm::vec3 f0, glm::vec3 f90, float VdotH) {
+    const float x = 1.0f - saturate(VdotH);
+    const float x2 = x * x;
+    return f0 + (f90 - f0) * (x2 * x2 * x);
+}
+float fresnelSchlick(float f0, float f90, float VdotH) {
+    return fresnelSchlick(glm::vec3(f0), glm::vec3(f90), VdotH).x;
+}
+
+// Estevez & Kulla 2017, "Production Friendly Microfacet Sheen BRDF" (Charlie D)
+float distributionCharlie(float NdotH, float sheenRoughness) {
+    const float alpha = std::max(sheenRoughness, kMinSheenRoughness);
+    const float invR = 1.0f / (alpha * alpha);
+    const float sin2h = std::max(1.0f - NdotH * NdotH, 0.0f);
+    return (2.0f + invR) * std::pow(sin2h, invR * 0.5f) / (2.0f * kPi);
+}
+
+namespace {
+// Conty & Kulla 2017's fitted lambda for the Charlie distribution (as the glTF Sample Viewer).
+float sheenLambdaHelper(float x, float alphaG) {
+    const float t = (1.0f - alphaG) * (1.0f - alphaG);
+    const float a = glm::mix(21.5473f, 25.3245f, t);
+    const float b = glm::mix(3.82987f, 3.32435f, t);
+    const float c = glm::mix(0.19823f, 0.16801f, t);
+    const float d = glm::mix(-1.97760f, -1.27393f, t);
+    const float e = glm::mix(-4.32054f, -4.85967f, t);
+    return a / (1.0f + b * std::pow(x, c)) + d * x + e;
+}
+float sheenLambda(float cosTheta, float alphaG) {
+    if (std::abs(cosTheta) < 0.5f)
+        return std::exp(sheenLambdaHelper(cosTheta, alphaG));
+    return std::exp(2.0f * sheenLambdaHelper(0.5f, alphaG) -
+                    sheenLambdaHelper(1.0f - cosTheta, alphaG));
+}
+} // namespace
+
+// Conty & Kulla 2017, "Revisiting Physically Based Shading at Imageworks" (sheen visibility)
+float visibilitySheenContyKulla(float NdotL, float NdotV, float sheenRoughness) {
+    const float r = std::max(sheenRoughness, kMinSheenRoughness);
+    const float alphaG = r * r;
+    const float v = 1.0f / ((1.0f + sheenLambda(NdotV, alphaG) + sheenLambda(NdotL, alphaG)) *
+                            (4.0f * NdotV * NdotL));
+    return saturate(v);
+}
+
+// Neubelt & Pettineo 2013, "Crafting a Next-Gen Material Pipeline for The Order: 1886"
+float visibilityNeubelt(float NdotL, float NdotV) {
+    return saturate(1.0f / (4.0f * (NdotL + NdotV - NdotL * NdotV)));
+}
+
+// Karis 2014, "Physically Based Shading on Mobile" (analytic environment BRDF approximation)
+glm::vec2 envBrdfApprox(float roughness, float NdotV) {
+    const glm::vec4 c0(-1.0f, -0.0275f, -0.572f, 0.022f);
+    const glm::vec4 c1(1.0f, 0.0425f, 1.04f, -0.04f);
+    const glm::vec4 r = roughness * c0 + c1;
+    const float a004 = std::min(r.x * r.x, std::exp2(-9.28f * NdotV)) * r.x + r.y;
+    return glm::vec2(-1.04f, 1.04f) * a004 + glm::vec2(r.z, r.w);
+}
+
+const std::vector<float>& sheenAlbedoLut() {
+    static const std::vector<float> table = [] {
+        // E(v) = integral over the hemisphere of D_Charlie * V_ContyKulla * (n.l) dl, midpoint
+        // rule in (theta_l, phi_l), using the symmetry phi -> -phi.
+        constexpr int N = kSheenLutSize;
+        constexpr int kTheta = 96, kPhi = 48;
+        std::vector<float> t(size_t(N) * N);
+        for (int ri = 0; ri < N; ++ri) {
+            const float rough = std::max(float(ri) / float(N - 1), kMinSheenRoughness);
+            for (int vi = 0; vi < N; ++vi) {
+                const float NdotV = std::max(float(vi) / float(N - 1), 1e-3f);
+                const glm::vec3 v(std::sqrt(1.0f - NdotV * NdotV), 0.0f, NdotV);
+                double sum = 0.0;
+                for (int a = 0; a < kTheta; ++a) {
+                    const float theta = (float(a) + 0.5f) / kTheta * 0.5f * kPi;
+                    const float ct = std::cos(theta), st = std::sin(theta);
+                    for (int b = 0; b < kPhi; ++b) {
+                        const float phi = (float(b) + 0.5f) / kPhi * kPi;
+                        const glm::vec3 l(st * std::cos(phi), st * std::sin(phi), ct);
+                        const glm::vec3 h = glm::normalize(l + v);
+                        const float f = distributionCharlie(h.z, rough) *
+                                        visibilitySheenContyKulla(ct, NdotV, rough);
+                        sum += double(f) * ct * st;
+                    }
+                }
+                const double dOmega = (0.5 * kPi / kTheta) * (kPi / kPhi) * 2.0;
+                t[size_t(ri) * N + vi] = float(std::min(sum * dOmega, 1.0));
+            }
+        }
+        return t;
+    }();
+    return table;
+}
+
+float sheenDirectionalAlbedo(float NdotV, float sheenRoughness) {
+    // Bilinear lookup with texel centres at i / (N - 1): the GPU samples the same table at
+    // (i * (N - 1) + 0.5) / N with GL_LINEAR and clamp-to-edge, which is the same function.
+    const auto& t = sheenAlbedoLut();
+    constexpr int N = kSheenLutSize;
+    const float x = saturate(NdotV) * (N - 1), y = saturate(sheenRoughness) * (N - 1);
+    const int x0 = std::min(int(x), N - 2), y0 = std::min(int(y), N - 2);
+    const float fx = x - float(x0), fy = y - float(y0);
+    const auto at = [&](int xi, int yi) { return t[size_t(yi) * N + xi]; };
+    const float a = glm::mix(at(x0, y0), at(x0 + 1, y0), fx);
+    const float b = glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx);
+    return glm::mix(a, b, fy);
+}
+
+Surface surfaceFromMaterial(const Material& m) {
+    Surface s;
+    s.baseColor = m.color(ParamId::BaseColor);
+    s.metallic = m.scalar(ParamId::Metallic);
+    s.roughness = m.scalar(ParamId::Roughness);
+    s.specularWeight = m.scalar(ParamId::SpecularWeight);
+    s.specularColor = m.color(ParamId::SpecularColor);
+    s.ior = m.scalar(ParamId::Ior);
+    s.sheenColor = m.scalar(ParamId::SheenWeight) * m.color(ParamId::SheenColor);
+    s.sheenRoughness = m.scalar(ParamId::SheenRoughness);
+    s.clearcoat = m.scalar(ParamId::ClearcoatWeight);
+    s.clearcoatRoughness = m.scalar(ParamId::ClearcoatRoughness);
+    s.emissive = m.color(ParamId::EmissiveColor) * m.scalar(ParamId::EmissiveStrength);
+    return s;
+}
+
+glm::vec3 dielectricF0(const Surface& s) {
+    const float r = (s.ior - 1.0f) / (s.ior + 1.0f);
+    return glm::min(glm::vec3(r * r) * s.specularColor, glm::vec3(1.0f));
+}
+
+glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
+    // Mirrors shadeDirectional() in common_brdf.glsl line for line.
+    const float NdotL = glm::dot(n, l);
+    if (NdotL <= 0.0f)
+        return glm::vec3(0.0f);
+    const float NdotV = std::max(glm::dot(n, v), 1e-4f);
+    const glm::vec3 h = glm::normalize(l + v);
+    const float NdotH = saturate(glm::dot(n, h));
+    const float VdotH = saturate(glm::dot(v, h));
+
+    const float rough = std::max(s.roughness, kMinRoughness);
+    const float alpha = rough * rough;
+    const float specular =
+        distributionGGX(NdotH, alpha) * visibilitySmithGGXSeparable(NdotL, NdotV, alpha);
+
+    // glTF 2.0 Appendix B + KHR_materials_specular: fresnel_mix for the dielectric,
+    // conductor_fresnel for the metal, mixed by metallic.
+    const glm::vec3 fDielectric =
+        s.specularWeight * fresnelSchlick(dielectricF0(s), glm::vec3(1.0f), VdotH);
+    const glm::vec3 fMetal = fresnelSchlick(s.baseColor, glm::vec3(1.0f), VdotH);
+    const glm::vec3 diffuse = s.baseColor / kPi;
+    const glm::vec3 dielectric = (1.0f - max3(fDielectric)) * diffuse + fDielectric * specular;
+    const glm::vec3 metal = fMetal * specular;
+    glm::vec3 f = glm::mix(dielectric, metal, s.metallic);
+
+    // KHR_materials_sheen: sheen on top, base scaled by the sheen's albedo.
+    if (max3(s.sheenColor) > 0.0f) {
+        const float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
+                            visibilitySheenContyKulla(NdotL, NdotV, s.sheenRoughness);
+        const float scaling =
+            std::min(1.0f - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness),
+                     1.0f - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness));
+        f = f * scaling + s.sheenColor * sheen;
+    }
+
+    // KHR_materials_clearcoat: the base is attenuated by the coat's Fresnel at n.v.
+    if (s.clearcoat > 0.0f) {
+        const float cr = std::max(s.clearcoatRoughness, kMinRoughness);
+        const float ca = cr * cr;
+        const float coat = fresnelSchlick(0.04f, 1.0f, VdotH) * distributionGGX(NdotH, ca) *
+                           visibilitySmithGGXSeparable(NdotL, NdotV, ca);
+        const float fc = fresnelSchlick(0.04f, 1.0f, NdotV);
+        f = f * (1.0f - s.clearcoat * fc) + s.clearcoat * coat;
+    }
+    return f * NdotL;
+}
+
+} // namespace velvet::brdf

@@ -1,0 +1,55 @@
+#include "render/gpu_mesh.h"
+
+#include <cstddef>
+#include <epoxy/gl.h>
+
+namespace velvet::render {
+
+GpuMesh::~GpuMesh() {
+    release();
+}
+
+void GpuMesh::release() {
+    if (m_vao)
+        glDeleteVertexArrays(1, &m_vao);
+    if (m_vbo)
+        glDeleteBuffers(1, &m_vbo);
+    if (m_ibo)
+        glDeleteBuffers(1, &m_ibo);
+    m_vao = m_vbo = m_ibo = 0;
+    m_indexCount = 0;
+}
+
+void GpuMesh::upload(const MeshData& mesh) {
+    release();
+    glCreateBuffers(1, &m_vbo);
+    glNamedBufferStorage(m_vbo, GLsizeiptr(mesh.vertices.size() * sizeof(Vertex)),
+                         mesh.vertices.data(), 0);
+    glCreateBuffers(1, &m_ibo);
+    glNamedBufferStorage(m_ibo, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                         mesh.indices.data(), 0);
+    glCreateVertexArrays(1, &m_vao);
+    glVertexArrayVertexBuffer(m_vao, 0, m_vbo, 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(m_vao, m_ibo);
+    const struct {
+        GLuint location;
+        GLint size;
+        size_t offset;
+    } attributes[] = {{0, 3, offsetof(Vertex, position)},
+                      {1, 3, offsetof(Vertex, normal)},
+                      {2, 4, offsetof(Vertex, tangent)},
+                      {3, 2, offsetof(Vertex, uv)}};
+    for (const auto& a : attributes) {
+        glEnableVertexArrayAttrib(m_vao, a.location);
+        glVertexArrayAttribFormat(m_vao, a.location, a.size, GL_FLOAT, GL_FALSE, GLuint(a.offset));
+        glVertexArrayAttribBinding(m_vao, a.location, 0);
+    }
+    m_indexCount = int(mesh.indices.size());
+}
+
+void GpuMesh::draw() const {
+    glBindVertexArray(m_vao);
+    glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
+}
+
+} // namespace velvet::render

@@ -1,0 +1,26 @@
+#pragma once
+/// @file gpu_mesh.h
+/// Render-private: a MeshData in GL buffers with its vertex array.
+
+#include "core/mesh.h"
+
+namespace velvet::render {
+
+class GpuMesh {
+public:
+    GpuMesh() = default;
+    ~GpuMesh();
+    GpuMesh(const GpuMesh&) = delete;
+    GpuMesh& operator=(const GpuMesh&) = delete;
+
+    void upload(const MeshData& mesh);
+    void draw() const;
+    bool empty() const { return m_indexCount == 0; }
+
+private:
+    void release();
+    unsigned m_vao = 0, m_vbo = 0, m_ibo = 0;
+    int m_indexCount = 0;
+};
+
+} // namespace velvet::render

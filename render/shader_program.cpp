@@ -1,0 +1,201 @@
+#include "render/shader_program.h"
+
+#include "core/resources.h"
+#include "render/gbuffer_layout.h"
+
+#include <epoxy/gl.h>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace velvet::render {
+namespace {
+
+std::string bindingsGlsl() {
+    std::ostringstream s;
+    s << "// Generated from render/shader_program.h; do not edit.\n"
+      << "#define BINDING_FRAME_UBO " << binding::kFrameUbo << "\n"
+      << "#define BINDING_MATERIAL_SSBO " << binding::kMaterialSsbo << "\n"
+      << "#define BINDING_ENVIRONMENT_TEX " << binding::kEnvironmentTex << "\n"
+      << "#define BINDING_SHEEN_LUT_TEX " << binding::kSheenLutTex << "\n"
+      << "#define BINDING_HDR_TEX " << binding::kHdrTex << "\n"
+      << "#define MAX_MATERIALS " << kMaxMaterials << "\n";
+    return s.str();
+}
+
+bool readSource(const std::string& name, std::string& text, std::string* error) {
+    if (name == "gbuffer_layout.glsl") {
+        text = gbufferGlsl();
+        return true;
+    }
+    if (name == "render_bindings.glsl") {
+        text = bindingsGlsl();
+        return true;
+    }
+    const auto path = resources::path("shaders") / name;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        if (error)
+            *error = path.string() + ": cannot open shader source";
+        return false;
+    }
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+    return true;
+}
+
+bool expand(const std::string& name, std::string& out, std::vector<std::string>& files,
+            std::set<std::string>& included, std::vector<std::string>& stack,
+            const std::vector<std::string>* defines, std::string* error) {
+    for (const auto& s : stack)
+        if (s == name) {
+            if (error)
+                *error = name + ": include cycle";
+            return false;
+        }
+    if (!included.insert(name).second)
+        return true; // every include behaves as if guarded by #pragma once
+    std::string text;
+    if (!readSource(name, text, error))
+        return false;
+    const int index = int(files.size());
+    files.push_back(name);
+    stack.push_back(name);
+
+    static const std::regex includeRe(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+    std::istringstream lines(text);
+    std::string line;
+    int lineNo = 0;
+    bool needLine = defines == nullptr; // included files start with a #line
+    if (needLine)
+        out += "#line 1 " + std::to_string(index) + "\n";
+    while (std::getline(lines, line)) {
+        ++lineNo;
+        if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+        std::smatch m;
+        if (defines && line.rfind("#version", 0) == 0) {
+            out += line + "\n";
+            for (const auto& d : *defines)
+                out += "#define " + d + "\n";
+            out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
+            continue;
+        }
+        if (std::regex_match(line, m, includeRe)) {
+            if (!expand(m[1].str(), out, files, included, stack, nullptr, error)) {
+                if (error && error->find(" (included from ") == std::string::npos)
+                    *error += " (included from " + name + ":" + std::to_string(lineNo) + ")";
+                return false;
+            }
+            out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
+            continue;
+        }
+        out += line + "\n";
+    }
+    stack.pop_back();
+    return true;
+}
+
+bool compileStage(GLenum stage, const std::string& file, const std::vector<std::string>& defines,
+                  GLuint& shader, std::string* error) {
+    std::string source;
+    std::vector<std::string> files;
+    if (!preprocessShader(file, defines, source, files, error))
+        return false;
+    shader = glCreateShader(stage);
+    const char* src = source.c_str();
+    glShaderSource(shader, 1, &src, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        glGetShaderInfoLog(shader, len, nullptr, log.data());
+        if (error)
+            *error = "shader compile error in " + file + ":\n" + mapShaderLog(log.c_str(), files);
+        glDeleteShader(shader);
+        shader = 0;
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+bool preprocessShader(const std::string& file, const std::vector<std::string>& defines,
+                      std::string& out, std::vector<std::string>& files, std::string* error) {
+    out.clear();
+    files.clear();
+    std::set<std::string> included;
+    std::vector<std::string> stack;
+    return expand(file, out, files, included, stack, &defines, error);
+}
+
+std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files) {
+    static const std::regex mesaRe(R"((\d+):(\d+)\((\d+)\))");
+    static const std::regex nvRe(R"(^(\d+)\((\d+)\))");
+    std::istringstream in(log);
+    std::string line, out;
+    while (std::getline(in, line)) {
+        std::smatch m;
+        auto fileOf = [&](const std::string& idx) {
+            const size_t i = std::stoul(idx);
+            return i < files.size() ? files[i] : idx;
+        };
+        if (std::regex_search(line, m, mesaRe) && m.position(0) == 0)
+            line = fileOf(m[1].str()) + ":" + m[2].str() + ":" + m[3].str() + m.suffix().str();
+        else if (std::regex_search(line, m, nvRe))
+            line = fileOf(m[1].str()) + ":" + m[2].str() + m.suffix().str();
+        out += "  " + line + "\n";
+    }
+    return out;
+}
+
+ShaderProgram::~ShaderProgram() {
+    release();
+}
+
+void ShaderProgram::release() {
+    if (m_program)
+        glDeleteProgram(m_program);
+    m_program = 0;
+}
+
+bool ShaderProgram::build(const std::string& vertexFile, const std::string& fragmentFile,
+                          const std::vector<std::string>& defines, std::string* error) {
+    GLuint vs = 0, fs = 0;
+    if (!compileStage(GL_VERTEX_SHADER, vertexFile, defines, vs, error))
+        return false;
+    if (!compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines, fs, error)) {
+        glDeleteShader(vs);
+        return false;
+    }
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        glGetProgramInfoLog(program, len, nullptr, log.data());
+        if (error)
+            *error =
+                "shader link error (" + vertexFile + " + " + fragmentFile + "):\n" + log.c_str();
+        glDeleteProgram(program);
+        return false;
+    }
+    release();
+    m_program = program;
+    return true;
+}
+
+} // namespace velvet::render

@@ -1,0 +1,49 @@
+#pragma once
+/// @file shader_program.h
+/// Render-private: GLSL loading with a small `#include "file"` preprocessor and GL program
+/// building. Virtual includes generated from C++ tables ("gbuffer_layout.glsl",
+/// "render_bindings.glsl") keep one definition of the G-buffer and binding points. Compile errors
+/// name file:line (mapped back through `#line`) with the driver's log.
+
+#include <string>
+#include <vector>
+
+namespace velvet::render {
+
+/// Binding points shared by C++ and GLSL (emitted as "render_bindings.glsl").
+namespace binding {
+inline constexpr int kFrameUbo = 0;
+inline constexpr int kMaterialSsbo = 1;
+inline constexpr int kEnvironmentTex = 4; ///< units 0..3 are the G-buffer (gbuffer_layout.h)
+inline constexpr int kSheenLutTex = 5;
+inline constexpr int kHdrTex = 6;
+} // namespace binding
+
+/// Reads resources/shaders/@p file and resolves includes. `#version` stays first; @p defines
+/// ("NAME" or "NAME VALUE") follow it. Each inserted file gets `#line n index`, where index is
+/// its position in @p files. False + message naming the file on a missing or cyclic include.
+bool preprocessShader(const std::string& file, const std::vector<std::string>& defines,
+                      std::string& out, std::vector<std::string>& files, std::string* error);
+
+/// Rewrites driver log lines "index:line(col)" (Mesa) or "index(line)" (NVIDIA) as "file:line".
+std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
+
+/// A linked vertex + fragment program.
+class ShaderProgram {
+public:
+    ShaderProgram() = default;
+    ~ShaderProgram();
+    ShaderProgram(const ShaderProgram&) = delete;
+    ShaderProgram& operator=(const ShaderProgram&) = delete;
+
+    /// Compiles and links; false + message (file:line and the driver log) on failure.
+    bool build(const std::string& vertexFile, const std::string& fragmentFile,
+               const std::vector<std::string>& defines, std::string* error);
+    unsigned id() const { return m_program; }
+    void release();
+
+private:
+    unsigned m_program = 0;
+};
+
+} // namespace velvet::render

@@ -1,0 +1,19 @@
+#version 450 core
+#include "common_frame.glsl"
+
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec4 aTangent;
+layout(location = 3) in vec2 aUv;
+
+out vec3 vNormal;
+out vec4 vTangent;
+out vec2 vUv;
+
+void main() {
+    // The preview mesh sits at the origin (model matrix = identity for now).
+    vNormal = aNormal;
+    vTangent = aTangent;
+    vUv = aUv;
+    gl_Position = frame.viewProjMatrix * vec4(aPosition, 1.0);
+}

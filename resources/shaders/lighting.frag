@@ -1,0 +1,110 @@
+#version 450 core
+// Full-screen lighting: reads the G-buffer, reconstructs the position from depth, adds the
+// directional lights, ambient lights and the environment (SH9 diffuse + mip-mapped equirect
+// specular); where depth is far, draws the background. Debug views write raw values.
+#include "common_frame.glsl"
+#include "common_gbuffer.glsl"
+#include "common_material.glsl"
+#include "common_brdf.glsl"
+#include "common_environment.glsl"
+
+layout(location = 0) out vec4 outColor;
+
+// View-space position from the hardware depth through the inverse projection (works for
+// perspective and orthographic projections alike).
+vec3 viewPositionFromDepth(vec2 ndcXY, float depth) {
+    vec4 p = frame.invProjMatrix * vec4(ndcXY, depth * 2.0 - 1.0, 1.0);
+    return p.xyz / p.w;
+}
+
+vec3 background(vec2 ndcXY) {
+    if (frame.modes.w == 2) // BackgroundMode::SolidColor
+        return frame.backgroundColor.rgb;
+    vec3 dirView = frame.cameraPosition.w > 0.5
+                       ? vec3(0.0, 0.0, -1.0)
+                       : normalize(viewPositionFromDepth(ndcXY, 1.0));
+    vec3 dir = normalize((frame.invViewMatrix * vec4(dirView, 0.0)).xyz);
+    return environmentRadiance(dir, frame.backgroundColor.w);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
+    float depth = texelFetch(gDepthTex, pixel, 0).r;
+    int view = frame.modes.y;
+    if (depth >= 1.0) {
+        outColor = vec4(view == DEBUG_FINAL ? background(ndcXY) : vec3(0.0), 1.0);
+        return;
+    }
+
+    vec4 rt0 = texelFetch(gBaseColorOcclusionTex, pixel, 0);
+    vec2 rt1 = texelFetch(gNormalTex, pixel, 0).rg;
+    vec4 rt2 = texelFetch(gMaterialTex, pixel, 0);
+    GpuMaterial m = materials[decodeMaterialId(rt2.b)];
+
+    Surface s;
+    s.baseColor = decodeBaseColor(rt0.rgb);
+    s.metallic = rt2.r;
+    s.roughness = rt2.g;
+    s.specularWeight = m.specularColorWeight.a;
+    s.specularColor = m.specularColorWeight.rgb;
+    s.ior = m.roughIorOcclusionNormal.y;
+    s.sheenColor = m.sheenColorRoughness.rgb;
+    s.sheenRoughness = m.sheenColorRoughness.a;
+    s.clearcoat = m.clearcoat.x;
+    s.clearcoatRoughness = m.clearcoat.y;
+    s.emissive = m.emissive.rgb;
+    float occlusion = rt0.a;
+    vec3 n = octDecodeUnorm16(rt1);
+
+    vec3 posView = viewPositionFromDepth(ndcXY, depth);
+    vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
+    vec3 toEyeView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, 1.0) : -posView;
+    vec3 v = normalize((frame.invViewMatrix * vec4(toEyeView, 0.0)).xyz);
+
+    if (view != DEBUG_FINAL) {
+        vec3 value = view == DEBUG_ALBEDO      ? s.baseColor
+                     : view == DEBUG_NORMAL    ? n
+                     : view == DEBUG_DEPTH     ? vec3(-posView.z)
+                     : view == DEBUG_ROUGHNESS ? vec3(s.roughness)
+                     : view == DEBUG_METALLIC  ? vec3(s.metallic)
+                                               : posWorld;
+        outColor = vec4(value, 1.0);
+        return;
+    }
+
+    // Direct light.
+    vec3 color = vec3(0.0);
+    for (int i = 0; i < frame.modes.x; ++i)
+        color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb;
+
+    // Ambient: SH9 irradiance for the diffuse lobes, the mip-mapped environment at the reflection
+    // vector times Karis 2014's analytic environment BRDF for the specular ones (approximations
+    // of the split sum; see common_environment.glsl).
+    float NdotV = max(dot(n, v), 1e-4);
+    vec3 irradiance = irradianceOverPi(n);
+    vec3 r = reflect(-v, n);
+    float rough = max(s.roughness, MIN_ROUGHNESS);
+    vec3 prefiltered = environmentRadiance(r, specularLod(rough));
+    vec2 ab = envBrdfApprox(rough, NdotV);
+    vec3 specDielectric = s.specularWeight * (dielectricF0(s) * ab.x + ab.y);
+    vec3 specMetal = s.baseColor * ab.x + ab.y;
+    vec3 ambient = mix((1.0 - max3(specDielectric)) * s.baseColor * irradiance +
+                           specDielectric * prefiltered,
+                       specMetal * prefiltered, s.metallic);
+    if (max3(s.sheenColor) > 0.0) {
+        float e = sheenDirectionalAlbedo(NdotV, s.sheenRoughness);
+        ambient = ambient * (1.0 - max3(s.sheenColor) * e) + s.sheenColor * e * irradiance;
+    }
+    vec3 emissive = s.emissive;
+    if (s.clearcoat > 0.0) {
+        float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
+        vec2 abc = envBrdfApprox(cr, NdotV);
+        float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotV);
+        ambient = ambient * (1.0 - fc) +
+                  s.clearcoat * (0.04 * abc.x + abc.y) * environmentRadiance(r, specularLod(cr));
+        emissive *= 1.0 - fc;
+    }
+    color += ambient * occlusion + emissive;
+    outColor = vec4(color, 1.0);
+}

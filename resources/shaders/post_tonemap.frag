@@ -1,0 +1,25 @@
+#version 450 core
+// Exposure, tone mapping and the sRGB OETF into the target framebuffer; debug views get a
+// display mapping of their raw values instead.
+#include "common_frame.glsl"
+#include "common_tonemap.glsl"
+
+layout(binding = BINDING_HDR_TEX) uniform sampler2D uHdr;
+layout(location = 0) out vec4 outColor;
+
+void main() {
+    vec3 c = texelFetch(uHdr, ivec2(gl_FragCoord.xy), 0).rgb;
+    int view = frame.modes.y;
+    vec3 display;
+    if (view == DEBUG_FINAL)
+        display = srgbEncode(toneMap(c * frame.post.x, frame.modes.z));
+    else if (view == DEBUG_ALBEDO)
+        display = srgbEncode(c);
+    else if (view == DEBUG_NORMAL || view == DEBUG_POSITION)
+        display = c * 0.5 + 0.5;
+    else if (view == DEBUG_DEPTH)
+        display = vec3(c.x > 0.0 ? 1.0 - saturate(c.x / frame.post.y) : 0.0);
+    else
+        display = c;
+    outColor = vec4(clamp(display, 0.0, 1.0), 1.0);
+}
