@@ -1,15 +1,17 @@
 #include "ui/document_controller.h"
 
-#include <QFileInfo>
-#include <QUndoStack>
-
 #include "core/document_io.h"
 #include "ui/commands/set_param_command.h"
+
+#include <QFileInfo>
+#include <QUndoStack>
 
 namespace velvet::ui {
 namespace {
 
-std::filesystem::path toPath(const QString& path) { return std::filesystem::path(path.toStdString()); }
+std::filesystem::path toPath(const QString& path) {
+    return std::filesystem::path(path.toStdString());
+}
 
 QStringList problemLines(const Problems& problems, const QString& file) {
     QStringList lines;
@@ -35,7 +37,9 @@ QString DocumentController::displayName() const {
     return m_filePath.isEmpty() ? tr("Untitled") : QFileInfo(m_filePath).fileName();
 }
 
-bool DocumentController::isDirty() const { return !m_undoStack->isClean(); }
+bool DocumentController::isDirty() const {
+    return !m_undoStack->isClean();
+}
 
 void DocumentController::editParam(ParamId id, glm::vec3 value, int mergeKey) {
     // Compare against what the model would store, so a no-op edit (clamped, or the same value)
@@ -44,8 +48,8 @@ void DocumentController::editParam(ParamId id, glm::vec3 value, int mergeKey) {
     probe.setValue(id, value);
     if (probe.value(id) == m_scene.material.value(id))
         return;
-    m_undoStack->push(new SetParamCommand(this, id, m_scene.material.value(id), probe.value(id),
-                                          mergeKey));
+    m_undoStack->push(
+        new SetParamCommand(this, id, m_scene.material.value(id), probe.value(id), mergeKey));
 }
 
 void DocumentController::resetParam(ParamId id) {

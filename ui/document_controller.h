@@ -4,13 +4,12 @@
 /// Panels edit through the controller (edit* functions push a QUndoCommand); commands apply their
 /// change through the set* functions; views listen to the signals.
 
+#include "core/scene.h"
+
 #include <QObject>
 #include <QString>
 #include <QStringList>
-
 #include <glm/vec3.hpp>
-
-#include "core/scene.h"
 
 class QUndoStack;
 
@@ -43,8 +42,6 @@ public:
     void editParam(ParamId id, glm::vec3 value, int mergeKey = 0);
     /// Puts a parameter back to its metadata default (one command, "Reset <label>").
     void resetParam(ParamId id);
-    /// A fresh key for editParam's merging; call once when a drag starts.
-    int newMergeKey() { return ++m_lastMergeKey; }
     /// @}
 
     /// @name Applied by undo commands (not undoable by themselves)
@@ -84,7 +81,6 @@ private:
     Scene m_scene;
     QString m_filePath;
     QUndoStack* m_undoStack = nullptr;
-    int m_lastMergeKey = 0;
 };
 
 } // namespace velvet::ui

@@ -1,1 +1,126 @@
-// (being written)
+#include "ui/editor.h"
+
+#include "ui/document_controller.h"
+#include "ui/main_window.h"
+#include "ui/screenshot.h"
+#include "ui/viewport_widget.h"
+
+#include <QApplication>
+#include <QOpenGLContext>
+#include <QSurfaceFormat>
+#include <QTimer>
+#include <cstdio>
+#include <cstdlib>
+
+namespace velvet::ui {
+namespace {
+
+constexpr int kExitRenderFailure = 3;
+constexpr int kScreenshotTimeoutMs = 120000; // llvmpipe compiles shaders slowly; never hang
+
+/// True when Qt's platform plugin would find a display to talk to.
+bool haveDisplay() {
+    if (!qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))
+        return true; // the user chose a platform; let Qt report its own problems
+#if defined(Q_OS_LINUX)
+    return !qEnvironmentVariableIsEmpty("DISPLAY") ||
+           !qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY");
+#else
+    return true;
+#endif
+}
+
+/// Whether the default format gives an OpenGL 4.5 core context on this display.
+bool haveGl45(QString* found) {
+    QOpenGLContext context;
+    if (!context.create()) {
+        *found = QStringLiteral("no OpenGL context could be created");
+        return false;
+    }
+    const QSurfaceFormat f = context.format();
+    *found = QStringLiteral("got OpenGL %1.%2%3")
+                 .arg(f.majorVersion())
+                 .arg(f.minorVersion())
+                 .arg(f.profile() == QSurfaceFormat::CoreProfile ? " core" : "");
+    return f.version() >= qMakePair(4, 5) && f.profile() == QSurfaceFormat::CoreProfile;
+}
+
+void fail(const QString& message) {
+    std::fprintf(stderr, "velvet: %s\n", qPrintable(message));
+}
+
+} // namespace
+
+int runEditor(int& argc, char** argv, const EditorOptions& options) {
+    if (!haveDisplay()) {
+        fail(QStringLiteral("no display to open the editor on (DISPLAY is not set); "
+                            "use `velvet render` to render without one"));
+        return kExitRenderFailure;
+    }
+    // Must precede QApplication: the shared default format is read when contexts are made.
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("Velvet"));
+    QApplication::setOrganizationName(QStringLiteral("Velvet"));
+    QApplication::setApplicationDisplayName(QStringLiteral("Velvet"));
+
+    QString found;
+    if (!haveGl45(&found)) {
+        fail(QStringLiteral("OpenGL 4.5 core is needed and this display does not offer it (%1)")
+                 .arg(found));
+        return kExitRenderFailure;
+    }
+
+    const bool screenshot = !options.screenshotFile.empty();
+    MainWindow window(/*restoreLayout=*/!screenshot);
+    const QString openFile = QString::fromStdString(options.openFile);
+    if (!screenshot) {
+        window.show();
+        if (!openFile.isEmpty())
+            window.openFile(openFile); // problems appear in a message box over the default scene
+        return QApplication::exec();
+    }
+    if (!openFile.isEmpty()) {
+        QStringList problems;
+        if (!window.controller()->openFile(openFile, &problems)) {
+            for (const QString& line : problems)
+                fail(line);
+            return 2; // bad input, as the CLI reports it
+        }
+    }
+
+    // Screenshot mode: a fixed size for reproducible README images, then one frame, then exit.
+    const QString file = QString::fromStdString(options.screenshotFile);
+    int exitCode = kExitRenderFailure;
+    ViewportWidget* viewport = window.viewport();
+    QObject::connect(
+        viewport, &ViewportWidget::frameCompleted, &window,
+        [&] {
+            // Let the frame reach the window before grabbing it.
+            QTimer::singleShot(0, &window, [&] {
+                QString error;
+                if (saveScreenshot(&window, file, &error)) {
+                    exitCode = 0;
+                } else {
+                    fail(QStringLiteral("could not save the screenshot %1: %2").arg(file, error));
+                }
+                QApplication::exit(exitCode);
+            });
+        },
+        Qt::SingleShotConnection);
+    QObject::connect(viewport, &ViewportWidget::renderFailed, &window, [&](const QString& m) {
+        fail(m);
+        QApplication::exit(kExitRenderFailure);
+    });
+    QTimer::singleShot(kScreenshotTimeoutMs, &window, [&] {
+        fail(QStringLiteral("no frame was drawn within %1 s").arg(kScreenshotTimeoutMs / 1000));
+        QApplication::exit(kExitRenderFailure);
+    });
+    window.resize(1280, 800);
+    window.show();
+    QApplication::exec();
+    return exitCode;
+}
+
+} // namespace velvet::ui

@@ -1,13 +1,12 @@
 #include "ui/viewport_widget.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <QElapsedTimer>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QPainter>
 #include <QWheelEvent>
+#include <algorithm>
+#include <cmath>
 
 namespace velvet::ui {
 namespace {
@@ -26,7 +25,19 @@ ViewportWidget::ViewportWidget(QWidget* parent) : QOpenGLWidget(parent) {
     setFocusPolicy(Qt::ClickFocus);
 }
 
-ViewportWidget::~ViewportWidget() { releaseRenderer(); }
+QSurfaceFormat ViewportWidget::requiredFormat() {
+    QSurfaceFormat format;
+    format.setRenderableType(QSurfaceFormat::OpenGL);
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(24);
+    format.setStencilBufferSize(8);
+    return format;
+}
+
+ViewportWidget::~ViewportWidget() {
+    releaseRenderer();
+}
 
 void ViewportWidget::releaseRenderer() {
     if (!m_renderer)
@@ -54,14 +65,16 @@ void ViewportWidget::setFrameSettings(const render::FrameSettings& settings) {
     update();
 }
 
-Camera ViewportWidget::viewCamera() const { return m_orbit ? *m_orbit : m_scene.camera; }
+Camera ViewportWidget::viewCamera() const {
+    return m_orbit ? *m_orbit : m_scene.camera;
+}
 
 void ViewportWidget::initializeGL() {
     // The context may be recreated (the widget moved to another top-level window): start over.
     m_renderer.reset();
     m_error.clear();
-    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this,
-            &ViewportWidget::releaseRenderer, Qt::UniqueConnection);
+    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &ViewportWidget::releaseRenderer,
+            Qt::UniqueConnection);
 
     const QSurfaceFormat format = context()->format();
     if (format.version() < qMakePair(4, 5) || format.profile() != QSurfaceFormat::CoreProfile) {

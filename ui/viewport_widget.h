@@ -4,16 +4,16 @@
 /// velvet::render::Renderer and holds no GL logic of its own (DESIGN.md, "Layers"). Setters store
 /// a value, mark it dirty and call update(); paintGL hands dirty state to the renderer.
 
-#include <memory>
-#include <optional>
+#include "core/scene.h"
+#include "render/renderer.h"
 
 #include <QOpenGLWidget>
 #include <QPoint>
 #include <QString>
 #include <QStringList>
-
-#include "core/scene.h"
-#include "render/renderer.h"
+#include <QSurfaceFormat>
+#include <memory>
+#include <optional>
 
 namespace velvet::ui {
 
@@ -21,6 +21,9 @@ class ViewportWidget : public QOpenGLWidget {
     Q_OBJECT
 public:
     explicit ViewportWidget(QWidget* parent = nullptr);
+    /// The surface format the renderer needs (OpenGL 4.5 core, 24-bit depth). Set it with
+    /// QSurfaceFormat::setDefaultFormat before the QApplication is created.
+    static QSurfaceFormat requiredFormat();
     /// Frees the renderer with the widget's context current.
     ~ViewportWidget() override;
 

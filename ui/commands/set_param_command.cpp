@@ -1,23 +1,26 @@
 #include "ui/commands/set_param_command.h"
 
-#include <QCoreApplication>
-
 #include "ui/document_controller.h"
+
+#include <QCoreApplication>
 
 namespace velvet::ui {
 
-SetParamCommand::SetParamCommand(DocumentController* controller, ParamId param,
-                                 glm::vec3 oldValue, glm::vec3 newValue, int mergeKey,
-                                 QUndoCommand* parent)
+SetParamCommand::SetParamCommand(DocumentController* controller, ParamId param, glm::vec3 oldValue,
+                                 glm::vec3 newValue, int mergeKey, QUndoCommand* parent)
     : QUndoCommand(parent), m_controller(controller), m_param(param), m_oldValue(oldValue),
       m_newValue(newValue), m_mergeKey(mergeKey) {
     setText(QCoreApplication::translate("velvet::ui::SetParamCommand", "Set %1")
                 .arg(QString::fromUtf8(paramMeta(param).label)));
 }
 
-void SetParamCommand::undo() { m_controller->setParam(m_param, m_oldValue); }
+void SetParamCommand::undo() {
+    m_controller->setParam(m_param, m_oldValue);
+}
 
-void SetParamCommand::redo() { m_controller->setParam(m_param, m_newValue); }
+void SetParamCommand::redo() {
+    m_controller->setParam(m_param, m_newValue);
+}
 
 bool SetParamCommand::mergeWith(const QUndoCommand* other) {
     if (other->id() != id())

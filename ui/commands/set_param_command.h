@@ -2,11 +2,10 @@
 /// @file set_param_command.h
 /// Undoable change of one material parameter.
 
-#include <QUndoCommand>
-
-#include <glm/vec3.hpp>
-
 #include "core/material.h"
+
+#include <QUndoCommand>
+#include <glm/vec3.hpp>
 
 namespace velvet::ui {
 

@@ -1,0 +1,379 @@
+// Drives the real MainWindow under xvfb-run: an edit made through a property widget changes the
+// document and the viewport's pixels; undo and redo through the Edit shortcuts restore both; a
+// slider drag is one undo command; the title carries the modified marker. Also checks that the
+// property panel is generated from the parameter metadata.
+#include "core/color_management.h"
+#include "core/material.h"
+#include "ui/commands/set_param_command.h"
+#include "ui/document_controller.h"
+#include "ui/main_window.h"
+#include "ui/viewport_widget.h"
+
+#include <QApplication>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QSignalSpy>
+#include <QSlider>
+#include <QStandardPaths>
+#include <QStyle>
+#include <QStyleOptionSlider>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QToolButton>
+#include <QUndoStack>
+#include <cmath>
+
+using namespace velvet;
+using namespace velvet::ui;
+
+namespace {
+
+constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
+const QString kRoughness = QStringLiteral("param:lobes.base.roughness");
+
+/// Mean colour of a 5x5 block around the centre, in 0..255 units.
+QVector<double> centrePixel(const QImage& image) {
+    QVector<double> sum(3, 0.0);
+    const int cx = image.width() / 2, cy = image.height() / 2;
+    for (int y = cy - 2; y <= cy + 2; ++y)
+        for (int x = cx - 2; x <= cx + 2; ++x) {
+            const QColor c = image.pixelColor(x, y);
+            sum[0] += c.red();
+            sum[1] += c.green();
+            sum[2] += c.blue();
+        }
+    for (double& s : sum)
+        s /= 25.0;
+    return sum;
+}
+
+/// The spin box shows 3 decimals of the stored float.
+bool shows(const QDoubleSpinBox* spin, float value) {
+    return std::abs(spin->value() - value) < 5e-4;
+}
+
+double maxDifference(const QVector<double>& a, const QVector<double>& b) {
+    double d = 0.0;
+    for (int i = 0; i < 3; ++i)
+        d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+QString describe(const QVector<double>& p) {
+    return QStringLiteral("(%1, %2, %3)").arg(p[0]).arg(p[1]).arg(p[2]);
+}
+
+/// Centre of the slider's handle, from the style (where a user would grab it).
+QPoint handleCentre(QSlider* slider) {
+    QStyleOptionSlider option;
+    option.initFrom(slider);
+    option.orientation = slider->orientation();
+    option.minimum = slider->minimum();
+    option.maximum = slider->maximum();
+    option.sliderPosition = slider->sliderPosition();
+    option.sliderValue = slider->value();
+    option.upsideDown = false;
+    option.subControls = QStyle::SC_SliderGroove | QStyle::SC_SliderHandle;
+    return slider->style()
+        ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
+        .center();
+}
+
+} // namespace
+
+class TestUiEditor : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void cleanupTestCase();
+    void init();
+
+    void panelIsGeneratedFromMetadata();
+    void editRedrawUndoRedo();
+    void sliderDragIsOneCommand();
+    void comboEditAndReset();
+    void titleShowsModifiedMarker();
+    void colourSwatchShowsDisplayValues();
+    void failedOpenLeavesDocumentUntouched();
+    void saveMarksCleanAndNamesTitle();
+
+private:
+    /// The viewport's current image (grabFramebuffer renders a fresh frame).
+    QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
+    /// Waits for the frame that follows an edit.
+    void waitForFrame(QSignalSpy& spy);
+    template <class T>
+    T* find(const QString& name) {
+        T* w = m_window->findChild<T*>(name);
+        if (!w)
+            qWarning("no widget named %s", qPrintable(name));
+        return w;
+    }
+
+    std::unique_ptr<MainWindow> m_window;
+    DocumentController* m_doc = nullptr;
+};
+
+void TestUiEditor::initTestCase() {
+    m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
+    m_doc = m_window->controller();
+    ViewportWidget* viewport = m_window->viewport();
+    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
+    QSignalSpy failures(viewport, &ViewportWidget::renderFailed);
+    m_window->resize(800, 600);
+    m_window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+    // Shortcuts go to the active window. Xvfb has no window manager to activate it: ask directly.
+    m_window->activateWindow();
+    QApplication::setActiveWindow(m_window.get());
+    QTRY_VERIFY(m_window->isActiveWindow());
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() || !failures.isEmpty(), kFrameTimeoutMs);
+    QVERIFY2(failures.isEmpty(), qPrintable(viewport->errorMessage()));
+    QVERIFY(viewport->renderer() != nullptr);
+}
+
+void TestUiEditor::cleanupTestCase() {
+    m_doc->newDocument(); // clean: closing asks nothing
+    QVERIFY(m_window->close());
+    m_window.reset();
+}
+
+void TestUiEditor::init() {
+    m_doc->newDocument();
+    QVERIFY(!m_doc->isDirty());
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+}
+
+void TestUiEditor::waitForFrame(QSignalSpy& spy) {
+    if (spy.isEmpty())
+        QVERIFY(spy.wait(kFrameTimeoutMs));
+}
+
+void TestUiEditor::panelIsGeneratedFromMetadata() {
+    for (const ParamMeta& meta : paramMetas()) {
+        const QString name = QStringLiteral("param:") + QString::fromUtf8(meta.id);
+        QWidget* row = find<QWidget>(name);
+        QVERIFY2(row, qPrintable(name));
+        QCOMPARE(row->toolTip(), QString::fromUtf8(meta.tooltip));
+        QVERIFY(find<QToolButton>(name + "/reset"));
+        switch (meta.type) {
+        case ParamType::Float: {
+            auto* slider = find<QSlider>(name + "/slider");
+            auto* spin = find<QDoubleSpinBox>(name + "/spin");
+            QVERIFY(slider && spin);
+            QCOMPARE(spin->minimum(), double(meta.min));
+            QCOMPARE(spin->maximum(), double(meta.max));
+            QCOMPARE(slider->maximum() - slider->minimum(), 1000);
+            break;
+        }
+        case ParamType::Color:
+            QVERIFY(find<QToolButton>(name + "/swatch"));
+            break;
+        case ParamType::Choice: {
+            auto* combo = find<QComboBox>(name + "/combo");
+            QVERIFY(combo);
+            QCOMPARE(combo->count(), int(meta.choices.size()));
+            break;
+        }
+        }
+    }
+}
+
+void TestUiEditor::editRedrawUndoRedo() {
+    auto* slider = find<QSlider>(kRoughness + "/slider");
+    auto* spin = find<QDoubleSpinBox>(kRoughness + "/spin");
+    QVERIFY(slider && spin);
+    const float before = m_doc->material().scalar(ParamId::Roughness);
+    QVERIFY(shows(spin, before));
+    const QVector<double> pixelBefore = centrePixel(viewportImage());
+    const int compilesBefore = m_window->viewport()->renderer()->shaderCompileCount();
+
+    // Move as far as the slider goes, away from the current value, with the keyboard.
+    const bool up = before < 0.5f;
+    const float expected = up ? 1.0f : 0.0f;
+    QSignalSpy frames(m_window->viewport(), &ViewportWidget::frameCompleted);
+    slider->setFocus();
+    QTest::keyClick(slider, up ? Qt::Key_End : Qt::Key_Home);
+    QCOMPARE(m_doc->material().scalar(ParamId::Roughness), expected);
+    QVERIFY(shows(spin, expected));
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    QCOMPARE(m_doc->undoStack()->undoText(), QStringLiteral("Set Roughness"));
+
+    waitForFrame(frames);
+    const QVector<double> pixelEdited = centrePixel(viewportImage());
+    QVERIFY2(maxDifference(pixelBefore, pixelEdited) > 2.0,
+             qPrintable(QStringLiteral("roughness %1 -> %2: centre pixel %3 -> %4")
+                            .arg(before)
+                            .arg(expected)
+                            .arg(describe(pixelBefore), describe(pixelEdited))));
+
+    // Undo through the Edit menu's shortcut, sent to the main window.
+    frames.clear();
+    QTest::keyClick(m_window.get(), Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(m_doc->material().scalar(ParamId::Roughness), before);
+    QVERIFY(shows(spin, before));
+    QCOMPARE(slider->value(), int(std::lround(before * 1000)));
+    waitForFrame(frames);
+    const QVector<double> pixelUndone = centrePixel(viewportImage());
+    QVERIFY2(maxDifference(pixelBefore, pixelUndone) <= 1.0,
+             qPrintable(describe(pixelBefore) + " vs " + describe(pixelUndone)));
+
+    // Redo.
+    frames.clear();
+    QTest::keyClick(m_window.get(), Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+    QCOMPARE(m_doc->material().scalar(ParamId::Roughness), expected);
+    QVERIFY(shows(spin, expected));
+    waitForFrame(frames);
+    QVERIFY(maxDifference(pixelEdited, centrePixel(viewportImage())) <= 1.0);
+    QCOMPARE(m_doc->undoStack()->count(), 1); // undo/redo created no new commands
+    // A value edit goes to a uniform buffer: no shader was compiled for any of these frames.
+    QCOMPARE(m_window->viewport()->renderer()->shaderCompileCount(), compilesBefore);
+
+    // Typing into the spin box and pressing Enter is one more command.
+    spin->setFocus();
+    spin->selectAll();
+    QTest::keyClicks(spin, QStringLiteral("0.25"));
+    QTest::keyClick(spin, Qt::Key_Return);
+    QCOMPARE(m_doc->material().scalar(ParamId::Roughness), 0.25f);
+    QCOMPARE(slider->value(), 250);
+    QCOMPARE(m_doc->undoStack()->count(), 2);
+}
+
+void TestUiEditor::sliderDragIsOneCommand() {
+    auto* slider = find<QSlider>(kRoughness + "/slider");
+    QVERIFY(slider);
+    const float before = m_doc->material().scalar(ParamId::Roughness);
+    const int direction = before < 0.5f ? 1 : -1;
+
+    auto drag = [&] {
+        QPoint pos = handleCentre(slider);
+        QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, pos);
+        for (int i = 0; i < 10; ++i) {
+            pos.rx() += direction * 4;
+            QTest::mouseMove(slider, pos);
+        }
+        QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, pos);
+    };
+    drag();
+    const float afterFirst = m_doc->material().scalar(ParamId::Roughness);
+    QVERIFY2(afterFirst != before, "the drag did not move the slider");
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    QCOMPARE(m_doc->undoStack()->undoText(), QStringLiteral("Set Roughness"));
+
+    drag(); // a second drag is a second command
+    QCOMPARE(m_doc->undoStack()->count(), 2);
+
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->material().scalar(ParamId::Roughness), afterFirst);
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->material().scalar(ParamId::Roughness), before);
+    QCOMPARE(slider->value(), int(std::lround(before * 1000)));
+}
+
+void TestUiEditor::comboEditAndReset() {
+    const QString name = QStringLiteral("param:brdf.distribution");
+    auto* combo = find<QComboBox>(name + "/combo");
+    QVERIFY(combo);
+    const int before = m_doc->material().choice(ParamId::Distribution);
+    const bool down = before + 1 < combo->count();
+    const int other = down ? before + 1 : before - 1;
+    combo->setFocus();
+    QTest::keyClick(combo, down ? Qt::Key_Down : Qt::Key_Up);
+    QCOMPARE(m_doc->material().choice(ParamId::Distribution), other);
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+
+    // The reset button goes back to the metadata default, as one more command.
+    QTest::mouseClick(find<QToolButton>(name + "/reset"), Qt::LeftButton);
+    QCOMPARE(m_doc->material().choice(ParamId::Distribution),
+             int(paramMeta(ParamId::Distribution).defaultValue.x));
+    QCOMPARE(m_doc->undoStack()->count(), 2);
+    QVERIFY(m_doc->undoStack()->undoText().startsWith(QStringLiteral("Reset")));
+    m_doc->undoStack()->undo();
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->material().choice(ParamId::Distribution), before);
+    QCOMPARE(combo->currentIndex(), before);
+    QCOMPARE(m_doc->undoStack()->count(), 2); // refreshing the combo pushed nothing
+}
+
+void TestUiEditor::titleShowsModifiedMarker() {
+    QVERIFY(m_window->windowTitle().contains(QStringLiteral("[*]")));
+    QVERIFY(!m_window->isWindowModified());
+    auto* slider = find<QSlider>(kRoughness + "/slider");
+    slider->setFocus();
+    QTest::keyClick(slider, Qt::Key_PageUp);
+    QTest::keyClick(slider, Qt::Key_PageDown);
+    QVERIFY(m_doc->isDirty());
+    QVERIFY(m_window->isWindowModified());
+    m_doc->undoStack()->undo();
+    m_doc->undoStack()->undo();
+    QVERIFY(!m_window->isWindowModified()); // back at the clean index
+}
+
+void TestUiEditor::colourSwatchShowsDisplayValues() {
+    // The document stores scene-linear; the swatch (like the picker) shows display-encoded sRGB.
+    const glm::vec3 linear(0.18f, 0.5f, 0.0f);
+    m_doc->setParam(ParamId::BaseColor, linear); // as an undo command would
+    auto* swatch = find<QToolButton>(QStringLiteral("param:lobes.base.color/swatch"));
+    QVERIFY(swatch);
+    const QImage icon = swatch->icon().pixmap(swatch->iconSize()).toImage();
+    const QColor shown = icon.pixelColor(icon.width() / 2, icon.height() / 2);
+    QCOMPARE(shown.red(), int(std::lround(linearToSrgb(linear.x) * 255))); // 118, not 46
+    QCOMPARE(shown.green(), int(std::lround(linearToSrgb(linear.y) * 255)));
+    QCOMPARE(shown.blue(), 0);
+}
+
+void TestUiEditor::failedOpenLeavesDocumentUntouched() {
+    m_doc->setParam(ParamId::Roughness, glm::vec3(0.123f));
+    const Scene before = m_doc->scene();
+    QTemporaryDir dir;
+    const QString bad = dir.filePath(QStringLiteral("broken.json"));
+    QFile file(bad);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("{\"format\": \"velvet.scene\", \"version\": 1, \"camera\": ");
+    file.close();
+
+    QSignalSpy replaced(m_doc, &DocumentController::documentReplaced);
+    QStringList problems;
+    QVERIFY(!m_doc->openFile(bad, &problems));
+    QVERIFY(!problems.isEmpty());
+    QVERIFY2(problems.first().contains(QStringLiteral("broken.json")),
+             qPrintable(problems.first()));
+    QVERIFY(replaced.isEmpty());
+    QVERIFY(m_doc->scene() == before);
+}
+
+void TestUiEditor::saveMarksCleanAndNamesTitle() {
+    QTemporaryDir dir;
+    auto* slider = find<QSlider>(kRoughness + "/slider");
+    slider->setFocus();
+    QTest::keyClick(slider, Qt::Key_PageUp);
+    QVERIFY(m_window->isWindowModified());
+    const QString path = dir.filePath(QStringLiteral("look.json"));
+    QString error;
+    QVERIFY2(m_doc->saveAs(path, &error), qPrintable(error));
+    QVERIFY(!m_window->isWindowModified());
+    QVERIFY(m_window->windowTitle().startsWith(QStringLiteral("look.json")));
+
+    // Reopening gives the same document, clean, with an empty history.
+    const Scene saved = m_doc->scene();
+    m_doc->newDocument();
+    QStringList problems;
+    QVERIFY2(m_doc->openFile(path, &problems), qPrintable(problems.join('\n')));
+    QVERIFY(m_doc->scene() == saved);
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+    QVERIFY(std::abs(find<QDoubleSpinBox>(kRoughness + "/spin")->value() -
+                     saved.material.scalar(ParamId::Roughness)) < 5e-4);
+}
+
+int main(int argc, char** argv) {
+    QStandardPaths::setTestModeEnabled(true); // QSettings go to a throwaway place
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("VelvetTest"));
+    TestUiEditor test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_ui_editor.moc"
