@@ -107,7 +107,8 @@ bool isSubcommand(std::string_view name) {
 
 std::string topLevelHelp() {
     std::ostringstream s;
-    s << "Usage: velvet [FILE] [--screenshot OUT]   open the editor (on FILE, or the default scene)\n"
+    s << "Usage: velvet [FILE] [--screenshot OUT]   open the editor (on FILE, or the default "
+         "scene)\n"
          "       velvet COMMAND [ARGS]             run a headless command\n\n"
          "Commands:\n";
     for (const auto& c : kSubcommands) {

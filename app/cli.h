@@ -23,8 +23,8 @@ struct Arguments {
 
 /// One option a subcommand accepts.
 struct OptionSpec {
-    std::string_view longName;  ///< "output"
-    char shortName;             ///< 'o', or 0
+    std::string_view longName; ///< "output"
+    char shortName;            ///< 'o', or 0
     bool takesValue;
     std::string_view valueName; ///< "FILE" for help
     std::string_view help;

@@ -1,11 +1,10 @@
 // velvet info: version, the headless OpenGL context, dependency versions.
-#include <iostream>
-
-#include <QtGlobal>
-
 #include "app/cli.h"
 #include "core/versions.h"
 #include "render/headless_context.h"
+
+#include <QtGlobal>
+#include <iostream>
 
 namespace velvet::cli {
 

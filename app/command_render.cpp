@@ -1,21 +1,22 @@
 // velvet render [FILE] -o OUT [--size WxH] …: headless rendering through the real deferred path.
-#include <cctype>
-#include <charconv>
-#include <cmath>
-#include <filesystem>
-#include <iostream>
-
 #include "app/cli.h"
 #include "app/load_document.h"
 #include "core/document_io.h"
 #include "core/image.h"
 #include "render/offscreen.h"
 
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
 namespace velvet::cli {
 namespace {
 
 const std::vector<OptionSpec> kOptions{
-    {"output", 'o', true, "OUT", "image to write: .png (8-bit, display encoded) or .exr (linear half)"},
+    {"output", 'o', true, "OUT",
+     "image to write: .png (8-bit, display encoded) or .exr (linear half)"},
     {"size", 's', true, "WxH", "image size in pixels (default 512x512, at most 8192 per side)"},
     {"exposure", 0, true, "EV", "exposure in stops before tone mapping (default 0)"},
     {"tonemap", 0, true, "NAME", "pbr-neutral (default), aces, reinhard or linear"},
@@ -110,10 +111,12 @@ int runRender(const std::vector<std::string>& argv) {
     render::FrameSettings settings;
     settings.width = settings.height = 512;
     if (args->has("size") && !parseSize(args->value("size"), settings.width, settings.height))
-        return usage("--size expects WxH with each side in [1, 8192], got '" + args->value("size") + "'");
+        return usage("--size expects WxH with each side in [1, 8192], got '" + args->value("size") +
+                     "'");
     if (args->has("exposure") && !parseFloat(args->value("exposure"), settings.exposureEv))
         return usage("--exposure expects a number, got '" + args->value("exposure") + "'");
-    if (args->has("tonemap") && !parseName(args->value("tonemap"), kToneMappers, settings.toneMapper))
+    if (args->has("tonemap") &&
+        !parseName(args->value("tonemap"), kToneMappers, settings.toneMapper))
         return usage("--tonemap: unknown tone mapper '" + args->value("tonemap") + "'");
     if (args->has("view") && !parseName(args->value("view"), kViews, settings.view))
         return usage("--view: unknown view '" + args->value("view") + "'");

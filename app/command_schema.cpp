@@ -1,9 +1,9 @@
 // velvet schema material|scene: the JSON Schema generated from the parameter metadata (the files
 // in resources/schemas/ are this output; a test keeps them equal).
-#include <iostream>
-
 #include "app/cli.h"
 #include "core/document_io.h"
+
+#include <iostream>
 
 namespace velvet::cli {
 

@@ -1,8 +1,8 @@
 // velvet validate FILE...: checks presets and scenes and prints every problem.
-#include <iostream>
-
 #include "app/cli.h"
 #include "app/load_document.h"
+
+#include <iostream>
 
 namespace velvet::cli {
 

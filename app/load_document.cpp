@@ -1,8 +1,8 @@
 #include "app/load_document.h"
 
-#include <iostream>
-
 #include "core/document_io.h"
+
+#include <iostream>
 
 namespace velvet::cli {
 

@@ -2,11 +2,11 @@
 /// @file load_document.h
 /// Opens whatever the user named — a scene or a material preset — as a scene.
 
-#include <filesystem>
-#include <optional>
-
 #include "core/diagnostics.h"
 #include "core/scene.h"
+
+#include <filesystem>
+#include <optional>
 
 namespace velvet::cli {
 

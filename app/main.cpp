@@ -1,12 +1,12 @@
 // velvet: the editor when run alone (or with a FILE), a headless CLI with a subcommand.
+#include "app/cli.h"
+#include "app/resource_root.h"
+#include "ui/editor.h"
+
 #include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
-
-#include "app/cli.h"
-#include "app/resource_root.h"
-#include "ui/editor.h"
 
 int main(int argc, char** argv) {
     velvet::app::locateResources(argv[0]);
@@ -36,13 +36,15 @@ int main(int argc, char** argv) {
         } else if (a.rfind("-", 0) == 0 && a.size() > 1) {
             // Qt's own options (-platform, -style …) pass through to QApplication.
             if (a.rfind("--", 0) == 0) {
-                std::cerr << "velvet: unknown option '" << a << "'\n" << velvet::cli::topLevelHelp();
+                std::cerr << "velvet: unknown option '" << a << "'\n"
+                          << velvet::cli::topLevelHelp();
                 return velvet::cli::UsageError;
             }
         } else if (options.openFile.empty()) {
             options.openFile = a;
         } else {
-            std::cerr << "velvet: unknown command '" << options.openFile << "' or more than one FILE\n"
+            std::cerr << "velvet: unknown command '" << options.openFile
+                      << "' or more than one FILE\n"
                       << "Run 'velvet --help' for usage.\n";
             return velvet::cli::UsageError;
         }

@@ -1,8 +1,8 @@
 #include "app/resource_root.h"
 
-#include <filesystem>
-
 #include "core/resources.h"
+
+#include <filesystem>
 
 namespace velvet::app {
 
@@ -14,7 +14,8 @@ void locateResources(const char* argv0) {
         exe = fs::absolute(argv0, ec);
     const fs::path dir = exe.parent_path();
     for (const fs::path& candidate :
-         {dir / "resources", dir / ".." / "share" / "velvet" / "resources", dir / ".." / ".." / "resources"}) {
+         {dir / "resources", dir / ".." / "share" / "velvet" / "resources",
+          dir / ".." / ".." / "resources"}) {
         if (fs::is_directory(candidate / "shaders", ec)) {
             resources::setRoot(fs::weakly_canonical(candidate, ec));
             return;
