@@ -20,11 +20,14 @@ struct Result {
 };
 
 /// Runs velvet with no display (the CLI must not need one) and a time limit (no hang).
-Result runVelvet(const QStringList& args, const QString& workingDir = {}) {
+Result runVelvet(const QStringList& args, const QString& workingDir = {},
+                 const QString& resources = {}) {
     QProcess p;
     if (!workingDir.isEmpty())
         p.setWorkingDirectory(workingDir);
     QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    if (!resources.isEmpty())
+        env.insert("VELVET_RESOURCES", resources);
     env.remove("DISPLAY");
     env.remove("WAYLAND_DISPLAY");
     p.setProcessEnvironment(env);
@@ -128,6 +131,23 @@ private slots:
         Result r = runVelvet({"render", "-o", "/nonexistent-velvet-dir/out.png", "--size", "8x8"});
         QCOMPARE(r.exitCode, 2);
         QVERIFY(r.err.contains("does not exist"));
+    }
+
+    /// A shader that does not compile is a rendering failure: exit 3, the message names the shader
+    /// file and line, and no image is written.
+    void brokenShaderIsRenderingFailure() {
+        QTemporaryDir resources, out;
+        QVERIFY(QProcess::execute("cp", {"-r", source("resources/."), resources.path()}) == 0);
+        QFile shader(resources.filePath("shaders/lighting.frag"));
+        QVERIFY(shader.open(QIODevice::Append));
+        shader.write("\nthis is not GLSL;\n");
+        shader.close();
+        const QString image = out.filePath("x.png");
+        Result r = runVelvet({"render", "-o", image, "--size", "16x16"}, {}, resources.path());
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QCOMPARE(r.exitCode, 3);
+        QVERIFY2(r.err.contains("lighting.frag:"), qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(image));
     }
 
     void validateShippedPresets() {
