@@ -1,6 +1,9 @@
 #pragma once
 // Shared helpers of the render tests: one headless context per test process, scenes built in code.
 
+#include <QtTest>
+
+#include "core/document_io.h"
 #include "core/scene.h"
 #include "render/headless_context.h"
 
@@ -18,25 +21,16 @@ inline render::HeadlessContext* headlessContext(std::string* error) {
     return ctx.get();
 }
 
-/// The default scene of core/document_io.cpp, built in code (no JSON): the crimson velvet-ish
-/// material on the sphere, a warm key light, the studio HDRI.
-inline Scene defaultSceneInCode() {
-    Scene scene;
-    Material& m = scene.material;
-    m.name = "Crimson velvet";
-    m.setColor(ParamId::BaseColor, {0.35f, 0.02f, 0.05f});
-    m.setScalar(ParamId::Roughness, 0.8f);
-    m.setScalar(ParamId::SheenWeight, 1.0f);
-    m.setColor(ParamId::SheenColor, {1.0f, 0.6f, 0.7f});
-    m.setScalar(ParamId::SheenRoughness, 0.4f);
-    Light key;
-    key.type = LightType::Directional;
-    key.name = "Key";
-    key.color = {1.0f, 0.93f, 0.85f};
-    key.intensity = 3.0f;
-    key.direction = {0.5f, -0.6f, -0.62f};
-    scene.lights.push_back(key);
-    scene.environment.hdri = std::string(VELVET_SOURCE_DIR) + "/resources/hdri/studio.exr";
+/// The shipped default scene (core/document_io.h), loaded exactly as `velvet render` and the editor
+/// load it, so the golden image is the default scene and not a copy of it. Fails the test when the
+/// default preset reports any problem.
+inline Scene shippedDefaultScene() {
+    Problems problems;
+    Scene scene = defaultScene(&problems);
+    for (const Problem& p : problems.items)
+        qWarning("default scene: %s", p.toString().c_str());
+    if (!problems.items.empty())
+        QTest::qFail("the default scene reported problems", __FILE__, __LINE__);
     return scene;
 }
 

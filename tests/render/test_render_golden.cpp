@@ -39,7 +39,7 @@ private slots:
         Image display;
         std::string error;
         Problems problems;
-        QVERIFY2(render::renderSceneOffscreen(test::defaultSceneInCode(), fs, nullptr, &display,
+        QVERIFY2(render::renderSceneOffscreen(test::shippedDefaultScene(), fs, nullptr, &display,
                                               &error, &problems),
                  error.c_str());
         QVERIFY(problems.items.empty());
@@ -80,7 +80,7 @@ private slots:
 
     // A missing HDRI is a warning naming the file, and the frame still renders (grey fallback).
     void missingHdriWarnsAndRenders() {
-        Scene scene = test::defaultSceneInCode();
+        Scene scene = test::shippedDefaultScene();
         scene.environment.hdri = "/nonexistent/velvet/missing_studio.exr";
         render::FrameSettings fs;
         fs.width = fs.height = 64;

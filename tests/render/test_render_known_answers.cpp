@@ -279,7 +279,7 @@ private slots:
         QVERIFY2(renderer.initialize(&error), error.c_str());
         render::OffscreenTarget target;
         QVERIFY2(target.resize(64, 64, &error), error.c_str());
-        Scene scene = test::defaultSceneInCode();
+        Scene scene = test::shippedDefaultScene();
         scene.environment.hdri.clear();
         scene.material.setScalar(ParamId::SheenWeight, 0.0f);
         render::FrameSettings fs;
