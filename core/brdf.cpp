@@ -29,12 +29,64 @@ float distributionGGX(float NdotH, float alpha) {
     return a2 / (kPi * f * f);
 }
 
+// Beckmann & Spizzichino 1963, "The Scattering of Electromagnetic Waves from Rough Surfaces"
+// (alpha = roughness^2, the slope RMS; normalised as in Walter et al. 2007 eq. 25)
+float distributionBeckmann(float NdotH, float alpha) {
+    const float a2 = alpha * alpha;
+    const float c2 = std::max(NdotH * NdotH, 1e-8f);
+    return std::exp((c2 - 1.0f) / (a2 * c2)) / (kPi * a2 * c2 * c2);
+}
+
+// Blinn 1977, "Models of Light Reflection for Computer Synthesized Pictures" (exponent
+// n = 2 / alpha^2 - 2 as Walter et al. 2007, normalisation (n + 2) / 2pi)
+float distributionBlinnPhong(float NdotH, float alpha) {
+    const float n = std::max(2.0f / (alpha * alpha) - 2.0f, 0.0f);
+    return (n + 2.0f) / (2.0f * kPi) * std::pow(std::max(NdotH, 1e-6f), n);
+}
+
 // Smith 1967 with GGX G1, separable form of glTF 2.0 Appendix B: V = G / (4 |n.l| |n.v|)
 float visibilitySmithGGXSeparable(float NdotL, float NdotV, float alpha) {
     const float a2 = alpha * alpha;
     const float gl = NdotL + std::sqrt(a2 + (1.0f - a2) * NdotL * NdotL);
     const float gv = NdotV + std::sqrt(a2 + (1.0f - a2) * NdotV * NdotV);
     return 1.0f / (gl * gv);
+}
+
+// Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs"
+// (height-correlated Smith-GGX, as Filament's V_SmithGGXCorrelated and the glTF Sample Viewer)
+float visibilitySmithGGXCorrelated(float NdotL, float NdotV, float alpha) {
+    const float a2 = alpha * alpha;
+    const float lambdaV = NdotL * std::sqrt(NdotV * NdotV * (1.0f - a2) + a2);
+    const float lambdaL = NdotV * std::sqrt(NdotL * NdotL * (1.0f - a2) + a2);
+    return 0.5f / (lambdaV + lambdaL);
+}
+
+// Karis 2013, "Real Shading in Unreal Engine 4" (Schlick-GGX, k = alpha / 2)
+float visibilitySchlickGGX(float NdotL, float NdotV, float alpha) {
+    const float k = alpha * 0.5f;
+    return 1.0f / (4.0f * (NdotL * (1.0f - k) + k) * (NdotV * (1.0f - k) + k));
+}
+
+// Cook & Torrance 1982, "A Reflectance Model for Computer Graphics" (V-cavities G)
+float visibilityCookTorrance(float NdotL, float NdotV, float NdotH, float VdotH) {
+    const float c = 2.0f * NdotH / std::max(VdotH, 1e-4f);
+    const float g = std::min(1.0f, std::min(c * NdotV, c * NdotL));
+    return g / (4.0f * NdotL * NdotV);
+}
+
+// Implicit G = n.l n.v (e.g. Hoffman 2010, "Crafting Physically Motivated Shading Models")
+float visibilityImplicit() {
+    return 0.25f;
+}
+
+// Neumann et al. 1999, "Compact Metallic Reflectance Models" (G = n.l n.v / max(n.l, n.v))
+float visibilityNeumann(float NdotL, float NdotV) {
+    return 1.0f / (4.0f * std::max(NdotL, NdotV));
+}
+
+// Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model"
+float visibilityKelemen(float VdotH) {
+    return 1.0f / (4.0f * std::max(VdotH * VdotH, 1e-4f));
 }
 
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering"
@@ -45,6 +97,39 @@ glm::vec3 fresnelSchlick(glm::vec3 f0, glm::vec3 f90, float VdotH) {
 }
 float fresnelSchlick(float f0, float f90, float VdotH) {
     return fresnelSchlick(glm::vec3(f0), glm::vec3(f90), VdotH).x;
+}
+
+// Karis 2013, "Real Shading in Unreal Engine 4" (Schlick with a spherical-gaussian exponent)
+glm::vec3 fresnelSchlickSphericalGaussian(glm::vec3 f0, glm::vec3 f90, float VdotH) {
+    const float c = saturate(VdotH);
+    return f0 + (f90 - f0) * std::exp2((-5.55473f * c - 6.98316f) * c);
+}
+
+// Walter et al. 2007 eq. 22 / Cook & Torrance 1982: unpolarised Fresnel of a dielectric, eta = IOR
+float fresnelDielectricExact(float VdotH, float eta) {
+    const float c = saturate(VdotH);
+    const float g2 = eta * eta - 1.0f + c * c;
+    if (g2 < 0.0f)
+        return 1.0f; // total internal reflection (eta < 1 only)
+    const float g = std::sqrt(g2);
+    const float a = (g - c) / (g + c);
+    const float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
+    return 0.5f * a * a * (1.0f + b * b);
+}
+
+// Lambert 1760, "Photometria"
+glm::vec3 diffuseLambert(glm::vec3 diffuseColor) {
+    return diffuseColor / kPi;
+}
+
+// Burley 2012, "Physically-Based Shading at Disney" (retro-reflection; energy as published, not
+// renormalised; roughness is the perceptual one, as the paper's slider)
+glm::vec3 diffuseBurley(glm::vec3 diffuseColor, float roughness, float NdotL, float NdotV,
+                        float LdotH) {
+    const float fd90 = 0.5f + 2.0f * roughness * LdotH * LdotH;
+    const float fl = 1.0f + (fd90 - 1.0f) * std::pow(1.0f - NdotL, 5.0f);
+    const float fv = 1.0f + (fd90 - 1.0f) * std::pow(1.0f - NdotV, 5.0f);
+    return diffuseColor / kPi * (fl * fv);
 }
 
 // Estevez & Kulla 2017, "Production Friendly Microfacet Sheen BRDF" (Charlie D)
@@ -83,7 +168,15 @@ float visibilitySheenContyKulla(float NdotL, float NdotV, float sheenRoughness) 
     return saturate(v);
 }
 
+// Ashikhmin & Premoze 2007, "Distribution-based BRDFs" (smooth denominator 4 (n.l + n.v - n.l n.v))
+float visibilityAshikhmin(float NdotL, float NdotV) {
+    return saturate(1.0f / (4.0f * (NdotL + NdotV - NdotL * NdotV)));
+}
+
 // Neubelt & Pettineo 2013, "Crafting a Next-Gen Material Pipeline for The Order: 1886"
+// The same form as visibilityAshikhmin (Neubelt & Pettineo adopt Ashikhmin & Premoze's
+// denominator; Filament's V_Neubelt and the glTF Sample Viewer's V_Ashikhmin are this line, as is
+// three.js's V_Neubelt in seed 003): the two sheen models render identically.
 float visibilityNeubelt(float NdotL, float NdotV) {
     return saturate(1.0f / (4.0f * (NdotL + NdotV - NdotL * NdotV)));
 }
@@ -145,6 +238,86 @@ float sheenDirectionalAlbedo(float NdotV, float sheenRoughness) {
     return glm::mix(a, b, fy);
 }
 
+// ---- Dispatch (mirrors common_brdf.glsl) ----
+
+float distribution(Distribution which, float NdotH, float alpha) {
+    switch (which) {
+    case Distribution::Beckmann:
+        return distributionBeckmann(NdotH, alpha);
+    case Distribution::BlinnPhong:
+        return distributionBlinnPhong(NdotH, alpha);
+    case Distribution::GGX:
+        break;
+    }
+    return distributionGGX(NdotH, alpha);
+}
+
+float visibility(Visibility which, float NdotL, float NdotV, float NdotH, float VdotH,
+                 float alpha) {
+    switch (which) {
+    case Visibility::SmithGGXCorrelated:
+        return visibilitySmithGGXCorrelated(NdotL, NdotV, alpha);
+    case Visibility::SchlickGGX:
+        return visibilitySchlickGGX(NdotL, NdotV, alpha);
+    case Visibility::CookTorrance:
+        return visibilityCookTorrance(NdotL, NdotV, NdotH, VdotH);
+    case Visibility::Implicit:
+        return visibilityImplicit();
+    case Visibility::Neumann:
+        return visibilityNeumann(NdotL, NdotV);
+    case Visibility::Kelemen:
+        return visibilityKelemen(VdotH);
+    case Visibility::SmithGGXSeparable:
+        break;
+    }
+    return visibilitySmithGGXSeparable(NdotL, NdotV, alpha);
+}
+
+glm::vec3 fresnelDielectric(Fresnel which, glm::vec3 f0, float ior, float VdotH) {
+    switch (which) {
+    case Fresnel::SchlickSphericalGaussian:
+        return fresnelSchlickSphericalGaussian(f0, glm::vec3(1.0f), VdotH);
+    case Fresnel::ExactDielectric: {
+        const float f0Exact = fresnelDielectricExact(1.0f, ior);
+        const float w =
+            (fresnelDielectricExact(VdotH, ior) - f0Exact) / std::max(1.0f - f0Exact, 1e-6f);
+        return f0 + (glm::vec3(1.0f) - f0) * w;
+    }
+    case Fresnel::Schlick:
+        break;
+    }
+    return fresnelSchlick(f0, glm::vec3(1.0f), VdotH);
+}
+
+// Metals have no real IOR here, so the exact dielectric choice keeps Schlick for them (a
+// complex-IOR conductor Fresnel would need n and k).
+glm::vec3 fresnelConductor(Fresnel which, glm::vec3 f0, float VdotH) {
+    if (which == Fresnel::SchlickSphericalGaussian)
+        return fresnelSchlickSphericalGaussian(f0, glm::vec3(1.0f), VdotH);
+    return fresnelSchlick(f0, glm::vec3(1.0f), VdotH);
+}
+
+glm::vec3 diffuse(Diffuse which, glm::vec3 diffuseColor, float roughness, float NdotL, float NdotV,
+                  float LdotH) {
+    if (which == Diffuse::Burley)
+        return diffuseBurley(diffuseColor, roughness, NdotL, NdotV, LdotH);
+    return diffuseLambert(diffuseColor);
+}
+
+// Ashikhmin and Neubelt are the same function (see visibilityNeubelt); both enum values are kept
+// because the seed documents name both.
+float visibilitySheen(SheenModel which, float NdotL, float NdotV, float sheenRoughness) {
+    switch (which) {
+    case SheenModel::CharlieAshikhmin:
+        return visibilityAshikhmin(NdotL, NdotV);
+    case SheenModel::CharlieNeubelt:
+        return visibilityNeubelt(NdotL, NdotV);
+    case SheenModel::CharlieContyKulla:
+        break;
+    }
+    return visibilitySheenContyKulla(NdotL, NdotV, sheenRoughness);
+}
+
 Surface surfaceFromMaterial(const Material& m) {
     Surface s;
     s.baseColor = m.color(ParamId::BaseColor);
@@ -158,6 +331,11 @@ Surface surfaceFromMaterial(const Material& m) {
     s.clearcoat = m.scalar(ParamId::ClearcoatWeight);
     s.clearcoatRoughness = m.scalar(ParamId::ClearcoatRoughness);
     s.emissive = m.color(ParamId::EmissiveColor) * m.scalar(ParamId::EmissiveStrength);
+    s.distribution = m.distribution();
+    s.visibility = m.visibility();
+    s.fresnel = m.fresnel();
+    s.diffuse = m.diffuse();
+    s.sheenModel = m.sheenModel();
     return s;
 }
 
@@ -178,30 +356,32 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
 
     const float rough = std::max(s.roughness, kMinRoughness);
     const float alpha = rough * rough;
-    const float specular =
-        distributionGGX(NdotH, alpha) * visibilitySmithGGXSeparable(NdotL, NdotV, alpha);
+    const float specular = distribution(s.distribution, NdotH, alpha) *
+                           visibility(s.visibility, NdotL, NdotV, NdotH, VdotH, alpha);
 
     // glTF 2.0 Appendix B + KHR_materials_specular: fresnel_mix for the dielectric,
-    // conductor_fresnel for the metal, mixed by metallic.
+    // conductor_fresnel for the metal, mixed by metallic. LdotH = VdotH (h is the half vector).
     const glm::vec3 fDielectric =
-        s.specularWeight * fresnelSchlick(dielectricF0(s), glm::vec3(1.0f), VdotH);
-    const glm::vec3 fMetal = fresnelSchlick(s.baseColor, glm::vec3(1.0f), VdotH);
-    const glm::vec3 diffuse = s.baseColor / kPi;
-    const glm::vec3 dielectric = (1.0f - max3(fDielectric)) * diffuse + fDielectric * specular;
+        s.specularWeight * fresnelDielectric(s.fresnel, dielectricF0(s), s.ior, VdotH);
+    const glm::vec3 fMetal = fresnelConductor(s.fresnel, s.baseColor, VdotH);
+    const glm::vec3 diffuseLobe = diffuse(s.diffuse, s.baseColor, rough, NdotL, NdotV, VdotH);
+    const glm::vec3 dielectric = (1.0f - max3(fDielectric)) * diffuseLobe + fDielectric * specular;
     const glm::vec3 metal = fMetal * specular;
     glm::vec3 f = glm::mix(dielectric, metal, s.metallic);
 
-    // KHR_materials_sheen: sheen on top, base scaled by the sheen's albedo.
+    // KHR_materials_sheen: sheen on top, base scaled by the sheen's albedo (the Conty-Kulla
+    // table for every sheen model; see sheenDirectionalAlbedo()).
     if (max3(s.sheenColor) > 0.0f) {
         const float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
-                            visibilitySheenContyKulla(NdotL, NdotV, s.sheenRoughness);
+                            visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness);
         const float scaling =
             std::min(1.0f - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness),
                      1.0f - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness));
         f = f * scaling + s.sheenColor * sheen;
     }
 
-    // KHR_materials_clearcoat: the base is attenuated by the coat's Fresnel at n.v.
+    // KHR_materials_clearcoat: the base is attenuated by the coat's Fresnel at n.v. The coat keeps
+    // the extension's fixed terms whatever the base lobe's choices.
     if (s.clearcoat > 0.0f) {
         const float cr = std::max(s.clearcoatRoughness, kMinRoughness);
         const float ca = cr * cr;

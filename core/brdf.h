@@ -1,9 +1,12 @@
 #pragma once
 /// @file brdf.h
 /// CPU twins of the BRDF terms in resources/shaders/common_brdf.glsl (same names, same order,
-/// same clamps). Pure GLM: the tests compare GPU pixels against these, and the offline reference
-/// uses them. The default model is glTF 2.0 Appendix B metal-rough with the layering of
-/// KHR_materials_specular, _ior, _sheen and _clearcoat.
+/// same clamps), laid out like it and Filament's surface_brdf.fs: implementations, then dispatch
+/// on the material's term choices. Pure GLM: the tests compare GPU pixels against these, and the
+/// offline reference uses them. The default model is glTF 2.0 Appendix B metal-rough with the
+/// layering of KHR_materials_specular, _ior, _sheen and _clearcoat; every term of the seed
+/// documents is selectable per material (Distribution, Visibility, Fresnel, Diffuse, SheenModel).
+/// Conventions: alpha = roughness^2; every visibility term is V = G / (4 n.l n.v).
 
 #include "core/material.h"
 
@@ -19,15 +22,84 @@ inline constexpr float kMinRoughness = 0.045f;
 /// Smallest sheen roughness used in shading (Charlie D degenerates at 0).
 inline constexpr float kMinSheenRoughness = 0.07f;
 
-/// @name Terms (each cites its source in brdf.cpp and common_brdf.glsl)
+/// @name Normal distributions D(h) (normalised: integral of D(h) (n.h) over the hemisphere = 1)
 /// @{
+/// Walter et al. 2007, GGX / Trowbridge-Reitz (default).
 float distributionGGX(float NdotH, float alpha);
+/// Beckmann & Spizzichino 1963, alpha = roughness^2 as the slope RMS.
+float distributionBeckmann(float NdotH, float alpha);
+/// Blinn 1977, exponent n = 2 / alpha^2 - 2, normalised by (n + 2) / 2pi.
+float distributionBlinnPhong(float NdotH, float alpha);
+/// @}
+
+/// @name Visibility V = G / (4 n.l n.v)
+/// @{
+/// Smith GGX, separable form of glTF 2.0 Appendix B (default).
 float visibilitySmithGGXSeparable(float NdotL, float NdotV, float alpha);
+/// Heitz 2014 height-correlated Smith GGX (Filament, glTF Sample Viewer).
+float visibilitySmithGGXCorrelated(float NdotL, float NdotV, float alpha);
+/// Karis 2013 Schlick-GGX with k = alpha / 2.
+float visibilitySchlickGGX(float NdotL, float NdotV, float alpha);
+/// Cook & Torrance 1982 V-cavities.
+float visibilityCookTorrance(float NdotL, float NdotV, float NdotH, float VdotH);
+/// Implicit G = n.l n.v, so V = 1/4.
+float visibilityImplicit();
+/// Neumann et al. 1999: G = n.l n.v / max(n.l, n.v).
+float visibilityNeumann(float NdotL, float NdotV);
+/// Kelemen & Szirmay-Kalos 2001: V = 1 / (4 (v.h)^2).
+float visibilityKelemen(float VdotH);
+/// @}
+
+/// @name Fresnel
+/// @{
+/// Schlick 1994 (default).
 glm::vec3 fresnelSchlick(glm::vec3 f0, glm::vec3 f90, float VdotH);
 float fresnelSchlick(float f0, float f90, float VdotH);
+/// Karis 2013: Schlick with the spherical-gaussian exponent 2^((-5.55473 c - 6.98316) c).
+glm::vec3 fresnelSchlickSphericalGaussian(glm::vec3 f0, glm::vec3 f90, float VdotH);
+/// Walter et al. 2007 eq. 22: exact unpolarised Fresnel reflectance of a dielectric, eta = IOR.
+float fresnelDielectricExact(float VdotH, float eta);
+/// @}
+
+/// @name Diffuse
+/// @{
+/// Lambert (default): diffuseColor / pi.
+glm::vec3 diffuseLambert(glm::vec3 diffuseColor);
+/// Burley 2012 (Disney) with its retro-reflection, energy as published (not renormalised);
+/// @p roughness is the perceptual roughness.
+glm::vec3 diffuseBurley(glm::vec3 diffuseColor, float roughness, float NdotL, float NdotV,
+                        float LdotH);
+/// @}
+
+/// @name Sheen (Charlie D with three visibility terms)
+/// @{
+/// Estevez & Kulla 2017 Charlie D; alpha = max(sheenRoughness, kMinSheenRoughness)^2.
 float distributionCharlie(float NdotH, float sheenRoughness);
+/// Conty & Kulla 2017 fitted visibility (default).
 float visibilitySheenContyKulla(float NdotL, float NdotV, float sheenRoughness);
+/// Ashikhmin & Premoze 2007: V = 1 / (4 (n.l + n.v - n.l n.v)), clamped to [0, 1].
+float visibilityAshikhmin(float NdotL, float NdotV);
+/// Neubelt & Pettineo 2013: the same function as visibilityAshikhmin (they adopt its
+/// denominator; Filament's V_Neubelt and the glTF Sample Viewer's V_Ashikhmin coincide).
 float visibilityNeubelt(float NdotL, float NdotV);
+/// @}
+
+/// @name Dispatch on the per-material term choices (mirrors the GLSL dispatch functions)
+/// @{
+float distribution(Distribution which, float NdotH, float alpha);
+float visibility(Visibility which, float NdotL, float NdotV, float NdotH, float VdotH, float alpha);
+/// Dielectric Fresnel with f90 = 1. ExactDielectric keeps KHR_materials_specular's coloured F0 by
+/// rescaling the exact curve: f0 + (1 - f0) (F(c) - F(1)) / (1 - F(1)); equal to
+/// fresnelDielectricExact() when the specular colour is white.
+glm::vec3 fresnelDielectric(Fresnel which, glm::vec3 f0, float ior, float VdotH);
+/// Conductor Fresnel, F0 = base colour; ExactDielectric falls back to Schlick for metals (no
+/// complex IOR in the model).
+glm::vec3 fresnelConductor(Fresnel which, glm::vec3 f0, float VdotH);
+glm::vec3 diffuse(Diffuse which, glm::vec3 diffuseColor, float roughness, float NdotL, float NdotV,
+                  float LdotH);
+float visibilitySheen(SheenModel which, float NdotL, float NdotV, float sheenRoughness);
+/// @}
+
 /// Karis 2014's analytic fit of the split-sum environment BRDF: returns (scale, bias) so that the
 /// directional albedo of the specular lobe is f0 * scale + bias. An approximation (the renderer
 /// issue replaces it with a DFG LUT).
@@ -35,9 +107,11 @@ glm::vec2 envBrdfApprox(float roughness, float NdotV);
 /// @}
 
 /// Directional albedo E(NdotV, roughness) of the sheen lobe (Charlie D x Conty-Kulla V, white
-/// sheen colour), for KHR_materials_sheen's albedo scaling. Tabulated once by numerical
-/// integration on a kSheenLutSize^2 grid and looked up bilinearly, exactly as the GPU samples the
-/// same table (texel centres at (i + 0.5) / size, clamped).
+/// sheen colour), for KHR_materials_sheen's albedo scaling. Used for every SheenModel (the
+/// renderer uploads this one table), so the Ashikhmin/Neubelt models are scaled by the
+/// Conty-Kulla albedo: an approximation, documented and matched by the GPU. Tabulated once by
+/// numerical integration on a kSheenLutSize^2 grid and looked up bilinearly, exactly as the GPU
+/// samples the same table (texel centres at (i + 0.5) / size, clamped).
 inline constexpr int kSheenLutSize = 32;
 /// The table, row-major: index = roughnessIndex * size + NdotVIndex; cell i holds the value at
 /// NdotV = i / (size - 1) (likewise roughness).
@@ -57,6 +131,11 @@ struct Surface {
     float clearcoat = 0.0f;
     float clearcoatRoughness = 0.03f;
     glm::vec3 emissive{0.0f}; ///< colour x strength
+    Distribution distribution = Distribution::GGX;
+    Visibility visibility = Visibility::SmithGGXSeparable;
+    Fresnel fresnel = Fresnel::Schlick;
+    Diffuse diffuse = Diffuse::Lambert;
+    SheenModel sheenModel = SheenModel::CharlieContyKulla;
 };
 Surface surfaceFromMaterial(const Material& m);
 

@@ -1,14 +1,42 @@
-// BRDF terms. Configuration: glTF 2.0 Appendix B metal-rough (GGX D, separable Smith-GGX V,
-// Schlick F, Lambert diffuse) layered with KHR_materials_specular/_ior, _sheen (Charlie D,
-// Conty-Kulla V) and _clearcoat. Each implementation cites its paper on its first line; the C++
-// twins in core/brdf.cpp have the same names, order and clamps. The renderer issue adds the other
-// selectable terms and dispatches on GpuMaterial.terms.
+// BRDF terms, in Filament's surface_brdf.fs layout: configuration, implementations, dispatch.
+// Default configuration: glTF 2.0 Appendix B metal-rough (GGX D, separable Smith-GGX V, Schlick F,
+// Lambert diffuse) layered with KHR_materials_specular/_ior, _sheen (Charlie D, Conty-Kulla V) and
+// _clearcoat. Every other term the seed documents compare is selectable per material at run time
+// (GpuMaterial.terms / terms2, a uniform branch: switching compiles nothing). Each implementation
+// cites its paper on its first line; the C++ twins in core/brdf.cpp have the same names, order
+// and clamps.
 #include "common_math.glsl"
 #include "render_bindings.glsl"
 
 #define MIN_ROUGHNESS 0.045
 #define MIN_SHEEN_ROUGHNESS 0.07
 #define SHEEN_LUT_SIZE 32.0
+
+// ---- Configuration ----
+// Term ids: the values of the enums in core/material.h, as packed in GpuMaterial.terms (D, V, F,
+// diffuse) and terms2.x (sheen model).
+#define DISTRIBUTION_GGX 0
+#define DISTRIBUTION_BECKMANN 1
+#define DISTRIBUTION_BLINN_PHONG 2
+
+#define VISIBILITY_SMITH_GGX_SEPARABLE 0
+#define VISIBILITY_SMITH_GGX_CORRELATED 1
+#define VISIBILITY_SCHLICK_GGX 2
+#define VISIBILITY_COOK_TORRANCE 3
+#define VISIBILITY_IMPLICIT 4
+#define VISIBILITY_NEUMANN 5
+#define VISIBILITY_KELEMEN 6
+
+#define FRESNEL_SCHLICK 0
+#define FRESNEL_SCHLICK_SPHERICAL_GAUSSIAN 1
+#define FRESNEL_EXACT_DIELECTRIC 2
+
+#define DIFFUSE_LAMBERT 0
+#define DIFFUSE_BURLEY 1
+
+#define SHEEN_CHARLIE_CONTY_KULLA 0
+#define SHEEN_CHARLIE_ASHIKHMIN 1
+#define SHEEN_CHARLIE_NEUBELT 2
 
 layout(binding = BINDING_SHEEN_LUT_TEX) uniform sampler2D uSheenLut;
 
@@ -21,12 +49,64 @@ float distributionGGX(float NdotH, float alpha) {
     return a2 / (PI * f * f);
 }
 
+// Beckmann & Spizzichino 1963, "The Scattering of Electromagnetic Waves from Rough Surfaces"
+// (alpha = roughness^2, the slope RMS; normalised as in Walter et al. 2007 eq. 25)
+float distributionBeckmann(float NdotH, float alpha) {
+    float a2 = alpha * alpha;
+    float c2 = max(NdotH * NdotH, 1e-8);
+    return exp((c2 - 1.0) / (a2 * c2)) / (PI * a2 * c2 * c2);
+}
+
+// Blinn 1977, "Models of Light Reflection for Computer Synthesized Pictures" (exponent
+// n = 2 / alpha^2 - 2 as Walter et al. 2007, normalisation (n + 2) / 2pi)
+float distributionBlinnPhong(float NdotH, float alpha) {
+    float n = max(2.0 / (alpha * alpha) - 2.0, 0.0);
+    return (n + 2.0) / (2.0 * PI) * pow(max(NdotH, 1e-6), n);
+}
+
 // Smith 1967 with GGX G1, separable form of glTF 2.0 Appendix B: V = G / (4 |n.l| |n.v|)
 float visibilitySmithGGXSeparable(float NdotL, float NdotV, float alpha) {
     float a2 = alpha * alpha;
     float gl = NdotL + sqrt(a2 + (1.0 - a2) * NdotL * NdotL);
     float gv = NdotV + sqrt(a2 + (1.0 - a2) * NdotV * NdotV);
     return 1.0 / (gl * gv);
+}
+
+// Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs"
+// (height-correlated Smith-GGX, as Filament's V_SmithGGXCorrelated and the glTF Sample Viewer)
+float visibilitySmithGGXCorrelated(float NdotL, float NdotV, float alpha) {
+    float a2 = alpha * alpha;
+    float lambdaV = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
+    float lambdaL = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
+    return 0.5 / (lambdaV + lambdaL);
+}
+
+// Karis 2013, "Real Shading in Unreal Engine 4" (Schlick-GGX, k = alpha / 2)
+float visibilitySchlickGGX(float NdotL, float NdotV, float alpha) {
+    float k = alpha * 0.5;
+    return 1.0 / (4.0 * (NdotL * (1.0 - k) + k) * (NdotV * (1.0 - k) + k));
+}
+
+// Cook & Torrance 1982, "A Reflectance Model for Computer Graphics" (V-cavities G)
+float visibilityCookTorrance(float NdotL, float NdotV, float NdotH, float VdotH) {
+    float c = 2.0 * NdotH / max(VdotH, 1e-4);
+    float g = min(1.0, min(c * NdotV, c * NdotL));
+    return g / (4.0 * NdotL * NdotV);
+}
+
+// Implicit G = n.l n.v (e.g. Hoffman 2010, "Crafting Physically Motivated Shading Models")
+float visibilityImplicit() {
+    return 0.25;
+}
+
+// Neumann et al. 1999, "Compact Metallic Reflectance Models" (G = n.l n.v / max(n.l, n.v))
+float visibilityNeumann(float NdotL, float NdotV) {
+    return 1.0 / (4.0 * max(NdotL, NdotV));
+}
+
+// Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model"
+float visibilityKelemen(float VdotH) {
+    return 1.0 / (4.0 * max(VdotH * VdotH, 1e-4));
 }
 
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering"
@@ -37,6 +117,38 @@ vec3 fresnelSchlick(vec3 f0, vec3 f90, float VdotH) {
 }
 float fresnelSchlick(float f0, float f90, float VdotH) {
     return fresnelSchlick(vec3(f0), vec3(f90), VdotH).x;
+}
+
+// Karis 2013, "Real Shading in Unreal Engine 4" (Schlick with a spherical-gaussian exponent)
+vec3 fresnelSchlickSphericalGaussian(vec3 f0, vec3 f90, float VdotH) {
+    float c = saturate(VdotH);
+    return f0 + (f90 - f0) * exp2((-5.55473 * c - 6.98316) * c);
+}
+
+// Walter et al. 2007 eq. 22 / Cook & Torrance 1982: unpolarised Fresnel of a dielectric, eta = IOR
+float fresnelDielectricExact(float VdotH, float eta) {
+    float c = saturate(VdotH);
+    float g2 = eta * eta - 1.0 + c * c;
+    if (g2 < 0.0)
+        return 1.0; // total internal reflection (eta < 1 only)
+    float g = sqrt(g2);
+    float a = (g - c) / (g + c);
+    float b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    return 0.5 * a * a * (1.0 + b * b);
+}
+
+// Lambert 1760, "Photometria"
+vec3 diffuseLambert(vec3 diffuseColor) {
+    return diffuseColor / PI;
+}
+
+// Burley 2012, "Physically-Based Shading at Disney" (retro-reflection; energy as published, not
+// renormalised; roughness is the perceptual one, as the paper's slider)
+vec3 diffuseBurley(vec3 diffuseColor, float roughness, float NdotL, float NdotV, float LdotH) {
+    float fd90 = 0.5 + 2.0 * roughness * LdotH * LdotH;
+    float fl = 1.0 + (fd90 - 1.0) * pow(1.0 - NdotL, 5.0);
+    float fv = 1.0 + (fd90 - 1.0) * pow(1.0 - NdotV, 5.0);
+    return diffuseColor / PI * (fl * fv);
 }
 
 // Estevez & Kulla 2017, "Production Friendly Microfacet Sheen BRDF" (Charlie D)
@@ -70,7 +182,15 @@ float visibilitySheenContyKulla(float NdotL, float NdotV, float sheenRoughness) 
                            (4.0 * NdotV * NdotL)));
 }
 
+// Ashikhmin & Premoze 2007, "Distribution-based BRDFs" (smooth denominator 4 (n.l + n.v - n.l n.v))
+float visibilityAshikhmin(float NdotL, float NdotV) {
+    return saturate(1.0 / (4.0 * (NdotL + NdotV - NdotL * NdotV)));
+}
+
 // Neubelt & Pettineo 2013, "Crafting a Next-Gen Material Pipeline for The Order: 1886"
+// The same form as visibilityAshikhmin (Neubelt & Pettineo adopt Ashikhmin & Premoze's
+// denominator; Filament's V_Neubelt and the glTF Sample Viewer's V_Ashikhmin are this line, as is
+// three.js's V_Neubelt in seed 003): the two sheen models render identically.
 float visibilityNeubelt(float NdotL, float NdotV) {
     return saturate(1.0 / (4.0 * (NdotL + NdotV - NdotL * NdotV)));
 }
@@ -92,6 +212,75 @@ float sheenDirectionalAlbedo(float NdotV, float sheenRoughness) {
 }
 
 // ---- Dispatch ----
+// Term choice per material: a uniform branch on GpuMaterial.terms (no recompilation). The
+// clearcoat lobe keeps KHR_materials_clearcoat's fixed terms (GGX, separable Smith-GGX, Schlick
+// with F0 = 0.04); the choices apply to the base lobes and the sheen. Only direct lights use them:
+// the ambient/IBL path keeps the default model's split-sum approximation.
+
+// Normal distribution D(h), alpha = roughness^2.
+float distribution(int which, float NdotH, float alpha) {
+    if (which == DISTRIBUTION_BECKMANN)
+        return distributionBeckmann(NdotH, alpha);
+    if (which == DISTRIBUTION_BLINN_PHONG)
+        return distributionBlinnPhong(NdotH, alpha);
+    return distributionGGX(NdotH, alpha);
+}
+
+// Visibility V = G / (4 n.l n.v), for every choice.
+float visibility(int which, float NdotL, float NdotV, float NdotH, float VdotH, float alpha) {
+    if (which == VISIBILITY_SMITH_GGX_CORRELATED)
+        return visibilitySmithGGXCorrelated(NdotL, NdotV, alpha);
+    if (which == VISIBILITY_SCHLICK_GGX)
+        return visibilitySchlickGGX(NdotL, NdotV, alpha);
+    if (which == VISIBILITY_COOK_TORRANCE)
+        return visibilityCookTorrance(NdotL, NdotV, NdotH, VdotH);
+    if (which == VISIBILITY_IMPLICIT)
+        return visibilityImplicit();
+    if (which == VISIBILITY_NEUMANN)
+        return visibilityNeumann(NdotL, NdotV);
+    if (which == VISIBILITY_KELEMEN)
+        return visibilityKelemen(VdotH);
+    return visibilitySmithGGXSeparable(NdotL, NdotV, alpha);
+}
+
+// Dielectric Fresnel (f90 = 1). The exact form keeps KHR_materials_specular's coloured F0 by
+// rescaling its angular shape: F = f0 + (1 - f0) (Fexact - F0exact) / (1 - F0exact), which is
+// exactly Fexact(IOR) when the specular colour is white.
+vec3 fresnelDielectric(int which, vec3 f0, float ior, float VdotH) {
+    if (which == FRESNEL_SCHLICK_SPHERICAL_GAUSSIAN)
+        return fresnelSchlickSphericalGaussian(f0, vec3(1.0), VdotH);
+    if (which == FRESNEL_EXACT_DIELECTRIC) {
+        float f0Exact = fresnelDielectricExact(1.0, ior);
+        float w = (fresnelDielectricExact(VdotH, ior) - f0Exact) / max(1.0 - f0Exact, 1e-6);
+        return f0 + (vec3(1.0) - f0) * w;
+    }
+    return fresnelSchlick(f0, vec3(1.0), VdotH);
+}
+
+// Conductor Fresnel, F0 = base colour. Metals have no real IOR here, so the exact dielectric
+// choice keeps Schlick for them (a complex-IOR conductor Fresnel would need n and k).
+vec3 fresnelConductor(int which, vec3 f0, float VdotH) {
+    if (which == FRESNEL_SCHLICK_SPHERICAL_GAUSSIAN)
+        return fresnelSchlickSphericalGaussian(f0, vec3(1.0), VdotH);
+    return fresnelSchlick(f0, vec3(1.0), VdotH);
+}
+
+vec3 diffuse(int which, vec3 diffuseColor, float roughness, float NdotL, float NdotV,
+             float LdotH) {
+    if (which == DIFFUSE_BURLEY)
+        return diffuseBurley(diffuseColor, roughness, NdotL, NdotV, LdotH);
+    return diffuseLambert(diffuseColor);
+}
+
+// Sheen visibility paired with Charlie D. Ashikhmin and Neubelt are the same function (see
+// visibilityNeubelt); both enum values are kept because the seed documents name both.
+float visibilitySheen(int which, float NdotL, float NdotV, float sheenRoughness) {
+    if (which == SHEEN_CHARLIE_ASHIKHMIN)
+        return visibilityAshikhmin(NdotL, NdotV);
+    if (which == SHEEN_CHARLIE_NEUBELT)
+        return visibilityNeubelt(NdotL, NdotV);
+    return visibilitySheenContyKulla(NdotL, NdotV, sheenRoughness);
+}
 
 struct Surface {
     vec3 baseColor;
@@ -105,6 +294,8 @@ struct Surface {
     float clearcoat;
     float clearcoatRoughness;
     vec3 emissive;
+    ivec4 terms; // distribution, visibility, fresnel, diffuse (core/material.h enums)
+    int sheenModel;
 };
 
 vec3 dielectricF0(Surface s) {
@@ -124,18 +315,22 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
 
     float rough = max(s.roughness, MIN_ROUGHNESS);
     float alpha = rough * rough;
-    float specular = distributionGGX(NdotH, alpha) * visibilitySmithGGXSeparable(NdotL, NdotV, alpha);
+    float specular = distribution(s.terms.x, NdotH, alpha) *
+                     visibility(s.terms.y, NdotL, NdotV, NdotH, VdotH, alpha);
 
-    vec3 fDielectric = s.specularWeight * fresnelSchlick(dielectricF0(s), vec3(1.0), VdotH);
-    vec3 fMetal = fresnelSchlick(s.baseColor, vec3(1.0), VdotH);
-    vec3 diffuse = s.baseColor / PI;
-    vec3 dielectric = (1.0 - max3(fDielectric)) * diffuse + fDielectric * specular;
+    vec3 fDielectric =
+        s.specularWeight * fresnelDielectric(s.terms.z, dielectricF0(s), s.ior, VdotH);
+    vec3 fMetal = fresnelConductor(s.terms.z, s.baseColor, VdotH);
+    vec3 diffuseLobe = diffuse(s.terms.w, s.baseColor, rough, NdotL, NdotV, VdotH); // l.h = v.h
+    vec3 dielectric = (1.0 - max3(fDielectric)) * diffuseLobe + fDielectric * specular;
     vec3 metal = fMetal * specular;
     vec3 f = mix(dielectric, metal, s.metallic);
 
     if (max3(s.sheenColor) > 0.0) {
+        // The albedo scaling uses the Charlie x Conty-Kulla table for every sheen model (the one
+        // table the renderer uploads); see velvet::brdf::sheenDirectionalAlbedo().
         float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
-                      visibilitySheenContyKulla(NdotL, NdotV, s.sheenRoughness);
+                      visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness);
         float scaling = min(1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness),
                             1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness));
         f = f * scaling + s.sheenColor * sheen;

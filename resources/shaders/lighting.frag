@@ -54,6 +54,8 @@ void main() {
     s.clearcoat = m.clearcoat.x;
     s.clearcoatRoughness = m.clearcoat.y;
     s.emissive = m.emissive.rgb;
+    s.terms = m.terms;
+    s.sheenModel = m.terms2.x;
     float occlusion = rt0.a;
     vec3 n = octDecodeUnorm16(rt1);
 
