@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <memory>
 #include <system_error>
 
 // OpenImageIO stays inside this file (DESIGN.md, "Heavy dependencies behind a .cpp").
@@ -68,67 +69,156 @@ glm::vec4 Image::rgba(int x, int y) const {
     }
 }
 
-bool readImage(const std::filesystem::path& file, Image& out, std::string* error,
-               const ImageReadLimits& limits) {
-    std::error_code ec;
-    if (!std::filesystem::exists(file, ec))
-        return fail(error, file, "no such file");
-    if (std::filesystem::is_directory(file, ec))
-        return fail(error, file, "is a folder, not an image");
+int ImageInfo::displayWidth() const {
+    return orientation >= 5 ? height : width;
+}
+int ImageInfo::displayHeight() const {
+    return orientation >= 5 ? width : height;
+}
 
-    // Opening reads the header only; every limit is checked before a pixel is decoded.
+namespace {
+
+/// Opens @p file, reading its header only, and checks it against @p limits. Every limit is
+/// checked here, before a pixel is decoded (DESIGN.md, "Data safety").
+std::unique_ptr<OIIO::ImageInput> openChecked(const std::filesystem::path& file,
+                                              const ImageReadLimits& limits, ImageInfo& info,
+                                              std::string* error) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(file, ec);
+    if (!std::filesystem::exists(status))
+        return fail(error, file, "no such file"), nullptr;
+    if (std::filesystem::is_directory(status))
+        return fail(error, file, "is a folder, not an image"), nullptr;
+    const auto bytes = std::filesystem::file_size(file, ec);
+    if (!ec && bytes == 0)
+        return fail(error, file, "the file is empty (0 bytes)"), nullptr;
+
     // Straight (unassociated) alpha in memory: no premultiplication behind the caller's back.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(file.string(), &config);
-    if (!in)
-        return fail(error, file, "cannot read as an image: " + oiioMessage({}));
-    const OIIO::ImageSpec spec = in->spec();
+    if (!in) // OIIO tries the extension's reader first, then every reader on the content
+        return fail(error, file,
+                    "not a readable image: unknown format, or a damaged or truncated header "
+                    "(OpenImageIO: " +
+                        oiioMessage({}) + ")"),
+               nullptr;
+    const OIIO::ImageSpec& spec = in->spec();
+    info.format = in->format_name();
+    info.width = spec.width;
+    info.height = spec.height;
+    info.channels = spec.nchannels;
+    info.bitsPerSample = int(spec.format.size() * 8);
+    info.isFloat = spec.format.is_floating_point();
+    info.orientation = spec.get_int_attribute("Orientation", 1);
+    if (info.orientation < 1 || info.orientation > 8)
+        info.orientation = 1; // out of range: ignored, as EXIF readers do
+
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        return fail(error, file, "the header declares an empty image");
+        return fail(error, file, "the header declares an empty image"), nullptr;
     if (spec.depth > 1)
-        return fail(error, file, "volume images are not supported");
+        return fail(error, file, "volume images are not supported"), nullptr;
     if (spec.width > limits.maxSide || spec.height > limits.maxSide)
         return fail(error, file,
                     "image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                         ", larger than the limit of " + std::to_string(limits.maxSide) +
-                        " pixels a side");
+                        " pixels a side"),
+               nullptr;
     const std::uint64_t decodedBytes =
         std::uint64_t(spec.width) * std::uint64_t(spec.height) * 4u * sizeof(float);
     if (decodedBytes > limits.maxDecodedBytes)
         return fail(error, file,
-                    "image would need " + std::to_string(decodedBytes >> 20) +
+                    "image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                        " and would need " + std::to_string(decodedBytes >> 20) +
                         " MiB decoded, more than the limit of " +
-                        std::to_string(limits.maxDecodedBytes >> 20) + " MiB");
+                        std::to_string(limits.maxDecodedBytes >> 20) + " MiB"),
+               nullptr;
+    return in;
+}
 
-    const int channels = std::min(spec.nchannels, 4);
-    Image img(spec.width, spec.height, channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
+} // namespace
+
+bool readImageInfo(const std::filesystem::path& file, ImageInfo& out, std::string* error,
+                   const ImageReadLimits& limits) {
+    ImageInfo info;
+    auto in = openChecked(file, limits, info, error);
+    if (!in)
+        return false;
+    in->close();
+    out = std::move(info);
+    return true;
+}
+
+bool readImage(const std::filesystem::path& file, Image& out, std::string* error,
+               const ImageReadLimits& limits) {
+    ImageInfo info;
+    auto in = openChecked(file, limits, info, error);
+    if (!in)
+        return false;
+
+    const int channels = std::min(info.channels, 4);
+    Image img(info.width, info.height, channels);
+    // Some readers (libtiff strips, libjpeg's "premature end of file") fill what is missing and
+    // still report success, with the problem queued as an error: that is a failure too.
+    const bool ok = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img.pixels.data());
+    if (!ok || in->has_error())
         return fail(error, file,
-                    "cannot decode pixels (truncated or corrupt?): " + oiioMessage(in->geterror()));
+                    "the pixel data is truncated or corrupt (OpenImageIO: " +
+                        oiioMessage(in->geterror()) + ")");
     in->close();
 
-    // EXIF orientation (1 = as stored): turn the pixels so row 0 is the top as displayed.
-    const int orientation = spec.get_int_attribute("Orientation", 1);
-    if (orientation > 1 && orientation <= 8) {
-        OIIO::ImageSpec bufSpec(spec.width, spec.height, channels, OIIO::TypeDesc::FLOAT);
-        bufSpec.attribute("Orientation", orientation);
+    // EXIF orientation (TIFF 6.0 tag 274; 1 = as stored): turn the pixels so row 0 is the top as
+    // displayed. ImageBufAlgo::reorient reads the "Orientation" attribute of its source, but in
+    // OpenImageIO before 3.1 it swaps 5 and 7 (OIIO issue #4661, fixed by PR #5350), so those
+    // two are done here from their TIFF 6.0 definitions: 5 is the transpose (stored row 0 is the
+    // left column), 7 the transverse (stored row 0 is the right column, read upwards).
+    if (info.orientation > 1) {
+        OIIO::ImageSpec bufSpec(info.width, info.height, channels, OIIO::TypeDesc::FLOAT);
+        bufSpec.attribute("Orientation", info.orientation);
         OIIO::ImageBuf src(bufSpec, img.pixels.data());
-        OIIO::ImageBuf turned = OIIO::ImageBufAlgo::reorient(src);
+        OIIO::ImageBuf turned;
+        if (info.orientation == 5)
+            turned = OIIO::ImageBufAlgo::transpose(src);
+        else if (info.orientation == 7)
+            turned = OIIO::ImageBufAlgo::rotate180(OIIO::ImageBufAlgo::transpose(src));
+        else
+            turned = OIIO::ImageBufAlgo::reorient(src);
         if (turned.has_error())
-            return fail(error, file, "cannot apply orientation: " + oiioMessage(turned.geterror()));
+            return fail(error, file,
+                        "cannot apply orientation " + std::to_string(info.orientation) + ": " +
+                            oiioMessage(turned.geterror()));
         const OIIO::ImageSpec& ts = turned.spec();
         Image t(ts.width, ts.height, channels);
-        turned.get_pixels(OIIO::ROI(0, ts.width, 0, ts.height, 0, 1, 0, channels),
-                          OIIO::TypeDesc::FLOAT, t.pixels.data());
+        // reorient may leave a display window offset: read the whole data window.
+        turned.get_pixels(
+            OIIO::ROI(ts.x, ts.x + ts.width, ts.y, ts.y + ts.height, 0, 1, 0, channels),
+            OIIO::TypeDesc::FLOAT, t.pixels.data());
         img = std::move(t);
     }
     out = std::move(img);
     return true;
 }
 
+namespace {
+
+/// @p image with @p channels channels, mapped the way Image::rgba() reads it (grey -> RRR,
+/// missing alpha -> 1); 1 channel from grey + alpha keeps the grey.
+std::vector<float> remapChannels(const Image& image, int channels) {
+    std::vector<float> out(size_t(image.width) * image.height * channels);
+    float* o = out.data();
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const glm::vec4 p = image.rgba(x, y);
+            for (int c = 0; c < channels; ++c)
+                *o++ = p[c];
+        }
+    return out;
+}
+
+} // namespace
+
 bool writeImage(const std::filesystem::path& file, const Image& image, PixelFormat format,
-                std::string* error) {
+                std::string* error, const ImageWriteOptions& options) {
     if (image.empty() || image.channels < 1 || image.channels > 4 ||
         image.pixels.size() != size_t(image.width) * image.height * image.channels)
         return fail(error, file, "nothing to write (empty or inconsistent image)");
@@ -140,19 +230,43 @@ bool writeImage(const std::filesystem::path& file, const Image& image, PixelForm
 
     OIIO::TypeDesc type = toTypeDesc(format);
     // Formats with fixed sample types: keep the request where the writer supports it.
+    const bool jpeg = ext == ".jpg" || ext == ".jpeg";
     if (ext == ".png" && format != PixelFormat::UInt16)
         type = OIIO::TypeDesc::UINT8;
-    else if ((ext == ".jpg" || ext == ".jpeg" || ext == ".bmp") && format != PixelFormat::UInt8)
+    else if ((jpeg || ext == ".bmp" || ext == ".tga") && format != PixelFormat::UInt8)
         type = OIIO::TypeDesc::UINT8;
     else if (ext == ".hdr")
         type = OIIO::TypeDesc::FLOAT;
 
+    // Channel layouts the format cannot hold become the nearest one it can.
     int channels = image.channels;
-    if ((ext == ".jpg" || ext == ".jpeg" || ext == ".hdr") && channels == 4)
-        channels = 3; // these formats have no alpha
+    if (ext == ".hdr")
+        channels = 3; // RGBE: RGB only (grey -> RRR, alpha dropped)
+    else if (jpeg && (channels == 2 || channels == 4))
+        channels -= 1; // JPEG has no alpha
+    else if (ext == ".bmp" && channels == 2)
+        channels = 4; // BMP has no grey + alpha: RRRA
+    std::vector<float> remapped;
+    const float* pixels = image.pixels.data();
+    OIIO::stride_t xstride = OIIO::stride_t(image.channels) * sizeof(float);
+    if (channels > image.channels || (channels < image.channels && channels != 3)) {
+        remapped = remapChannels(image, channels);
+        pixels = remapped.data();
+        xstride = OIIO::stride_t(channels) * sizeof(float);
+    } // else the first `channels` of each pixel are written, through the stride
+
     OIIO::ImageSpec spec(image.width, image.height, channels, type);
+    // Channel names as readers expect them: grey is "Y" (OpenEXR's luminance), alpha "A".
+    static const std::vector<std::string> kNames[4] = {
+        {"Y"}, {"Y", "A"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
+    spec.channelnames = kNames[channels - 1];
+    spec.alpha_channel = channels == 2 ? 1 : channels == 4 ? 3 : -1;
     if (ext == ".exr")
         spec.attribute("compression", "zip");
+    if (jpeg)
+        spec.attribute("CompressionQuality", std::clamp(options.jpegQuality, 1, 100));
+    if (options.orientation > 1 && options.orientation <= 8)
+        spec.attribute("Orientation", options.orientation);
     spec.attribute("oiio:UnassociatedAlpha", 1); // our pixels carry straight alpha
 
     // Temp file beside the target (same file system, so the rename is atomic), same extension so
@@ -173,8 +287,7 @@ bool writeImage(const std::filesystem::path& file, const Image& image, PixelForm
     if (!out->open(tmp.string(), spec))
         return cleanup(),
                fail(error, file, "cannot open for writing: " + oiioMessage(out->geterror()));
-    const OIIO::stride_t xstride = OIIO::stride_t(image.channels) * sizeof(float);
-    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), xstride);
+    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, pixels, xstride);
     const std::string writeError = ok ? std::string() : oiioMessage(out->geterror());
     ok = out->close() && ok;
     if (!ok)

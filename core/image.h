@@ -37,12 +37,49 @@ struct ImageReadLimits {
 /// Sample type written to a file.
 enum class PixelFormat { UInt8, UInt16, Half, Float };
 
-/// Reads any format OpenImageIO knows into float pixels (8-bit values map to [0, 1], no colour
-/// conversion). Returns false and a message naming the file and the problem.
+/// What a file's header says, read without decoding any pixel (readImageInfo()).
+struct ImageInfo {
+    std::string format;       ///< OpenImageIO's format name: "png", "openexr", "tiff", ...
+    int width = 0;            ///< as stored (before orientation)
+    int height = 0;           ///< as stored (before orientation)
+    int channels = 0;         ///< channels in the file (readImage() keeps at most the first 4)
+    int bitsPerSample = 0;    ///< 8, 16, 32, ... (RGBE .hdr reports 32: it decodes to float)
+    bool isFloat = false;     ///< half or float samples
+    int orientation = 1;      ///< EXIF/TIFF Orientation, 1 to 8 (1: as stored)
+    int displayWidth() const; ///< width after orientation (5 to 8 swap the axes)
+    int displayHeight() const;
+};
+
+/// Reads a file's header only: format, size, channels, sample type and orientation, checked
+/// against @p limits (the same checks readImage() makes before decoding). Returns false and a
+/// message naming the file and the problem (missing, empty, unknown format, too large).
+bool readImageInfo(const std::filesystem::path& file, ImageInfo& out, std::string* error,
+                   const ImageReadLimits& limits = {});
+
+/// Reads any format OpenImageIO knows (PNG, JPEG, TIFF, OpenEXR, Radiance HDR, TGA, BMP, ...)
+/// into float pixels: integer samples map to [0, 1], float samples are kept, no colour
+/// conversion, straight (unassociated) alpha where the format stores it so. The first of several
+/// subimages is read, and at most its first four channels. The EXIF/TIFF Orientation is applied
+/// (ImageBufAlgo::reorient), so row 0 is the top of the image as it is meant to be displayed.
+/// The header is checked against @p limits before any pixel is decoded. On failure returns
+/// false and sets @p error to one line that starts with the file name and says what is wrong.
 bool readImage(const std::filesystem::path& file, Image& out, std::string* error,
                const ImageReadLimits& limits = {});
-/// Writes @p image as is (no colour conversion); the format is chosen by extension. Atomic.
+
+/// Options of writeImage().
+struct ImageWriteOptions {
+    /// EXIF/TIFF Orientation (1 to 8) to record; the pixels are written as given. Honoured by
+    /// the formats that store it (TIFF, JPEG, OpenEXR); others ignore it.
+    int orientation = 1;
+    int jpegQuality = 95; ///< 1 to 100
+};
+
+/// Writes @p image as is (no colour conversion); the format is chosen by the extension. Where
+/// the format cannot hold what is asked, the nearest it can is written: PNG 8 or 16 bit; JPEG,
+/// BMP and TGA 8 bit; Radiance HDR float RGB (grey becomes RRR, alpha is dropped); JPEG has no
+/// alpha (dropped); BMP has no grey + alpha (written RRRA). Atomic: a temp file beside the
+/// target, then a rename. Returns false and a message naming the file on failure.
 bool writeImage(const std::filesystem::path& file, const Image& image, PixelFormat format,
-                std::string* error);
+                std::string* error, const ImageWriteOptions& options = {});
 
 } // namespace velvet

@@ -1,0 +1,130 @@
+#include "core/image_ops.h"
+
+#include "core/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+// OpenImageIO stays inside .cpp files (DESIGN.md, "Layers").
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+namespace velvet {
+namespace {
+
+const char* filterName(ResizeFilter filter) {
+    switch (filter) {
+    case ResizeFilter::Box:
+        return "box";
+    case ResizeFilter::Triangle:
+        return "triangle";
+    case ResizeFilter::Mitchell:
+        return "mitchell";
+    case ResizeFilter::BlackmanHarris:
+        return "blackman-harris";
+    case ResizeFilter::Lanczos3:
+        return "lanczos3";
+    }
+    return "blackman-harris";
+}
+
+bool setError(std::string* error, const std::string& what) {
+    if (error)
+        *error = what;
+    return false;
+}
+
+bool consistent(const Image& image) {
+    return !image.empty() && image.channels >= 1 && image.channels <= 4 &&
+           image.pixels.size() == size_t(image.width) * image.height * image.channels;
+}
+
+} // namespace
+
+Image resize(const Image& image, int width, int height, std::string* error, ResizeFilter filter) {
+    if (!consistent(image))
+        return setError(error, "resize: empty or inconsistent source image"), Image();
+    if (width < 1 || height < 1)
+        return setError(error, "resize: bad target size " + std::to_string(width) + "x" +
+                                   std::to_string(height)),
+               Image();
+    if (width == image.width && height == image.height)
+        return image;
+
+    const int channels = image.channels;
+    // Wraps the caller's pixels without copying (ImageBuf over application memory).
+    OIIO::ImageSpec srcSpec(image.width, image.height, channels, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf src(srcSpec, const_cast<float*>(image.pixels.data()));
+    Image out(width, height, channels);
+    OIIO::ImageSpec dstSpec(width, height, channels, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf dst(dstSpec, out.pixels.data());
+    if (!OIIO::ImageBufAlgo::resize(dst, src, filterName(filter)))
+        return setError(error, "resize: " + dst.geterror()), Image();
+
+    // Clamp to the source's range per channel: no ringing outside the data's own values.
+    float lo[4], hi[4];
+    std::fill_n(lo, 4, std::numeric_limits<float>::max());
+    std::fill_n(hi, 4, std::numeric_limits<float>::lowest());
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        const int c = int(i % channels);
+        lo[c] = std::min(lo[c], image.pixels[i]);
+        hi[c] = std::max(hi[c], image.pixels[i]);
+    }
+    for (size_t i = 0; i < out.pixels.size(); ++i) {
+        const int c = int(i % channels);
+        out.pixels[i] = std::clamp(out.pixels[i], lo[c], hi[c]);
+    }
+    return out;
+}
+
+int mipLevelCount(int width, int height) {
+    int levels = 1;
+    for (int side = std::max(width, height); side > 1; side /= 2)
+        ++levels;
+    return levels;
+}
+
+std::vector<Image> mipChain(const Image& image, std::string* error, ResizeFilter filter) {
+    std::vector<Image> chain;
+    if (!consistent(image))
+        return setError(error, "mip chain: empty or inconsistent source image"), chain;
+    const int levels = mipLevelCount(image.width, image.height);
+    chain.reserve(size_t(levels));
+    chain.push_back(image);
+    for (int level = 1; level < levels; ++level) {
+        const Image& above = chain.back();
+        Image next = resize(above, std::max(1, above.width / 2), std::max(1, above.height / 2),
+                            error, filter);
+        if (next.empty())
+            return {};
+        chain.push_back(std::move(next));
+    }
+    return chain;
+}
+
+bool fitToLimit(Image& image, int maxSide, std::string* warning, const std::string& fileName) {
+    if (maxSide < 1 || image.empty() || (image.width <= maxSide && image.height <= maxSide))
+        return false;
+    const double scale = double(maxSide) / std::max(image.width, image.height);
+    const int width = std::clamp(int(std::lround(image.width * scale)), 1, maxSide);
+    const int height = std::clamp(int(std::lround(image.height * scale)), 1, maxSide);
+    std::string error;
+    Image smaller = resize(image, width, height, &error);
+    if (smaller.empty()) {
+        if (warning)
+            *warning = (fileName.empty() ? std::string() : fileName + ": ") +
+                       "cannot downscale to the texture limit: " + error;
+        return false;
+    }
+    if (warning)
+        *warning = (fileName.empty() ? std::string("texture") : fileName) + ": " +
+                   std::to_string(image.width) + "x" + std::to_string(image.height) +
+                   " is larger than the GPU limit of " + std::to_string(maxSide) +
+                   " pixels a side; downscaled to " + std::to_string(width) + "x" +
+                   std::to_string(height);
+    image = std::move(smaller);
+    return true;
+}
+
+} // namespace velvet
