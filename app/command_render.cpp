@@ -1,15 +1,19 @@
 // velvet render [FILE] -o OUT [--size WxH] …: headless rendering through the real deferred path.
 #include "app/cli.h"
 #include "app/load_document.h"
+#include "core/color_management.h"
 #include "core/document_io.h"
 #include "core/image.h"
 #include "render/offscreen.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <sstream>
 
 namespace velvet::cli {
 namespace {
@@ -18,16 +22,26 @@ const std::vector<OptionSpec> kOptions{
     {"output", 'o', true, "OUT",
      "image to write: .png (8-bit, display encoded) or .exr (linear half)"},
     {"size", 's', true, "WxH", "image size in pixels (default 512x512, at most 8192 per side)"},
-    {"exposure", 0, true, "EV", "exposure in stops before tone mapping (default 0)"},
-    {"tonemap", 0, true, "NAME", "pbr-neutral (default), aces, reinhard or linear"},
-    {"view", 0, true, "NAME", "final (default), albedo, normal, depth, roughness or metallic"},
+    {"exposure", 0, true, "EV", "exposure in stops before the tone mapping (default 0)"},
+    {"tonemap", 0, true, "NAME",
+     "built-in tone mapper: pbr-neutral (default), aces, reinhard or linear"},
+    {"display", 0, true, "NAME", "OpenColorIO display (default: the config's default display)"},
+    {"view", 0, true, "NAME", "OpenColorIO view, e.g. Standard, ACES, AgX, Raw"},
+    {"look", 0, true, "NAME", "OpenColorIO look applied before the view (a,b for several)"},
+    {"debug-view", 0, true, "NAME",
+     "final (default), albedo, normal, depth, roughness or metallic"},
     {"help", 'h', false, "", "this text"},
 };
 
 const char* kHelp =
-    "Usage: velvet render [FILE] -o OUT [--size WxH]\n"
+    "Usage: velvet render [FILE] -o OUT [--size WxH] [--display NAME] [--view NAME] [--look NAME]\n"
     "Renders FILE (a scene, or a material preset shown in the default scene; no FILE: the default\n"
-    "scene) off screen through the deferred renderer. Needs no display.\n\n";
+    "scene) off screen through the deferred renderer. Needs no display.\n\n"
+    "Colour: by default the image goes through the built-in Khronos PBR Neutral tone mapper and\n"
+    "the sRGB curve (--tonemap picks another). --display, --view or --look instead apply the\n"
+    "OpenColorIO display transform (exposure, look, display/view) of the config named by $OCIO,\n"
+    "or of the shipped one; a missing --display is the config's default display, a missing --view\n"
+    "that display's default view. EXR output is scene-linear either way.\n\n";
 
 bool parseSize(const std::string& text, int& w, int& h) {
     auto x = text.find_first_of("xX");
@@ -62,7 +76,7 @@ const std::pair<const char*, render::ToneMapper> kToneMappers[] = {
     {"reinhard", render::ToneMapper::Reinhard},
     {"linear", render::ToneMapper::Linear},
 };
-const std::pair<const char*, render::DebugView> kViews[] = {
+const std::pair<const char*, render::DebugView> kDebugViews[] = {
     {"final", render::DebugView::Final},         {"albedo", render::DebugView::Albedo},
     {"normal", render::DebugView::Normal},       {"depth", render::DebugView::Depth},
     {"roughness", render::DebugView::Roughness}, {"metallic", render::DebugView::Metallic},
@@ -85,6 +99,83 @@ int usage(const std::string& message) {
     return UsageError;
 }
 
+/// "a", "b", "c" (names may hold spaces, e.g. "Display P3").
+std::string quotedList(const std::vector<std::string>& names) {
+    std::string out;
+    for (const auto& n : names)
+        out += (out.empty() ? "\"" : ", \"") + n + "\"";
+    return out.empty() ? "none" : out;
+}
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// The displays, views and looks of @p cm, for --help.
+std::string colorManagementHelp(const ColorManagement& cm) {
+    std::ostringstream s;
+    s << "OpenColorIO config: " << cm.configPath().string() << "\n";
+    for (const auto& display : cm.displays()) {
+        s << "  display \"" << display << "\""
+          << (display == cm.defaultDisplay() ? " (default)" : "") << ", views:";
+        const std::string defaultView = cm.defaultView(display);
+        const char* separator = " ";
+        for (const auto& view : cm.views(display)) {
+            s << separator << view << (view == defaultView ? " (default)" : "");
+            separator = ", ";
+        }
+        s << "\n";
+    }
+    s << "  looks: " << quotedList(cm.looks()) << "\n";
+    return s.str();
+}
+
+/// Checks --display, --view and --look against the OCIO config and puts the resolved names into
+/// @p settings (display and view always filled in, so the renderer uses exactly what was checked).
+/// Returns Ok, UsageError for an unknown name (the message lists the valid ones), or BadInput when
+/// the config cannot be loaded.
+int resolveColorManagement(const Arguments& args, render::FrameSettings& settings,
+                           std::shared_ptr<const ColorManagement>& out) {
+    if (!args.has("display") && !args.has("view") && !args.has("look"))
+        return Ok;
+    if (args.has("tonemap"))
+        return usage("--tonemap picks the built-in tone mapper; it cannot be combined with "
+                     "--display, --view or --look (OpenColorIO's display transform)");
+    auto cm = std::make_shared<ColorManagement>();
+    std::string error;
+    if (!cm->loadDefault(&error)) {
+        std::cerr << error << "\n";
+        return BadInput;
+    }
+    const std::string config = cm->configPath().string();
+    const std::string display = args.value("display", cm->defaultDisplay());
+    if (!contains(cm->displays(), display))
+        return usage("--display: unknown display \"" + display + "\" in " + config +
+                     "; valid displays: " + quotedList(cm->displays()));
+    const std::string view = args.value("view", cm->defaultView(display));
+    if (!contains(cm->views(display), view))
+        return usage("--view: display \"" + display + "\" has no view \"" + view + "\" in " +
+                     config + "; valid views: " + quotedList(cm->views(display)));
+    // OCIO's look syntax: a comma-separated list, each name optionally prefixed by + or -
+    // (OCIO::LookTransform::setLooks, "look parse").
+    const std::string looks = args.value("look");
+    std::istringstream list(looks);
+    for (std::string look; std::getline(list, look, ',');) {
+        look.erase(0, look.find_first_not_of(" \t"));
+        look.erase(look.find_last_not_of(" \t") + 1);
+        if (!look.empty() && (look[0] == '+' || look[0] == '-'))
+            look.erase(0, 1);
+        if (!contains(cm->looks(), look))
+            return usage("--look: unknown look \"" + look + "\" in " + config +
+                         "; valid looks: " + quotedList(cm->looks()));
+    }
+    settings.display = display;
+    settings.displayView = view;
+    settings.look = looks;
+    out = std::move(cm);
+    return Ok;
+}
+
 } // namespace
 
 int runRender(const std::vector<std::string>& argv) {
@@ -93,7 +184,12 @@ int runRender(const std::vector<std::string>& argv) {
     if (!args)
         return usage(error);
     if (args->has("help")) {
-        std::cout << kHelp << optionsHelp(kOptions);
+        std::cout << kHelp << optionsHelp(kOptions) << "\n";
+        ColorManagement cm;
+        if (cm.loadDefault(&error))
+            std::cout << colorManagementHelp(cm);
+        else
+            std::cout << "OpenColorIO: " << error << "\n";
         return Ok;
     }
     if (!args->has("output"))
@@ -118,8 +214,12 @@ int runRender(const std::vector<std::string>& argv) {
     if (args->has("tonemap") &&
         !parseName(args->value("tonemap"), kToneMappers, settings.toneMapper))
         return usage("--tonemap: unknown tone mapper '" + args->value("tonemap") + "'");
-    if (args->has("view") && !parseName(args->value("view"), kViews, settings.view))
-        return usage("--view: unknown view '" + args->value("view") + "'");
+    if (args->has("debug-view") &&
+        !parseName(args->value("debug-view"), kDebugViews, settings.view))
+        return usage("--debug-view: unknown debug view '" + args->value("debug-view") + "'");
+    std::shared_ptr<const ColorManagement> colorManagement;
+    if (const int code = resolveColorManagement(*args, settings, colorManagement); code != Ok)
+        return code;
 
     // Check the destination before the (slow) render so bad input writes nothing and fails fast.
     const std::filesystem::path folder = out.parent_path().empty() ? "." : out.parent_path();
@@ -143,7 +243,8 @@ int runRender(const std::vector<std::string>& argv) {
     Image linear, display;
     const bool wantExr = ext == ".exr";
     if (!render::renderSceneOffscreen(*scene, settings, wantExr ? &linear : nullptr,
-                                      wantExr ? nullptr : &display, &error, &problems)) {
+                                      wantExr ? nullptr : &display, &error, &problems,
+                                      colorManagement)) {
         printProblems(problems);
         std::cerr << "velvet render: rendering failed: " << error << "\n";
         return RenderFailure;

@@ -20,7 +20,8 @@ unsigned OffscreenTarget::framebuffer() const {
 }
 
 bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Image* linear,
-                          Image* display, std::string* error, Problems* problems) {
+                          Image* display, std::string* error, Problems* problems,
+                          std::shared_ptr<const ColorManagement> colorManagement) {
     std::unique_ptr<HeadlessContext> context;
     if (!HeadlessContext::isAnyContextCurrent()) {
         context = HeadlessContext::create(error);
@@ -35,6 +36,8 @@ bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Ima
         if (!renderer.initialize(error))
             return false;
         renderer.setScene(scene, problems);
+        if (colorManagement)
+            renderer.setColorManagement(std::move(colorManagement));
         ColorTarget target;
         if (!target.resize(settings.width, settings.height, GL_RGBA8, error))
             return false;

@@ -14,9 +14,12 @@ namespace velvet::render {
 
 /// Renders @p scene off screen (creating a headless EGL context when none is current).
 /// @p linear receives scene-linear RGBA float, @p display the display-encoded RGBA; either may be
-/// null. False + message when no context can be made or rendering fails.
+/// null. @p colorManagement is the OCIO config for settings.display/displayView/look (null: the
+/// renderer loads the default one when it needs it). False + message when no context can be made
+/// or rendering fails.
 bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Image* linear,
-                          Image* display, std::string* error, Problems* problems = nullptr);
+                          Image* display, std::string* error, Problems* problems = nullptr,
+                          std::shared_ptr<const ColorManagement> colorManagement = nullptr);
 
 /// A display-format (RGBA8) framebuffer to render into without a window (CLI, tests, bench).
 /// Needs a current context for its whole life.

@@ -1,7 +1,9 @@
 #include "render/renderer.h"
 
 #include "core/brdf.h"
+#include "core/color_management.h"
 #include "render/camera.h"
+#include "render/display_transform.h"
 #include "render/environment_map.h"
 #include "render/gbuffer.h"
 #include "render/gbuffer_layout.h"
@@ -15,6 +17,7 @@
 #include <epoxy/gl.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/trigonometric.hpp>
+#include <map>
 
 namespace velvet::render {
 namespace {
@@ -112,6 +115,14 @@ struct Renderer::Impl {
     GLuint queries[4] = {};
     bool queriesIssued = false;
 
+    // The OCIO display transform: the config, the programs (cached by OCIO cache id inside
+    // DisplayTransform) and which (display, view, look) maps to which cache id, so that switching
+    // back to a view asks OCIO for nothing.
+    std::shared_ptr<const ColorManagement> colorManagement;
+    DisplayTransform displayTransform;
+    std::map<std::string, std::string> displayCacheIds;
+    std::string displayKey;
+
     Scene scene;
     bool haveScene = false;
     const GpuEnvironment* environment = nullptr;
@@ -158,6 +169,33 @@ struct Renderer::Impl {
         glTextureParameteri(sheenLut, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(sheenLut, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(sheenLut, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+
+    /// Selects the display transform @p fs names, building it the first time. Exposure is left
+    /// out of the key and extracted as 0: it is a dynamic uniform set at every draw.
+    bool selectDisplayTransform(const FrameSettings& fs, std::string* error) {
+        const std::string key = fs.display + '\n' + fs.displayView + '\n' + fs.look;
+        if (key == displayKey && displayTransform.hasSelection())
+            return true;
+        if (const auto it = displayCacheIds.find(key);
+            it != displayCacheIds.end() && displayTransform.selectCached(it->second)) {
+            displayKey = key;
+            return true;
+        }
+        if (!colorManagement) {
+            auto loaded = std::make_shared<ColorManagement>();
+            if (!loaded->loadDefault(error))
+                return false;
+            colorManagement = std::move(loaded);
+        }
+        const DisplaySettings settings{fs.display, fs.displayView, fs.look, 0.0f};
+        const std::optional<GpuDisplayTransform> transform =
+            colorManagement->gpuDisplayTransform(settings, error);
+        if (!transform || !displayTransform.select(*transform, error))
+            return false;
+        displayCacheIds[key] = transform->cacheId;
+        displayKey = key;
+        return true;
     }
 
     FrameBlock frameBlock(const FrameSettings& fs) const {
@@ -232,6 +270,15 @@ bool Renderer::initialize(std::string* error) {
     return true;
 }
 
+void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
+    Impl& d = *m_impl;
+    d.colorManagement = std::move(colorManagement);
+    // Names may mean other transforms in another config; compiled programs stay valid (same
+    // cache id, same shader).
+    d.displayCacheIds.clear();
+    d.displayKey.clear();
+}
+
 void Renderer::setScene(const Scene& scene, Problems* problems) {
     Impl& d = *m_impl;
     d.scene = scene;
@@ -255,6 +302,10 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
                                std::to_string(fs.height));
     const auto cpuStart = std::chrono::steady_clock::now();
     takeGlErrors(); // errors left by whoever owns the context are not ours
+    // An unknown display, view or look fails here, before anything is drawn.
+    const bool ocioDisplay = fs.usesColorManagement() && fs.view == DebugView::Final;
+    if (ocioDisplay && !d.selectDisplayTransform(fs, error))
+        return false;
     if (!d.environment)
         d.environment = &d.environments.get(d.scene.environment, nullptr);
     if (!d.gbuffer.resize(fs.width, fs.height, error) ||
@@ -313,11 +364,16 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glQueryCounter(d.queries[2], GL_TIMESTAMP);
 
-    // 3. Exposure, tone mapping, sRGB OETF into the target.
+    // 3. Into the target: OCIO's display transform (exposure, look, display/view in one generated
+    // function), or the built-in exposure, tone mapper and sRGB OETF.
     glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
-    glBindTextureUnit(binding::kHdrTex, d.hdr.texture());
-    glUseProgram(d.tonemapProgram.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (ocioDisplay) {
+        d.displayTransform.draw(d.hdr.texture(), fs.exposureEv);
+    } else {
+        glBindTextureUnit(binding::kHdrTex, d.hdr.texture());
+        glUseProgram(d.tonemapProgram.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
     glQueryCounter(d.queries[3], GL_TIMESTAMP);
     d.queriesIssued = true;
 
@@ -355,7 +411,7 @@ Image Renderer::readDisplay() const {
 }
 
 int Renderer::shaderCompileCount() const {
-    return m_impl->compileCount;
+    return m_impl->compileCount + m_impl->displayTransform.compileCount();
 }
 
 FrameTimings Renderer::lastTimings() const {

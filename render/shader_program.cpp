@@ -20,11 +20,18 @@ std::string bindingsGlsl() {
       << "#define BINDING_ENVIRONMENT_TEX " << binding::kEnvironmentTex << "\n"
       << "#define BINDING_SHEEN_LUT_TEX " << binding::kSheenLutTex << "\n"
       << "#define BINDING_HDR_TEX " << binding::kHdrTex << "\n"
+      << "#define BINDING_DISPLAY_LUT_TEX_FIRST " << binding::kDisplayLutTexFirst << "\n"
       << "#define MAX_MATERIALS " << kMaxMaterials << "\n";
     return s.str();
 }
 
-bool readSource(const std::string& name, std::string& text, std::string* error) {
+bool readSource(const std::string& name, const GeneratedSources& generated, std::string& text,
+                std::string* error) {
+    for (const auto& [generatedName, generatedText] : generated)
+        if (name == generatedName) {
+            text = generatedText;
+            return true;
+        }
     if (name == "gbuffer_layout.glsl") {
         text = gbufferGlsl();
         return true;
@@ -48,7 +55,8 @@ bool readSource(const std::string& name, std::string& text, std::string* error) 
 
 bool expand(const std::string& name, std::string& out, std::vector<std::string>& files,
             std::set<std::string>& included, std::vector<std::string>& stack,
-            const std::vector<std::string>* defines, std::string* error) {
+            const std::vector<std::string>* defines, const GeneratedSources& generated,
+            std::string* error) {
     for (const auto& s : stack)
         if (s == name) {
             if (error)
@@ -58,7 +66,7 @@ bool expand(const std::string& name, std::string& out, std::vector<std::string>&
     if (!included.insert(name).second)
         return true; // every include behaves as if guarded by #pragma once
     std::string text;
-    if (!readSource(name, text, error))
+    if (!readSource(name, generated, text, error))
         return false;
     const int index = int(files.size());
     files.push_back(name);
@@ -84,7 +92,7 @@ bool expand(const std::string& name, std::string& out, std::vector<std::string>&
             continue;
         }
         if (std::regex_match(line, m, includeRe)) {
-            if (!expand(m[1].str(), out, files, included, stack, nullptr, error)) {
+            if (!expand(m[1].str(), out, files, included, stack, nullptr, generated, error)) {
                 if (error && error->find(" (included from ") == std::string::npos)
                     *error += " (included from " + name + ":" + std::to_string(lineNo) + ")";
                 return false;
@@ -99,10 +107,10 @@ bool expand(const std::string& name, std::string& out, std::vector<std::string>&
 }
 
 bool compileStage(GLenum stage, const std::string& file, const std::vector<std::string>& defines,
-                  GLuint& shader, std::string* error) {
+                  const GeneratedSources& generated, GLuint& shader, std::string* error) {
     std::string source;
     std::vector<std::string> files;
-    if (!preprocessShader(file, defines, source, files, error))
+    if (!preprocessShader(file, defines, source, files, error, generated))
         return false;
     shader = glCreateShader(stage);
     const char* src = source.c_str();
@@ -127,12 +135,13 @@ bool compileStage(GLenum stage, const std::string& file, const std::vector<std::
 } // namespace
 
 bool preprocessShader(const std::string& file, const std::vector<std::string>& defines,
-                      std::string& out, std::vector<std::string>& files, std::string* error) {
+                      std::string& out, std::vector<std::string>& files, std::string* error,
+                      const GeneratedSources& generated) {
     out.clear();
     files.clear();
     std::set<std::string> included;
     std::vector<std::string> stack;
-    return expand(file, out, files, included, stack, &defines, error);
+    return expand(file, out, files, included, stack, &defines, generated, error);
 }
 
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files) {
@@ -167,10 +176,16 @@ void ShaderProgram::release() {
 
 bool ShaderProgram::build(const std::string& vertexFile, const std::string& fragmentFile,
                           const std::vector<std::string>& defines, std::string* error) {
+    return build(vertexFile, fragmentFile, defines, {}, error);
+}
+
+bool ShaderProgram::build(const std::string& vertexFile, const std::string& fragmentFile,
+                          const std::vector<std::string>& defines,
+                          const GeneratedSources& generated, std::string* error) {
     GLuint vs = 0, fs = 0;
-    if (!compileStage(GL_VERTEX_SHADER, vertexFile, defines, vs, error))
+    if (!compileStage(GL_VERTEX_SHADER, vertexFile, defines, generated, vs, error))
         return false;
-    if (!compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines, fs, error)) {
+    if (!compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines, generated, fs, error)) {
         glDeleteShader(vs);
         return false;
     }

@@ -6,6 +6,7 @@
 /// name file:line (mapped back through `#line`) with the driver's log.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace velvet::render {
@@ -17,13 +18,21 @@ inline constexpr int kMaterialSsbo = 1;
 inline constexpr int kEnvironmentTex = 4; ///< units 0..3 are the G-buffer (gbuffer_layout.h)
 inline constexpr int kSheenLutTex = 5;
 inline constexpr int kHdrTex = 6;
+/// Units kDisplayLutTexFirst.. hold the LUT textures of the OCIO display transform (as many as
+/// OCIO asks for, display_transform.cpp checks them against GL_MAX_TEXTURE_IMAGE_UNITS).
+inline constexpr int kDisplayLutTexFirst = 16;
 } // namespace binding
+
+/// Include files made at run time (name, GLSL text), e.g. OCIO's generated display transform.
+/// They are looked up before resources/shaders/ and get their own `#line` index like any file.
+using GeneratedSources = std::vector<std::pair<std::string, std::string>>;
 
 /// Reads resources/shaders/@p file and resolves includes. `#version` stays first; @p defines
 /// ("NAME" or "NAME VALUE") follow it. Each inserted file gets `#line n index`, where index is
 /// its position in @p files. False + message naming the file on a missing or cyclic include.
 bool preprocessShader(const std::string& file, const std::vector<std::string>& defines,
-                      std::string& out, std::vector<std::string>& files, std::string* error);
+                      std::string& out, std::vector<std::string>& files, std::string* error,
+                      const GeneratedSources& generated = {});
 
 /// Rewrites driver log lines "index:line(col)" (Mesa) or "index(line)" (NVIDIA) as "file:line".
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
@@ -39,6 +48,10 @@ public:
     /// Compiles and links; false + message (file:line and the driver log) on failure.
     bool build(const std::string& vertexFile, const std::string& fragmentFile,
                const std::vector<std::string>& defines, std::string* error);
+    /// As above, with include files made at run time (see GeneratedSources).
+    bool build(const std::string& vertexFile, const std::string& fragmentFile,
+               const std::vector<std::string>& defines, const GeneratedSources& generated,
+               std::string* error);
     unsigned id() const { return m_program; }
     void release();
 

@@ -80,6 +80,16 @@ private slots:
         QTest::newRow("huge size") << QStringList{"render", "-o", "x.png", "--size", "90000x10"};
         QTest::newRow("bad extension") << QStringList{"render", "-o", "x.bmpx"};
         QTest::newRow("bad tonemap") << QStringList{"render", "-o", "x.png", "--tonemap", "warm"};
+        QTest::newRow("bad debug view")
+            << QStringList{"render", "-o", "x.png", "--debug-view", "shiny"};
+        QTest::newRow("unknown OCIO view")
+            << QStringList{"render", "-o", "x.png", "--view", "Nope"};
+        QTest::newRow("unknown OCIO display")
+            << QStringList{"render", "-o", "x.png", "--display", "CRT"};
+        QTest::newRow("unknown OCIO look")
+            << QStringList{"render", "-o", "x.png", "--look", "Teal"};
+        QTest::newRow("tonemap with OCIO view")
+            << QStringList{"render", "-o", "x.png", "--view", "ACES", "--tonemap", "aces"};
         QTest::newRow("option without value") << QStringList{"render", "-o"};
         QTest::newRow("two files") << QStringList{"render", "a.json", "b.json", "-o", "x.png"};
         QTest::newRow("validate nothing") << QStringList{"validate"};
@@ -192,6 +202,33 @@ private slots:
                 maxV = std::max(maxV, image.rgba(x, y).r);
             }
         QVERIFY(maxV - minV > 0.2f);
+    }
+
+    /// --display/--view/--look choose OpenColorIO's display transform; an unknown name is a usage
+    /// error whose message lists the valid names, and nothing is written.
+    void renderWithOcioView() {
+        QTemporaryDir dir;
+        const QString out = dir.filePath("aces.png");
+        Result r = runVelvet({"render", "-o", out, "--view", "ACES", "--size", "32x32"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        velvet::Image image;
+        std::string error;
+        QVERIFY2(velvet::readImage(out.toStdString(), image, &error), error.c_str());
+        QCOMPARE(image.width, 32);
+
+        const QString p3 = dir.filePath("p3.png");
+        r = runVelvet({"render", "-o", p3, "--display", "Display P3", "--look",
+                       "ACES Blue Light Fix", "--exposure", "0.5", "--size", "16x16"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY(QFileInfo::exists(p3));
+
+        const QString bad = dir.filePath("bad.png");
+        r = runVelvet({"render", "-o", bad, "--view", "Nope", "--size", "16x16"});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("Nope") && r.err.contains("\"Standard\"") &&
+                     r.err.contains("\"AgX\""),
+                 qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(bad));
     }
 
     /// A preset renders in the default scene; EXR output is linear half float.
