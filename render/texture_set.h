@@ -1,0 +1,81 @@
+#pragma once
+/// @file texture_set.h
+/// Render-private: the GL textures of a material's slots, loaded through core's TextureCache
+/// (once per file and input colour space, to scene-linear float) and re-uploaded when the cache
+/// reloads a file changed on disk. No shader ever changes: the G-buffer program samples unit
+/// binding::kMaterialTexFirst + slot when the material record's presence bit says so
+/// (GpuMaterial::terms2.y; atlas-region bits in terms2.z; regions in a per-draw uniform).
+///
+/// What reaches the pixels: base colour (and alpha, a 0.5 cut-out), metallic-roughness, the
+/// seeds' spec/rough/metal atlas (roughness and metallic), normal map and occlusion go through the
+/// 16-byte G-buffer per pixel. The slots the G-buffer has no room for (emissive, clearcoat,
+/// clearcoat roughness, sheen colour / roughness, specular, specular colour and the spec channel
+/// of the atlas) enter the material table as their texture's mean, multiplied with the parameter:
+/// DESIGN.md's G-buffer contract puts per-material data that does not fit there. The clearcoat
+/// normal map (mean: flat) is not applied.
+
+#include "core/diagnostics.h"
+#include "core/material.h"
+#include "core/texture_ref.h"
+
+#include <array>
+#include <cstdint>
+#include <glm/vec4.hpp>
+#include <memory>
+
+namespace velvet {
+class ColorManagement;
+class TextureCache;
+} // namespace velvet
+
+namespace velvet::render {
+
+struct GpuMaterial;
+
+class TextureSet {
+public:
+    TextureSet();
+    /// Needs the renderer's context current (frees GL textures).
+    ~TextureSet();
+    TextureSet(const TextureSet&) = delete;
+    TextureSet& operator=(const TextureSet&) = delete;
+
+    /// The OCIO config input colour spaces come from (null: ColorManagement's default config,
+    /// loaded when a first texture needs it). Drops the cache: names may mean other spaces.
+    void setColorManagement(std::shared_ptr<const ColorManagement> colorManagement);
+
+    /// Takes @p material's texture slots: loads (cached) and uploads what changed, releases
+    /// emptied slots. A missing or broken file is reported to @p problems and its slot falls back
+    /// to the parameter value. Needs a current context.
+    void setMaterial(const Material& material, Problems* problems);
+
+    /// Stats the files in use (TextureCache::poll, one stat per file) and re-uploads the slots
+    /// whose file changed. True when anything changed (re-pack the material then). Every frame.
+    bool poll();
+
+    /// Writes presence and region bits and the texture means into @p g (packMaterial's output).
+    void applyTo(GpuMaterial& g) const;
+    /// Binds the slot textures and sets @p program's region uniforms (location 1 onwards).
+    void bind(unsigned program) const;
+    /// Unbinds the slot units.
+    void unbind() const;
+
+    /// GL texture (re)allocations since construction (tests: a changed file of the same size
+    /// re-uploads without reallocating).
+    int allocationCount() const { return m_allocations; }
+    /// Uploads (first loads and reloads) since construction.
+    int uploadCount() const { return m_uploads; }
+
+private:
+    struct Slot;
+    void refresh(int slot, Problems* problems);
+    TextureCache& cache();
+
+    std::shared_ptr<const ColorManagement> m_colorManagement;
+    std::unique_ptr<TextureCache> m_cache;
+    std::unique_ptr<std::array<Slot, kTextureSlotCount>> m_slots;
+    int m_allocations = 0;
+    int m_uploads = 0;
+};
+
+} // namespace velvet::render

@@ -1,0 +1,31 @@
+// Material texture slots, sampled in the G-buffer pass (render/texture_set.h). Unit
+// BINDING_MATERIAL_TEX_FIRST + slot; the material record says which slots hold a texture
+// (terms2.y) and which use an atlas region (terms2.z); uTexRegion holds each region as
+// xy = size / atlas size, zw = offset / atlas size (per draw, like the texture bindings).
+// Slot numbers follow core/texture_ref.h's TextureSlot.
+#include "render_bindings.glsl"
+
+#define TEX_BASE_COLOR 0
+#define TEX_METALLIC_ROUGHNESS 1
+#define TEX_SPEC_ROUGH_METAL 2
+#define TEX_NORMAL 3
+#define TEX_OCCLUSION 4
+#define TEX_SLOT_COUNT 13
+
+layout(binding = BINDING_MATERIAL_TEX_FIRST) uniform sampler2D uMaterialTex[TEX_SLOT_COUNT];
+layout(location = 1) uniform vec4 uTexRegion[TEX_SLOT_COUNT];
+
+bool hasTexture(GpuMaterial m, int slot) { return (m.terms2.y & (1 << slot)) != 0; }
+
+// The slot's texel at uv. In an atlas region the seeds added the element's offset in the vertex
+// shader; here it happens per fragment so that tiling UVs wrap inside the region (fract) and the
+// lookup stays half a texel inside it (no bleeding from neighbours under bilinear filtering). The
+// gradients are those of the unwrapped uv, so the wrap does not pick a coarse mip at the seam.
+vec4 sampleSlot(GpuMaterial m, int slot, vec2 uv) {
+    if ((m.terms2.z & (1 << slot)) == 0)
+        return texture(uMaterialTex[slot], uv);
+    vec4 r = uTexRegion[slot];
+    vec2 inset = 0.5 / vec2(textureSize(uMaterialTex[slot], 0));
+    vec2 p = clamp(fract(uv) * r.xy + r.zw, r.zw + inset, r.zw + r.xy - inset);
+    return textureGrad(uMaterialTex[slot], p, dFdx(uv) * r.xy, dFdy(uv) * r.xy);
+}

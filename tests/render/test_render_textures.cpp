@@ -1,0 +1,270 @@
+// Texture slots and preview meshes in the renderer: what each case proves is stated on it. One
+// renderer for the whole file (programs compiled once), 64x64 renders, the grey-furnace setup
+// (uniform white environment, Lambertian, no specular) so a pixel equals its albedo.
+#include "core/image.h"
+#include "core/mesh_import.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
+#include "render_test_util.h"
+
+#include <QTemporaryDir>
+#include <QtTest>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <glm/geometric.hpp>
+
+using namespace velvet;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kSize = 64;
+
+/// sRGB EOTF (IEC 61966-2-1) of an 8-bit code.
+float srgbToLinear(int code) {
+    const double c = code / 255.0;
+    return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+
+Scene furnace() {
+    Scene scene;
+    Material& m = scene.material;
+    m.setColor(ParamId::BaseColor, glm::vec3(1.0f));
+    m.setScalar(ParamId::Metallic, 0.0f);
+    m.setScalar(ParamId::SpecularWeight, 0.0f);
+    m.setScalar(ParamId::SheenWeight, 0.0f);
+    m.setScalar(ParamId::ClearcoatWeight, 0.0f);
+    scene.lights.clear();
+    scene.environment.hdri.clear();
+    scene.environment.color = glm::vec3(1.0f);
+    scene.environment.intensity = 1.0f;
+    return scene;
+}
+
+/// Mean linear RGB over the central 6x6 pixels (the sphere faces the camera there).
+glm::vec3 centre(const Image& img) {
+    glm::vec3 sum(0.0f);
+    for (int y = kSize / 2 - 3; y < kSize / 2 + 3; ++y)
+        for (int x = kSize / 2 - 3; x < kSize / 2 + 3; ++x)
+            sum += glm::vec3(img.rgba(x, y));
+    return sum / 36.0f;
+}
+
+Image flat(int w, int h, glm::vec4 value) {
+    Image img(w, h, 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c)
+                img.at(x, y)[c] = value[c];
+    return img;
+}
+
+} // namespace
+
+class TestRenderTextures : public QObject {
+    Q_OBJECT
+    QTemporaryDir m_dir;
+    std::unique_ptr<render::Renderer> m_renderer;
+    std::unique_ptr<render::OffscreenTarget> m_target;
+
+    fs::path path(const char* name) const { return fs::path(m_dir.path().toStdString()) / name; }
+
+    void write(const fs::path& file, const Image& image) {
+        std::string error;
+        QVERIFY2(writeImage(file, image, PixelFormat::UInt8, &error), error.c_str());
+    }
+
+    Image render(const Scene* scene, Problems* problems = nullptr,
+                 render::DebugView view = render::DebugView::Final) {
+        if (scene)
+            m_renderer->setScene(*scene, problems);
+        render::FrameSettings fs;
+        fs.width = fs.height = kSize;
+        fs.view = view;
+        std::string error;
+        if (!m_renderer->render(fs, m_target->framebuffer(), &error))
+            qFatal("render failed: %s", error.c_str());
+        return m_renderer->readLinear();
+    }
+
+    Scene textured(TextureSlot slot, const fs::path& file, const std::string& colorSpace = {}) {
+        Scene scene = furnace();
+        TextureRef ref;
+        ref.file = file.string();
+        ref.colorSpace = colorSpace;
+        scene.material.setTexture(slot, ref);
+        return scene;
+    }
+
+private slots:
+    void initTestCase() {
+        std::string error;
+        QVERIFY2(test::headlessContext(&error), error.c_str());
+        m_renderer = std::make_unique<render::Renderer>();
+        QVERIFY2(m_renderer->initialize(&error), error.c_str());
+        m_target = std::make_unique<render::OffscreenTarget>();
+        QVERIFY2(m_target->resize(kSize, kSize, &error), error.c_str());
+    }
+    void cleanupTestCase() {
+        m_target.reset();
+        m_renderer.reset(); // with the context still current
+    }
+
+    // A flat 8-bit 128 base-colour texture tagged "sRGB texture" is decoded to linear
+    // 0.2158 by OCIO on load; times a white factor under the white furnace the pixel is 0.2158.
+    // Tagged Raw, the same file is taken as data: 128 / 255 = 0.502.
+    void baseColorColourSpace() {
+        write(path("grey128.png"),
+              flat(8, 8, glm::vec4(128.0f / 255.0f, 128.0f / 255.0f, 128.0f / 255.0f, 1.0f)));
+        Problems problems;
+        Scene srgb = textured(TextureSlot::BaseColor, path("grey128.png"), "sRGB texture");
+        const glm::vec3 a = centre(render(&srgb, &problems));
+        QVERIFY(problems.items.empty());
+        const float expected = srgbToLinear(128);
+        qInfo("sRGB texture: %.4f (expected %.4f); ", a.x, expected);
+        QVERIFY(std::abs(expected - 0.2158f) < 1e-3f);
+        for (int k = 0; k < 3; ++k)
+            QVERIFY2(std::abs(a[k] - expected) < 0.005f, qPrintable(QString::number(a[k])));
+        Scene raw = textured(TextureSlot::BaseColor, path("grey128.png"), "Raw");
+        const glm::vec3 b = centre(render(&raw, &problems));
+        qInfo("Raw: %.4f (expected 0.502)", b.x);
+        for (int k = 0; k < 3; ++k)
+            QVERIFY2(std::abs(b[k] - 128.0f / 255.0f) < 0.005f, qPrintable(QString::number(b[k])));
+        // The factor multiplies the texture (glTF).
+        raw.material.setColor(ParamId::BaseColor, glm::vec3(0.5f, 1.0f, 1.0f));
+        QVERIFY(std::abs(centre(render(&raw)).x - 0.251f) < 0.005f);
+    }
+
+    // An atlas of two flat halves: each region picks its own colour, with no bleeding from the
+    // other half at the centre of the sphere.
+    void atlasRegionPicksSubImage() {
+        Image atlas(16, 8, 4);
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 16; ++x) {
+                const glm::vec4 c =
+                    x < 8 ? glm::vec4(0.8f, 0.2f, 0.2f, 1.0f) : glm::vec4(0.2f, 0.2f, 0.8f, 1.0f);
+                for (int k = 0; k < 4; ++k)
+                    atlas.at(x, y)[k] = c[k];
+            }
+        write(path("atlas.png"), atlas);
+        for (const bool left : {true, false}) {
+            Scene scene = textured(TextureSlot::BaseColor, path("atlas.png"), "Raw");
+            TextureRef ref = scene.material.texture(TextureSlot::BaseColor);
+            ref.useRegion = true;
+            ref.region = {left ? 0 : 8, 0, 8, 8};
+            scene.material.setTexture(TextureSlot::BaseColor, ref);
+            const glm::vec3 c = centre(render(&scene));
+            const glm::vec3 expected =
+                left ? glm::vec3(204, 51, 51) / 255.0f : glm::vec3(51, 51, 204) / 255.0f;
+            qInfo("%s half: %.3f %.3f %.3f", left ? "left" : "right", c.x, c.y, c.z);
+            QVERIFY(glm::length(c - expected) < 0.01f);
+        }
+    }
+
+    // A flat normal map (0.5, 0.5, 1) leaves the lit image as without one (8-bit 128 is 0.502,
+    // a tilt of 0.3 degrees); a tilted map does change it.
+    void flatNormalMapChangesNothing() {
+        write(path("flat_normal.png"),
+              flat(8, 8, glm::vec4(128.0f / 255.0f, 128.0f / 255.0f, 1.0f, 1.0f)));
+        write(path("tilted_normal.png"), flat(8, 8, glm::vec4(0.9f, 0.5f, 0.6f, 1.0f)));
+        Scene plain = furnace();
+        plain.material.setColor(ParamId::BaseColor, glm::vec3(0.5f));
+        plain.environment.color = glm::vec3(0.1f);
+        Light light;
+        light.direction = {-0.5f, -0.3f, -0.8f};
+        plain.lights = {light};
+        const Image without = render(&plain);
+        Scene mapped = plain;
+        mapped.material.setTexture(TextureSlot::Normal, {path("flat_normal.png").string()});
+        Problems problems;
+        const Image with = render(&mapped, &problems);
+        QVERIFY(problems.items.empty());
+        float worst = 0.0f, brightest = 0.0f;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                for (int k = 0; k < 3; ++k) {
+                    worst = std::max(worst, std::abs(with.rgba(x, y)[k] - without.rgba(x, y)[k]));
+                    brightest = std::max(brightest, without.rgba(x, y)[k]);
+                }
+        qInfo("flat normal map: worst difference %.5f of %.3f", worst, brightest);
+        QVERIFY(worst <= 0.01f * brightest);
+        mapped.material.setTexture(TextureSlot::Normal, {path("tilted_normal.png").string()});
+        QVERIFY(std::abs(centre(render(&mapped)).x - centre(without).x) > 0.02f);
+    }
+
+    // A texture file rewritten on disk (as another program saves it) shows in the next frame
+    // without setScene and without compiling a shader; nor does a value edit compile one.
+    void changedFileReloadsWithoutCompiling() {
+        const fs::path file = path("reload.png");
+        write(file, flat(8, 8, glm::vec4(128.0f / 255.0f, 128.0f / 255.0f, 128.0f / 255.0f, 1.0f)));
+        Scene scene = textured(TextureSlot::BaseColor, file, "Raw");
+        const float before = centre(render(&scene)).x;
+        const int compiles = m_renderer->shaderCompileCount();
+        write(file, flat(8, 8, glm::vec4(64.0f / 255.0f, 64.0f / 255.0f, 64.0f / 255.0f, 1.0f)));
+        const float after = centre(render(nullptr)).x;
+        qInfo("before %.4f, after %.4f", before, after);
+        QVERIFY(std::abs(before - 128.0f / 255.0f) < 0.005f);
+        QVERIFY(std::abs(after - 64.0f / 255.0f) < 0.005f);
+        scene.material.setColor(ParamId::BaseColor, glm::vec3(0.5f));
+        scene.material.setTexture(TextureSlot::Occlusion, {file.string()});
+        render(&scene);
+        QCOMPARE(m_renderer->shaderCompileCount(), compiles);
+    }
+
+    // A missing texture is a problem naming the file and the slot; the parameter value is drawn.
+    void missingTextureFallsBack() {
+        Scene scene = textured(TextureSlot::BaseColor, path("missing.png"));
+        scene.material.setColor(ParamId::BaseColor, glm::vec3(0.3f));
+        Problems problems;
+        const glm::vec3 c = centre(render(&scene, &problems));
+        QVERIFY(problems.hasErrors());
+        QVERIFY(problems.items[0].toString().find("missing.png") != std::string::npos);
+        QVERIFY(std::abs(c.x - 0.3f) < 0.005f);
+    }
+
+    // Every procedural preview mesh draws (it covers the centre, nothing is reported); a custom
+    // mesh that fails to import is an error naming the file and the sphere is drawn instead.
+    void meshSelection() {
+        Scene sphere = furnace();
+        const Image sphereImage = render(&sphere, nullptr, render::DebugView::Depth);
+        for (const PreviewMeshKind kind :
+             {PreviewMeshKind::Cube, PreviewMeshKind::RoundedCube, PreviewMeshKind::Plane,
+              PreviewMeshKind::ClothDrape, PreviewMeshKind::ShaderBall}) {
+            Scene scene = furnace();
+            scene.mesh.kind = kind;
+            Problems problems;
+            const Image depth = render(&scene, &problems, render::DebugView::Depth);
+            QVERIFY(problems.items.empty());
+            QVERIFY2(depth.rgba(kSize / 2, kSize / 2).x > 0.0f,
+                     qPrintable(QString::number(int(kind))));
+            float differs = 0.0f;
+            for (int y = 0; y < kSize; ++y)
+                for (int x = 0; x < kSize; ++x)
+                    differs =
+                        std::max(differs, std::abs(depth.rgba(x, y).x - sphereImage.rgba(x, y).x));
+            QVERIFY(differs > 0.01f); // not the sphere
+        }
+        Scene broken = furnace();
+        broken.mesh.kind = PreviewMeshKind::Custom;
+        broken.mesh.file = path("nothing.obj").string();
+        Problems problems;
+        const Image depth = render(&broken, &problems, render::DebugView::Depth);
+        QVERIFY(problems.hasErrors());
+        QVERIFY(problems.items[0].toString().find("nothing.obj") != std::string::npos);
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                QVERIFY(std::abs(depth.rgba(x, y).x - sphereImage.rgba(x, y).x) < 1e-5f);
+        // A custom OBJ (a tetrahedron) imports, is drawn, and reports nothing.
+        std::ofstream(path("tet.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                          "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+        Scene custom = furnace();
+        custom.mesh = {PreviewMeshKind::Custom, path("tet.obj").string()};
+        problems = {};
+        render(&custom, &problems);
+        QVERIFY(problems.items.empty());
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRenderTextures)
+#include "test_render_textures.moc"
