@@ -1,0 +1,64 @@
+#pragma once
+/// @file light_passes.h
+/// Render-private: the point, spot and area lights of a scene, drawn on top of the full-screen
+/// lighting pass (which does directional lights, ambient and the environment) by one of three
+/// paths that give the same image (tests/render/test_render_lights.cpp):
+///  - Volumes: the seeds' light volumes, a proxy sphere per light, back faces depth-tested against
+///    the G-buffer and added by blending, so only pixels in front of a light's far side pay;
+///  - Tiled: a compute pass culls lights into 16x16 tiles by the tile's depth bounds and shades
+///    each pixel with its tile's list (Olsson & Assarsson 2011);
+///  - Brute: one full-screen loop over every light, for comparison.
+/// Light data lives in an SSBO (any number of lights; scenes hold 4,096 and more).
+
+#include "core/scene.h"
+#include "render/renderer.h"
+#include "render/shader_program.h"
+
+#include <string>
+#include <vector>
+
+namespace velvet::render {
+
+/// Lights Auto sends down the brute-force path (one pass, nothing to cull); above, tiled.
+inline constexpr int kAutoBruteMaxLights = 8;
+
+/// The path Auto picks for @p localLightCount lights.
+LightPath resolveLightPath(LightPath requested, int localLightCount);
+
+class LightPasses {
+public:
+    LightPasses() = default;
+    ~LightPasses();
+    LightPasses(const LightPasses&) = delete;
+    LightPasses& operator=(const LightPasses&) = delete;
+
+    /// Compiles the three paths' programs and makes the proxy mesh. False + message (file:line).
+    bool initialize(std::string* error);
+    /// Programs compiled by initialize().
+    int compileCount() const { return m_compileCount; }
+
+    /// Packs the point, spot and area lights of @p lights into the light buffer (directional and
+    /// ambient lights stay with the full-screen pass).
+    void upload(const std::vector<Light>& lights);
+    int lightCount() const { return m_count; }
+
+    /// Adds the lights to @p hdrTexture (RGBA16F, bound in @p hdrFbo). Expects the frame UBO,
+    /// the material table and the G-buffer textures bound, and the G-buffer of @p gbufferFbo
+    /// filled. Leaves blending, culling and depth testing disabled.
+    void draw(LightPath path, int width, int height, unsigned gbufferFbo, unsigned hdrFbo,
+              unsigned hdrTexture, unsigned emptyVao);
+
+private:
+    void release();
+    ShaderProgram m_volumeProgram, m_bruteProgram;
+    unsigned m_tiledProgram = 0;
+    unsigned m_lightSsbo = 0;
+    size_t m_ssboBytes = 0;
+    int m_count = 0;
+    unsigned m_proxyVao = 0, m_proxyVbo = 0, m_proxyIbo = 0;
+    int m_proxyIndexCount = 0;
+    unsigned m_volumeFbo = 0, m_volumeFboColor = 0, m_volumeFboDepth = 0;
+    int m_compileCount = 0;
+};
+
+} // namespace velvet::render

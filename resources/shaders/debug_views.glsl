@@ -1,0 +1,52 @@
+// Debug views added after common_frame.glsl's first seven (DEBUG_FINAL .. DEBUG_POSITION); the
+// numbers mirror render::DebugView in render/renderer.h. Raw values go to the linear image;
+// debugDisplay() maps them for the display image.
+#include "common_math.glsl"
+
+#define DEBUG_SPECULAR 7          // rgb: specular colour x weight (KHR_materials_specular)
+#define DEBUG_CLEARCOAT 8         // r: clearcoat weight, g: clearcoat roughness
+#define DEBUG_SHEEN 9             // rgb: sheen colour x weight
+#define DEBUG_OCCLUSION 10        // r = g = b: ambient occlusion
+#define DEBUG_EMISSIVE 11         // rgb: emissive colour x strength
+#define DEBUG_MATERIAL_ID 12      // r = g = b: material id (integer)
+#define DEBUG_LIGHTS_PER_PIXEL 13 // r = g = b: number of point/spot/area lights reaching the pixel
+#define DEBUG_DIFFUSE_ONLY 14     // direct light (analytic lights), diffuse lobe only
+#define DEBUG_SPECULAR_ONLY 15    // direct light, every specular lobe (base + sheen + clearcoat)
+#define DEBUG_BASE_SPECULAR 16    // direct light, base specular lobe alone
+#define DEBUG_SHEEN_ONLY 17       // direct light, sheen lobe alone
+#define DEBUG_CLEARCOAT_ONLY 18   // direct light, clearcoat lobe alone
+
+bool isLobeView(int view) { return view >= DEBUG_DIFFUSE_ONLY && view <= DEBUG_CLEARCOAT_ONLY; }
+// Views to which the analytic lights contribute (the local-light passes run for these).
+bool isLightView(int view) { return view == DEBUG_FINAL || view == DEBUG_LIGHTS_PER_PIXEL || isLobeView(view); }
+
+// Heat map for lights per pixel: black at 0, then blue, cyan, green, yellow, red at 32 and above.
+vec3 heatMap(float count) {
+    if (count <= 0.0)
+        return vec3(0.0);
+    float t = clamp(count / 32.0, 0.0, 1.0) * 4.0;
+    vec3 c = t < 1.0   ? mix(vec3(0.0, 0.0, 1.0), vec3(0.0, 1.0, 1.0), t)
+             : t < 2.0 ? mix(vec3(0.0, 1.0, 1.0), vec3(0.0, 1.0, 0.0), t - 1.0)
+             : t < 3.0 ? mix(vec3(0.0, 1.0, 0.0), vec3(1.0, 1.0, 0.0), t - 2.0)
+                       : mix(vec3(1.0, 1.0, 0.0), vec3(1.0, 0.0, 0.0), t - 3.0);
+    return c;
+}
+
+// Display mapping of the views above (post_tonemap.frag); false for the views it leaves alone.
+bool debugDisplay(int view, vec3 c, float exposure, out vec3 display) {
+    if (view == DEBUG_LIGHTS_PER_PIXEL) {
+        display = heatMap(c.x);
+    } else if (view == DEBUG_MATERIAL_ID) {
+        // A distinct hue per id (golden-ratio hash); id 0 grey.
+        float h = fract(c.x * 0.61803399);
+        display = c.x < 0.5 ? vec3(0.25)
+                            : clamp(abs(fract(h + vec3(0.0, 2.0, 1.0) / 3.0) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
+    } else if (view == DEBUG_SPECULAR || view == DEBUG_SHEEN || view == DEBUG_EMISSIVE) {
+        display = srgbEncode(c);
+    } else if (isLobeView(view)) {
+        display = srgbEncode(c * exposure / (1.0 + c * exposure)); // Reinhard: comparable lobes
+    } else {
+        return false;
+    }
+    return true;
+}

@@ -1,0 +1,78 @@
+#version 450 core
+// Tiled light culling and shading in one compute pass (Andersson 2009, "Parallel Graphics in
+// Frostbite"; Olsson & Assarsson 2011, "Tiled Shading"): each 16x16 work group finds its tile's
+// depth bounds, culls the lights against the tile's view-space box in batches of LIGHT_BATCH
+// (any number of lights, bounded shared memory), then each invocation shades its pixel with the
+// batch's list and adds the sum to the HDR image.
+#include "light_common.glsl"
+
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+layout(binding = BINDING_LIGHT_HDR_IMAGE, rgba16f) uniform image2D uHdrImage;
+
+shared uint sMinDepth;
+shared uint sMaxDepth;
+shared uint sCount;
+shared uint sList[LIGHT_BATCH];
+
+vec3 viewFromNdc(vec2 ndcXY, float depth) {
+    vec4 p = frame.invProjMatrix * vec4(ndcXY, depth * 2.0 - 1.0, 1.0);
+    return p.xyz / p.w;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(frame.viewport.xy);
+    bool inside = pixel.x < size.x && pixel.y < size.y;
+    uint local = gl_LocalInvocationIndex;
+    if (local == 0u) {
+        sMinDepth = floatBitsToUint(1.0);
+        sMaxDepth = 0u;
+    }
+    barrier();
+    ShadingPoint p;
+    bool shaded = inside && loadShadingPoint(pixel, p);
+    if (shaded) {
+        // Non-negative floats order like their bit patterns.
+        uint bits = floatBitsToUint(texelFetch(gDepthTex, pixel, 0).r);
+        atomicMin(sMinDepth, bits);
+        atomicMax(sMaxDepth, bits);
+    }
+    barrier();
+    if (sMaxDepth == 0u)
+        return; // the whole tile is background (uniform across the group)
+
+    // The tile's view-space bounding box: its four corners at the nearest and farthest depth.
+    vec2 tileMin = vec2(gl_WorkGroupID.xy * TILE_SIZE) * frame.viewport.zw * 2.0 - 1.0;
+    vec2 tileMax = vec2((gl_WorkGroupID.xy + 1u) * TILE_SIZE) * frame.viewport.zw * 2.0 - 1.0;
+    float dMin = uintBitsToFloat(sMinDepth), dMax = uintBitsToFloat(sMaxDepth);
+    vec3 boxMin = vec3(1e30), boxMax = vec3(-1e30);
+    for (int i = 0; i < 8; ++i) {
+        vec2 xy = vec2((i & 1) != 0 ? tileMax.x : tileMin.x, (i & 2) != 0 ? tileMax.y : tileMin.y);
+        vec3 c = viewFromNdc(xy, (i & 4) != 0 ? dMax : dMin);
+        boxMin = min(boxMin, c);
+        boxMax = max(boxMax, c);
+    }
+
+    int view = frame.modes.y;
+    vec3 sum = vec3(0.0);
+    for (int base = 0; base < uLightCount; base += LIGHT_BATCH) {
+        if (local == 0u)
+            sCount = 0u;
+        barrier();
+        int batch = min(LIGHT_BATCH, uLightCount - base);
+        for (int i = int(local); i < batch; i += TILE_SIZE * TILE_SIZE) {
+            GpuLight L = lights[base + i];
+            vec3 c = (frame.viewMatrix * vec4(L.positionRange.xyz, 1.0)).xyz;
+            vec3 d = c - clamp(c, boxMin, boxMax); // sphere vs box (Arvo 1990)
+            if (dot(d, d) < L.positionRange.w * L.positionRange.w)
+                sList[atomicAdd(sCount, 1u)] = uint(base + i);
+        }
+        barrier();
+        if (shaded)
+            for (uint k = 0u; k < sCount; ++k)
+                sum += shadeLocalLight(lights[sList[k]], p, view);
+        barrier();
+    }
+    if (shaded)
+        imageStore(uHdrImage, pixel, imageLoad(uHdrImage, pixel) + vec4(sum, 0.0));
+}

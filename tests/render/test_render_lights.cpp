@@ -1,0 +1,426 @@
+// Point, spot and area lights and the three many-light paths (render/light_passes.h). What each
+// case proves is stated on the case.
+//
+// Regenerating the debug-view goldens (only after a deliberate change, reviewed by eye):
+//   VELVET_UPDATE_GOLDENS=1 ctest --test-dir build -R test_render_lights
+// rewrites tests/render/golden/view_<name>_128.png and passes; commit the new PNGs.
+#include "core/brdf.h"
+#include "core/lights.h"
+#include "render/camera.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
+#include "render_test_util.h"
+
+#include <QtTest>
+#include <cmath>
+#include <cstdlib>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+using namespace velvet;
+
+namespace {
+
+bool updateGoldens() {
+    const char* v = std::getenv("VELVET_UPDATE_GOLDENS");
+    return v && std::string(v) == "1";
+}
+
+/// One renderer for the whole file (shaders compile once).
+struct Rig {
+    render::Renderer renderer;
+    render::OffscreenTarget target;
+};
+Rig* rig() {
+    static std::unique_ptr<Rig> r;
+    if (!r) {
+        r = std::make_unique<Rig>();
+        std::string error;
+        if (!r->renderer.initialize(&error))
+            qFatal("renderer: %s", error.c_str());
+    }
+    return r.get();
+}
+
+struct Frame {
+    Image linear, display;
+};
+
+Frame renderFrame(const Scene& scene, int size, render::DebugView view = render::DebugView::Final,
+                  render::LightPath path = render::LightPath::Auto) {
+    Rig* r = rig();
+    std::string error;
+    if (!r->target.resize(size, size, &error))
+        qFatal("target: %s", error.c_str());
+    render::FrameSettings fs;
+    fs.width = fs.height = size;
+    fs.view = view;
+    fs.lightPath = path;
+    r->renderer.setScene(scene);
+    if (!r->renderer.render(fs, r->target.framebuffer(), &error))
+        qFatal("render failed: %s", error.c_str());
+    return {r->renderer.readLinear(), r->renderer.readDisplay()};
+}
+
+/// Orthographic unit sphere, black environment, no lights yet.
+Scene analyticScene() {
+    Scene scene;
+    scene.camera.orthographic = true;
+    scene.camera.pitchDeg = 0.0f;
+    scene.camera.yawDeg = 0.0f;
+    scene.environment.hdri.clear();
+    scene.environment.color = glm::vec3(0.0f);
+    scene.lights.clear();
+    Material& m = scene.material;
+    m.setColor(ParamId::BaseColor, {0.8f, 0.3f, 0.2f});
+    m.setScalar(ParamId::Roughness, 0.4f);
+    return scene;
+}
+
+/// Point lights on a grid in [-1.5, 1.5]^3 with the given radius.
+std::vector<Light> lightGrid(int count, float radius) {
+    const int side = int(std::ceil(std::cbrt(double(count))));
+    std::vector<Light> lights;
+    for (int i = 0; i < count; ++i) {
+        const int x = i % side, y = (i / side) % side, z = i / (side * side);
+        auto c = [&](int k) { return -1.5f + 3.0f * (float(k) + 0.5f) / float(side); };
+        Light l;
+        l.type = LightType::Point;
+        l.position = {c(x), c(y), c(z)};
+        l.range = radius;
+        l.intensity = 0.1f;
+        l.color = {0.3f + 0.7f * float(x) / side, 0.3f + 0.7f * float(y) / side, 1.0f};
+        lights.push_back(l);
+    }
+    return lights;
+}
+
+/// DESIGN.md's golden rule: pixels differing by more than 5/255 in any channel; returns the
+/// fraction of such pixels.
+double differingFraction(const Image& a, const Image& b, float* worst = nullptr) {
+    int differing = 0;
+    float w = 0.0f;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            float d = 0.0f;
+            for (int k = 0; k < 3; ++k)
+                d = std::max(d, std::abs(std::round(a.rgba(x, y)[k] * 255.0f) -
+                                         std::round(b.rgba(x, y)[k] * 255.0f)));
+            w = std::max(w, d);
+            differing += d > 5.0f;
+        }
+    if (worst)
+        *worst = w;
+    return double(differing) / double(a.width * a.height);
+}
+
+/// Compares one light's GPU pixels against the C++ twins: @p expected gives the illuminance
+/// factor (lux per unit colour x intensity) at a world position and direction to the light.
+template <typename Factor>
+void compareWithTwin(const Scene& scene, const Light& light, Factor factor, int& checked,
+                     int& zeroChecked) {
+    const int size = 96;
+    const Frame f = renderFrame(scene, size, render::DebugView::Final, render::LightPath::Brute);
+    const Frame pos = renderFrame(scene, size, render::DebugView::Position);
+    const Frame normal = renderFrame(scene, size, render::DebugView::Normal);
+    const Frame albedo = renderFrame(scene, size, render::DebugView::Albedo);
+    const glm::vec3 v = glm::normalize(render::cameraEye(scene.camera) - scene.camera.target);
+    for (int y = 2; y < size; y += 5)
+        for (int x = 2; x < size; x += 5) {
+            const glm::vec3 n = glm::vec3(normal.linear.rgba(x, y));
+            if (glm::length(n) < 0.5f)
+                continue;
+            const glm::vec3 p = glm::vec3(pos.linear.rgba(x, y));
+            const glm::vec3 toLight = light.position - p;
+            const glm::vec3 l = glm::normalize(toLight);
+            const float e = factor(p, l, glm::length(toLight));
+            brdf::Surface s = brdf::surfaceFromMaterial(scene.material);
+            s.baseColor = glm::vec3(albedo.linear.rgba(x, y));
+            const glm::vec3 expected = brdf::evalDirectional(s, glm::normalize(n), v, l) *
+                                       light.color * light.intensity * e;
+            const glm::vec3 got = glm::vec3(f.linear.rgba(x, y));
+            for (int k = 0; k < 3; ++k) {
+                const double err = std::abs(double(got[k]) - expected[k]);
+                const double tol = std::max(0.02 * expected[k], 1.0 / 255.0);
+                if (err > tol)
+                    QFAIL(qPrintable(QString("pixel (%1,%2) channel %3: GPU %4, CPU %5")
+                                         .arg(x)
+                                         .arg(y)
+                                         .arg(k)
+                                         .arg(got[k])
+                                         .arg(expected[k])));
+            }
+            if (e == 0.0f) {
+                if (std::max({got.x, got.y, got.z}) != 0.0f)
+                    QFAIL(qPrintable(
+                        QString("pixel (%1,%2) outside the light is %3").arg(x).arg(y).arg(got.x)));
+                ++zeroChecked;
+            } else if (glm::dot(n, l) > 0.1f) {
+                ++checked;
+            }
+        }
+}
+
+} // namespace
+
+class TestRenderLights : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase() {
+        std::string error;
+        QVERIFY2(test::headlessContext(&error), error.c_str());
+        rig();
+    }
+
+    // C++ twins of the light functions: the window is 1 at the light and 0 from the range on;
+    // the cone is 0 outside the outer cone and 1 inside the inner one.
+    void twinsKnownValues() {
+        QCOMPARE(lights::windowFalloff(0.0f, 2.0f), 1.0f);
+        QCOMPARE(lights::windowFalloff(2.0f, 2.0f), 0.0f);
+        QCOMPARE(lights::windowFalloff(3.0f, 2.0f), 0.0f);
+        QVERIFY(std::abs(lights::distanceAttenuation(0.5f, 100.0f) - 4.0f) < 1e-3f);
+        const float co = std::cos(glm::radians(30.0f)), ci = std::cos(glm::radians(20.0f));
+        QCOMPARE(lights::spotConeAttenuation(std::cos(glm::radians(31.0f)), co, ci), 0.0f);
+        QCOMPARE(lights::spotConeAttenuation(std::cos(glm::radians(19.0f)), co, ci), 1.0f);
+        // A representative point on a sphere hit by the ray is on the ray.
+        const glm::vec3 rp = lights::sphereRepresentativePoint({0, 0, 5}, {0, 0, 1}, 1.0f);
+        QVERIFY(glm::length(rp - glm::vec3(0, 0, 5)) < 1e-5f);
+        QCOMPARE(lights::areaSpecularNormalization(0.5f, 0.0f), 1.0f);
+    }
+
+    // Analytic point light on the orthographic sphere: every lit pixel within 2 % (or 1/255) of
+    // the C++ BRDF times the inverse-square law with the Karis window, in candela.
+    void pointLightMatchesCpuTwin() {
+        Scene scene = analyticScene();
+        Light light;
+        light.type = LightType::Point;
+        light.position = {0.9f, 0.8f, 1.7f};
+        light.range = 2.4f; // reaches part of the sphere only, so the window is exercised
+        light.intensity = 4.0f;
+        light.color = {1.0f, 0.9f, 0.8f};
+        scene.lights = {light};
+        int checked = 0, zeros = 0;
+        compareWithTwin(
+            scene, light,
+            [&](glm::vec3, glm::vec3, float d) {
+                return lights::distanceAttenuation(d, light.range);
+            },
+            checked, zeros);
+        qInfo("point light: %d lit pixels and %d unreached pixels match the twin", checked, zeros);
+        QVERIFY(checked >= 40);
+        QVERIFY(zeros >= 10);
+    }
+
+    // Spot cone: exactly zero outside the outer cone, the full point-light value inside the inner
+    // cone, the smoothstep twin in between.
+    void spotConeZeroOutsideFullInside() {
+        Scene scene = analyticScene();
+        Light light;
+        light.type = LightType::Spot;
+        light.position = {0.0f, 0.0f, 3.0f};
+        light.direction = {0.0f, 0.0f, -1.0f};
+        light.innerConeDeg = 8.0f;
+        light.outerConeDeg = 14.0f;
+        light.range = 10.0f;
+        light.intensity = 20.0f;
+        scene.lights = {light};
+        int checked = 0, zeros = 0;
+        const float co = std::cos(glm::radians(14.0f)), ci = std::cos(glm::radians(8.0f));
+        compareWithTwin(
+            scene, light,
+            [&](glm::vec3, glm::vec3 l, float d) {
+                return lights::distanceAttenuation(d, light.range) *
+                       lights::spotConeAttenuation(glm::dot(light.direction, -l), co, ci);
+            },
+            checked, zeros);
+        qInfo("spot: %d lit pixels, %d pixels outside the outer cone", checked, zeros);
+        QVERIFY(checked >= 10);
+        QVERIFY(zeros >= 100);
+    }
+
+    // A small sphere area light (representative point) of luminance L and radius r lights a
+    // rough surface like a point light of L pi r^2 candela.
+    void smallSphereLightIsPointLight() {
+        Scene scene = analyticScene();
+        scene.material.setScalar(ParamId::Roughness, 0.9f);
+        Light point;
+        point.type = LightType::Point;
+        point.position = {0.6f, 0.7f, 2.0f};
+        point.range = 20.0f;
+        Light area = point;
+        area.type = LightType::Area;
+        area.shape = AreaShape::Sphere;
+        area.size = glm::vec2(0.02f);
+        area.intensity = 5000.0f;
+        point.intensity = area.intensity * 3.14159265f * 0.02f * 0.02f;
+        scene.lights = {point};
+        const Frame a = renderFrame(scene, 64);
+        scene.lights = {area};
+        const Frame b = renderFrame(scene, 64);
+        float worst = 0.0f;
+        const double fraction = differingFraction(a.display, b.display, &worst);
+        qInfo("small sphere light vs point light: %.3f %% pixels differ, worst %.0f/255",
+              100.0 * fraction, worst);
+        QVERIFY(fraction <= 0.001);
+    }
+
+    // Light volumes, tiled and brute force give the same image within the golden tolerance, and
+    // exactly the same lights-per-pixel counts, at 256 lights (perspective camera).
+    void pathsGiveSameImage() {
+        Scene scene;
+        scene.environment.hdri.clear();
+        scene.environment.color = glm::vec3(0.05f);
+        scene.lights = lightGrid(256, 0.7f);
+        const int size = 128;
+        const Frame brute =
+            renderFrame(scene, size, render::DebugView::Final, render::LightPath::Brute);
+        const Frame volumes =
+            renderFrame(scene, size, render::DebugView::Final, render::LightPath::Volumes);
+        const Frame tiled =
+            renderFrame(scene, size, render::DebugView::Final, render::LightPath::Tiled);
+        float worstV = 0.0f, worstT = 0.0f;
+        const double fv = differingFraction(brute.display, volumes.display, &worstV);
+        const double ft = differingFraction(brute.display, tiled.display, &worstT);
+        qInfo("volumes vs brute: %.3f %% differ (worst %.0f/255); tiled vs brute: %.3f %% (worst "
+              "%.0f/255)",
+              100.0 * fv, worstV, 100.0 * ft, worstT);
+        QVERIFY(fv <= 0.001);
+        QVERIFY(ft <= 0.001);
+        // The lights reach the sphere (the comparison is not of two black images).
+        const Frame none = [&] {
+            Scene s = scene;
+            s.lights.clear();
+            return renderFrame(s, size);
+        }();
+        QVERIFY(differingFraction(none.display, brute.display) > 0.1);
+
+        const auto view = render::DebugView::LightsPerPixel;
+        const Frame cb = renderFrame(scene, size, view, render::LightPath::Brute);
+        const Frame cv = renderFrame(scene, size, view, render::LightPath::Volumes);
+        const Frame ct = renderFrame(scene, size, view, render::LightPath::Tiled);
+        double sum = 0.0;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const float b = cb.linear.rgba(x, y).x;
+                QCOMPARE(cv.linear.rgba(x, y).x, b);
+                QCOMPARE(ct.linear.rgba(x, y).x, b);
+                sum += b;
+            }
+        qInfo("lights per pixel: %.2f on average over the image", sum / (size * size));
+        QVERIFY(sum > 0.0);
+    }
+
+    // The heat map counts exactly the lights whose radius contains the pixel's position: 0
+    // outside every radius (pixels within 1 mm of a sphere's edge are left out).
+    void heatMapCountsLightsReachingThePixel() {
+        Scene scene;
+        scene.environment.hdri.clear();
+        Light a;
+        a.type = LightType::Point;
+        a.position = {0.5f, 0.5f, 0.8f};
+        a.range = 0.6f;
+        Light b = a;
+        b.position = {-0.4f, -0.2f, 0.9f};
+        b.range = 0.5f;
+        Light c = a;
+        c.position = {0.0f, 0.1f, 1.0f};
+        c.range = 0.4f;
+        scene.lights = {a, b, c};
+        const int size = 96;
+        const Frame pos = renderFrame(scene, size, render::DebugView::Position);
+        const Frame depth = renderFrame(scene, size, render::DebugView::Depth);
+        for (auto path :
+             {render::LightPath::Brute, render::LightPath::Volumes, render::LightPath::Tiled}) {
+            const Frame heat = renderFrame(scene, size, render::DebugView::LightsPerPixel, path);
+            int zeros = 0, counted = 0;
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x) {
+                    const float got = heat.linear.rgba(x, y).x;
+                    if (depth.linear.rgba(x, y).x <= 0.0f) {
+                        QCOMPARE(got, 0.0f); // background
+                        continue;
+                    }
+                    const glm::vec3 p = glm::vec3(pos.linear.rgba(x, y));
+                    int expected = 0;
+                    bool edge = false;
+                    for (const Light& l : scene.lights) {
+                        const float d = glm::length(p - l.position);
+                        expected += d < l.range;
+                        edge = edge || std::abs(d - l.range) < 1e-3f;
+                    }
+                    if (edge)
+                        continue;
+                    QCOMPARE(int(got), expected);
+                    zeros += expected == 0;
+                    counted += expected > 0;
+                }
+            QVERIFY(zeros > 100);
+            QVERIFY(counted > 100);
+        }
+    }
+
+    // 4,096 point lights: every path renders without a GL error and adds light.
+    void manyLightsRender() {
+        Scene scene;
+        scene.lights = lightGrid(4096, 0.3f);
+        Scene dark = scene;
+        dark.lights.clear();
+        const Frame base = renderFrame(dark, 64);
+        for (auto path : {render::LightPath::Auto, render::LightPath::Tiled,
+                          render::LightPath::Volumes, render::LightPath::Brute}) {
+            const Frame f = renderFrame(scene, 64, render::DebugView::Final, path);
+            double added = 0.0;
+            for (int y = 0; y < 64; ++y)
+                for (int x = 0; x < 64; ++x) {
+                    const glm::vec4 c = f.linear.rgba(x, y);
+                    QVERIFY(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+                    added += c.x - base.linear.rgba(x, y).x;
+                }
+            QVERIFY(added > 1.0);
+        }
+    }
+
+    // A golden image of the default scene for every debug view (DESIGN.md's tolerance).
+    void debugViewGoldens_data() {
+        QTest::addColumn<int>("view");
+        const char* names[] = {"final",         "albedo",           "normal",
+                               "depth",         "roughness",        "metallic",
+                               "position",      "specular",         "clearcoat",
+                               "sheen",         "occlusion",        "emissive",
+                               "material_id",   "lights_per_pixel", "diffuse_only",
+                               "specular_only", "base_specular",    "sheen_only",
+                               "clearcoat_only"};
+        for (int i = 0; i <= int(render::DebugView::ClearcoatOnly); ++i)
+            QTest::newRow(names[i]) << i;
+    }
+    void debugViewGoldens() {
+        QFETCH(int, view);
+        const QString path = QString(VELVET_SOURCE_DIR "/tests/render/golden/view_%1_128.png")
+                                 .arg(QTest::currentDataTag());
+        const Frame f = renderFrame(test::shippedDefaultScene(), 128, render::DebugView(view));
+        std::string error;
+        if (updateGoldens()) {
+            QVERIFY2(writeImage(path.toStdString(), f.display, PixelFormat::UInt8, &error),
+                     error.c_str());
+            qWarning("VELVET_UPDATE_GOLDENS=1: rewrote %s", qPrintable(path));
+            return;
+        }
+        Image golden;
+        QVERIFY2(readImage(path.toStdString(), golden, &error), error.c_str());
+        QCOMPARE(golden.width, f.display.width);
+        float worst = 0.0f;
+        const double fraction = differingFraction(golden, f.display, &worst);
+        if (fraction > 0.001) {
+            const QString actual =
+                QDir::tempPath() + "/view_" + QTest::currentDataTag() + "_128_actual.png";
+            writeImage(actual.toStdString(), f.display, PixelFormat::UInt8, nullptr);
+            QFAIL(qPrintable(QString("%1 % of pixels differ (worst %2/255); this run: %3")
+                                 .arg(100.0 * fraction)
+                                 .arg(worst)
+                                 .arg(actual)));
+        }
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRenderLights)
+#include "test_render_lights.moc"
