@@ -3,6 +3,7 @@
 // display mapping of their raw values instead.
 #include "common_frame.glsl"
 #include "common_tonemap.glsl"
+#include "debug_views.glsl"
 
 layout(binding = BINDING_HDR_TEX) uniform sampler2D uHdr;
 layout(location = 0) out vec4 outColor;
@@ -19,7 +20,7 @@ void main() {
         display = c * 0.5 + 0.5;
     else if (view == DEBUG_DEPTH)
         display = vec3(c.x > 0.0 ? 1.0 - saturate(c.x / frame.post.y) : 0.0);
-    else
+    else if (!debugDisplay(view, c, frame.post.x, display))
         display = c;
     outColor = vec4(clamp(display, 0.0, 1.0), 1.0);
 }

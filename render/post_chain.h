@@ -1,0 +1,106 @@
+#pragma once
+/// @file post_chain.h
+/// Render-private: runs a scene's post chain (core/post_chain.h) after lighting, in chain order
+/// (Filament's PostProcessManager style: each step takes an input texture and returns its output).
+/// Consecutive pointwise effects (tone mapping, colour grading, toon, vignette, night vision,
+/// film grain) are fused into one generated pass; blur-like effects run at half resolution;
+/// render targets come from a pool and are reused across frames. Effects that need depth or
+/// normals read the G-buffer textures bound at their layout units (gbuffer_layout.h).
+/// Needs a current OpenGL 4.5 core context from the first run to destruction.
+
+#include "core/image.h"
+#include "core/post_chain.h"
+
+#include <functional>
+#include <glm/mat4x4.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace velvet::render {
+
+/// Inputs of one chain run.
+struct PostRunInputs {
+    unsigned hdrTexture = 0; ///< scene-linear colour (GL texture name), width x height
+    int width = 0, height = 0;
+    glm::mat4 viewProj{1.0f};
+    glm::mat4 prevViewProj{1.0f}; ///< last frame's (equal to viewProj: a still camera)
+    glm::mat4 proj{1.0f};
+    float time = 0.0f;       ///< seconds (grain, static, paintbrush)
+    float exposureEv = 0.0f; ///< the frame settings' exposure, added to the tone map's own
+    /// The tone curve an implicit tone map uses when the chain has LDR effects but no "tonemap"
+    /// (an index of the tonemap effect's "operator" choice).
+    int implicitToneMapper = 0;
+    /// Draws the OCIO display transform of a scene-linear texture into the bound framebuffer with
+    /// extra exposure (EV); returns false + message on failure. When set (the frame settings
+    /// chose a display/view/look) every tone map of the chain uses it; otherwise only the
+    /// "display" operator does, and fails without it.
+    std::function<bool(unsigned texture, float exposureEv, std::string* error)> displayTransform;
+    bool forceDisplayTransform = false;
+    unsigned finalFbo = 0; ///< display-encoded output goes here (when the chain tone maps)
+};
+
+/// What a run produced.
+struct PostRunResult {
+    /// True: the chain tone mapped and wrote display-encoded colour to finalFbo. False: the chain
+    /// has HDR effects only; hdrTexture holds the result for the renderer's own final pass.
+    bool displayEncoded = false;
+    unsigned hdrTexture = 0;
+};
+
+/// Per-step GPU time (glFinish around each step; profiling only).
+struct PostStepTiming {
+    std::string name; ///< effect type, or "tonemap+vignette" for a fused step
+    double ms = 0.0;
+};
+
+/// Synthetic inputs for tests: small float images, row 0 at the top (core/image.h).
+struct PostTestInput {
+    Image color;   ///< RGBA (or RGB) scene-linear
+    Image depth;   ///< 1 channel hardware depth in [0, 1]; empty: everything at depth 1
+    Image normals; ///< 3 channels world normals; empty: +Z
+    glm::mat4 viewProj{1.0f}, prevViewProj{1.0f}, proj{1.0f};
+    float time = 0.0f;
+};
+
+class PostChainRenderer {
+public:
+    PostChainRenderer();
+    ~PostChainRenderer();
+    PostChainRenderer(const PostChainRenderer&) = delete;
+    PostChainRenderer& operator=(const PostChainRenderer&) = delete;
+
+    /// Whether @p chain has an enabled effect (else the renderer skips the chain entirely).
+    static bool hasEnabledEffects(const PostChain& chain);
+
+    /// Runs the enabled effects of @p chain. Programs are compiled on first use (a parameter
+    /// change never compiles). False + message on a compile error or a failing display
+    /// transform. The result's hdrTexture stays valid until endFrame().
+    bool run(const PostChain& chain, const PostRunInputs& inputs, PostRunResult& result,
+             std::string* error);
+    /// Hands the run's targets back to the pool and trims targets unused for a while.
+    void endFrame();
+
+    /// Test entry point: uploads @p input, runs @p chain and reads back RGBA float (row 0 at the
+    /// top): display-encoded when the chain tone maps, scene-linear otherwise. Saves and restores
+    /// the framebuffer binding and viewport.
+    bool apply(const PostChain& chain, const PostTestInput& input, Image& output,
+               std::string* error);
+
+    int compileCount() const;
+    /// Render-target textures allocated since construction / held now.
+    int textureAllocations() const;
+    int pooledTextures() const;
+    /// Passes drawn by the last run (fusion lowers it).
+    int lastStepCount() const;
+
+    /// With profiling on, run() waits for the GPU around each step and records its time.
+    void setProfiling(bool on);
+    const std::vector<PostStepTiming>& lastTimings() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace velvet::render

@@ -1,0 +1,50 @@
+// Shared by every post-effect shader (render/post_chain.cpp). Parameter slots and bindings come
+// from the generated "post_params.glsl" (one #define per catalogue parameter, core/post_effects.cpp).
+#include "post_params.glsl"
+#include "common_gbuffer.glsl"
+
+// Each parameter of an effect is one vec4 slot (scalars and choices in x, colours in xyz); fused
+// passes give each effect its own base slot.
+layout(location = 0) uniform vec4 uParams[POST_MAX_SLOTS];
+#define PARAM(base, k) uParams[(base) + (k)]
+// x: pass index, y: level / tap count; effects document their own use.
+layout(location = POST_PASS_LOCATION) uniform ivec4 uPass;
+// xy: 1 / size of uInput, zw: output size in pixels.
+layout(location = POST_TEXEL_LOCATION) uniform vec4 uTexel;
+// Multi-pass effects compile one program per pass (POST_PASS defined), so llvmpipe, which runs
+// every side of a branch under a mask, executes only the pass's own code.
+#ifndef POST_PASS
+#define POST_PASS uPass.x
+#endif
+
+layout(binding = POST_INPUT_UNIT) uniform sampler2D uInput; // bilinear, clamped
+layout(binding = POST_AUX_UNIT) uniform sampler2D uAux;     // a second image (pre-pass, blur)
+
+layout(std140, binding = POST_FRAME_UBO) uniform PostFrame {
+    mat4 viewProj;
+    mat4 invViewProj;
+    mat4 prevViewProj;
+    mat4 invProj;
+    vec4 viewport; // full-resolution width, height, 1/width, 1/height
+    vec4 misc;     // x: time in seconds, y: exposure multiplier of the frame settings
+} post;
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+// Hoskins 2014, "Hash without Sine" (hash13): stable white noise in [0, 1).
+float hash13(vec3 p3) {
+    p3 = fract(p3 * 0.1031);
+    p3 += dot(p3, p3.zyx + 31.32);
+    return fract((p3.x + p3.y) * p3.z);
+}
+
+// Hardware depth at a pixel (1: background).
+float sceneDepth(ivec2 px) { return texelFetch(gDepthTex, px, 0).r; }
+// Positive view-space distance along -Z reconstructed with the inverse projection.
+float viewDistance(ivec2 px) {
+    vec2 uv = (vec2(px) + 0.5) * post.viewport.zw;
+    vec4 v = post.invProj * vec4(uv * 2.0 - 1.0, sceneDepth(px) * 2.0 - 1.0, 1.0);
+    return -v.z / v.w;
+}
+vec3 sceneNormal(ivec2 px) { return octDecodeUnorm16(texelFetch(gNormalTex, px, 0).rg); }
+vec2 pixelUv(ivec2 px) { return (vec2(px) + 0.5) * post.viewport.zw; }
