@@ -2,6 +2,7 @@
 
 #include "core/document_io.h"
 #include "ui/commands/set_param_command.h"
+#include "ui/commands/set_scene_command.h"
 
 #include <QFileInfo>
 #include <QUndoStack>
@@ -59,6 +60,30 @@ void DocumentController::resetParam(ParamId id) {
     auto* cmd = new SetParamCommand(this, id, m_scene.material.value(id), def, 0);
     cmd->setText(tr("Reset %1").arg(QString::fromUtf8(paramMeta(id).label)));
     m_undoStack->push(cmd);
+}
+
+void DocumentController::editEnvironment(const Environment& environment, const QString& text,
+                                         int mergeKey) {
+    if (environment == m_scene.environment)
+        return;
+    m_undoStack->push(
+        new SetEnvironmentCommand(this, m_scene.environment, environment, text, mergeKey));
+}
+
+void DocumentController::editMesh(const MeshRef& mesh) {
+    if (mesh == m_scene.mesh)
+        return;
+    m_undoStack->push(new SetMeshCommand(this, m_scene.mesh, mesh));
+}
+
+void DocumentController::setEnvironment(const Environment& environment) {
+    m_scene.environment = environment;
+    emit sceneChanged();
+}
+
+void DocumentController::setMesh(const MeshRef& mesh) {
+    m_scene.mesh = mesh;
+    emit sceneChanged();
 }
 
 void DocumentController::setParam(ParamId id, glm::vec3 value) {

@@ -42,12 +42,21 @@ public:
     void editParam(ParamId id, glm::vec3 value, int mergeKey = 0);
     /// Puts a parameter back to its metadata default (one command, "Reset <label>").
     void resetParam(ParamId id);
+    /// Replaces the environment (HDRI, intensity, rotation, …). Edits sharing a non-zero
+    /// @p mergeKey (one drag) merge into one command named @p text. No-op edits push nothing.
+    void editEnvironment(const Environment& environment, const QString& text, int mergeKey = 0);
+    /// Replaces the preview mesh (one command). No-op edits push nothing.
+    void editMesh(const MeshRef& mesh);
     /// @}
 
     /// @name Applied by undo commands (not undoable by themselves)
     /// @{
     /// Sets a parameter (clamped to its hard range by Material) and notifies.
     void setParam(ParamId id, glm::vec3 value);
+    /// Sets the environment and notifies (sceneChanged).
+    void setEnvironment(const Environment& environment);
+    /// Sets the preview mesh and notifies (sceneChanged).
+    void setMesh(const MeshRef& mesh);
     /// @}
 
     /// @name Whole documents (clear the undo stack; never half-applied)

@@ -94,21 +94,25 @@ int runEditor(int& argc, char** argv, const EditorOptions& options) {
     const QString file = QString::fromStdString(options.screenshotFile);
     int exitCode = kExitRenderFailure;
     ViewportWidget* viewport = window.viewport();
-    QObject::connect(
-        viewport, &ViewportWidget::frameCompleted, &window,
-        [&] {
-            // Let the frame reach the window before grabbing it.
-            QTimer::singleShot(0, &window, [&] {
-                QString error;
-                if (saveScreenshot(&window, file, &error)) {
-                    exitCode = 0;
-                } else {
-                    fail(QStringLiteral("could not save the screenshot %1: %2").arg(file, error));
-                }
-                QApplication::exit(exitCode);
-            });
-        },
-        Qt::SingleShotConnection);
+    bool grabbed = false;
+    QObject::connect(viewport, &ViewportWidget::frameCompleted, &window, [&] {
+        // Wait for the environment bake (the main window keeps frames coming meanwhile), so the
+        // image shows the finished lighting.
+        const double progress = viewport->environmentProgress();
+        if (grabbed || (progress >= 0.0 && progress < 1.0))
+            return;
+        grabbed = true;
+        // Let the frame reach the window before grabbing it.
+        QTimer::singleShot(0, &window, [&] {
+            QString error;
+            if (saveScreenshot(&window, file, &error)) {
+                exitCode = 0;
+            } else {
+                fail(QStringLiteral("could not save the screenshot %1: %2").arg(file, error));
+            }
+            QApplication::exit(exitCode);
+        });
+    });
     QObject::connect(viewport, &ViewportWidget::renderFailed, &window, [&](const QString& m) {
         fail(m);
         QApplication::exit(kExitRenderFailure);

@@ -1,22 +1,32 @@
 #include "ui/main_window.h"
 
+#include "core/color_management.h"
 #include "ui/document_controller.h"
+#include "ui/log_panel.h"
 #include "ui/properties/property_panel.h"
+#include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
 
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QDir>
 #include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFileDialog>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QMimeData>
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QTimer>
+#include <QToolBar>
 #include <QUndoStack>
 #include <QUndoView>
+#include <cmath>
 
 namespace velvet::ui {
 namespace {
@@ -24,10 +34,31 @@ namespace {
 const char* const kGeometryKey = "mainWindow/geometry";
 const char* const kStateKey = "mainWindow/state";
 const char* const kLastDirKey = "files/lastDirectory";
-constexpr int kLayoutVersion = 1; ///< bump when docks are added or renamed
+const char* const kRecentKey = "files/recent";
 
 QString fileFilter() {
     return QObject::tr("Velvet scenes and presets (*.json)");
+}
+
+enum class DropKind { None, Document, Hdri, Mesh };
+
+DropKind dropKindOf(const QString& path) {
+    const QString suffix = QFileInfo(path).suffix().toLower();
+    if (suffix == QLatin1String("json"))
+        return DropKind::Document;
+    if (suffix == QLatin1String("exr") || suffix == QLatin1String("hdr"))
+        return DropKind::Hdri;
+    static const QStringList meshes = {
+        QStringLiteral("obj"), QStringLiteral("fbx"), QStringLiteral("gltf"), QStringLiteral("glb"),
+        QStringLiteral("ply"), QStringLiteral("stl"), QStringLiteral("dae")};
+    if (meshes.contains(suffix))
+        return DropKind::Mesh;
+    return DropKind::None;
+}
+
+/// Absolute, normalised, '/'-separated: the form core stores resource paths in.
+std::string documentPath(const QString& path) {
+    return QDir::cleanPath(QFileInfo(path).absoluteFilePath()).toStdString();
 }
 
 } // namespace
@@ -36,12 +67,32 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     : QMainWindow(parent), m_controller(new DocumentController(this)),
       m_viewport(new ViewportWidget(this)), m_saveLayout(restoreLayout) {
     setObjectName(QStringLiteral("mainWindow"));
+    setAcceptDrops(true);
     setCentralWidget(m_viewport);
+
+    // One OCIO config for the toolbar's lists, the renderer's display transform and the pickers.
+    auto colorManagement = std::make_shared<ColorManagement>();
+    std::string ocioError;
+    const bool ocioLoaded = colorManagement->loadDefault(&ocioError);
+    m_colorManagement = colorManagement;
+    m_viewport->setColorManagement(m_colorManagement);
+
     createDocks();
+    createToolbars();
     createMenus();
+    if (!ocioLoaded)
+        m_log->warning(tr("OpenColorIO config not loaded, only the built-in tone mapper is "
+                          "offered: %1")
+                           .arg(QString::fromStdString(ocioError)));
 
     m_frameLabel = new QLabel(this);
     m_frameLabel->setObjectName(QStringLiteral("frameTime"));
+    m_progressLabel = new QLabel(this);
+    m_progressLabel->setObjectName(QStringLiteral("environmentProgress"));
+    m_progressLabel->setMinimumWidth(
+        m_progressLabel->fontMetrics().horizontalAdvance(tr("Prefiltering environment 100 %")) + 8);
+    m_progressLabel->hide();
+    statusBar()->addPermanentWidget(m_progressLabel);
     statusBar()->addPermanentWidget(m_frameLabel);
 
     connect(m_controller, &DocumentController::sceneChanged, this,
@@ -51,18 +102,29 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     connect(m_controller, &DocumentController::fileChanged, this, &MainWindow::updateTitle);
     connect(m_controller, &DocumentController::dirtyChanged, this, &MainWindow::updateTitle);
     connect(m_viewport, &ViewportWidget::frameCompleted, this, &MainWindow::showFrameTime);
-    connect(m_viewport, &ViewportWidget::renderFailed, this,
-            [this](const QString& message) { statusBar()->showMessage(message); });
+    connect(m_viewport, &ViewportWidget::renderFailed, this, [this](const QString& message) {
+        statusBar()->showMessage(message);
+        m_log->error(message);
+    });
     connect(m_viewport, &ViewportWidget::sceneProblems, this, [this](const QStringList& lines) {
         statusBar()->showMessage(lines.join(QStringLiteral("; ")), 10000);
+        for (const QString& line : lines)
+            m_log->warning(line);
     });
+    connect(m_viewport, &ViewportWidget::environmentRotationDragged, this,
+            &MainWindow::rotateEnvironment);
+    connect(m_viewToolbar, &ViewportToolbar::viewStateChanged, this, &MainWindow::applyViewState);
+    connect(m_viewToolbar, &ViewportToolbar::timingOverlayToggled, m_viewport,
+            &ViewportWidget::setTimingOverlayVisible);
 
     resize(1280, 800);
     if (restoreLayout) {
         QSettings settings;
         restoreGeometry(settings.value(kGeometryKey).toByteArray());
         restoreState(settings.value(kStateKey).toByteArray(), kLayoutVersion);
+        m_viewToolbar->restoreSettings();
     }
+    applyViewState();
     m_controller->newDocument();
     updateTitle();
 }
@@ -90,6 +152,37 @@ void MainWindow::createDocks() {
     addDockWidget(Qt::RightDockWidgetArea, history);
     resizeDocks({properties}, {460}, Qt::Horizontal);
     resizeDocks({properties, history}, {600, 160}, Qt::Vertical);
+
+    m_log = new LogPanel(this);
+    auto* log = new QDockWidget(tr("Log"), this);
+    log->setObjectName(QStringLiteral("logDock"));
+    log->setWidget(m_log);
+    // The right-hand docks keep the full height; the Log sits under the viewport only.
+    setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
+    addDockWidget(Qt::BottomDockWidgetArea, log);
+    resizeDocks({log}, {120}, Qt::Vertical);
+}
+
+void MainWindow::createToolbars() {
+    m_viewToolbar = new ViewportToolbar(m_colorManagement, this);
+    addToolBar(Qt::TopToolBarArea, m_viewToolbar);
+    addToolBarBreak(Qt::TopToolBarArea);
+    m_sceneToolbar = new SceneToolbar(m_controller, this);
+    addToolBar(Qt::TopToolBarArea, m_sceneToolbar);
+}
+
+void MainWindow::applyViewState() {
+    m_viewport->setFrameSettings(m_viewToolbar->frameSettings());
+    m_viewport->setTimingOverlayVisible(m_viewToolbar->timingOverlay());
+    m_properties->setPickerColorSpace(m_viewToolbar->pickerColorSpace());
+}
+
+void MainWindow::rotateEnvironment(float deltaDeg, int gestureKey) {
+    Environment env = m_controller->scene().environment;
+    env.rotationDeg = std::fmod(env.rotationDeg + deltaDeg, 360.0f);
+    if (env.rotationDeg < 0.0f)
+        env.rotationDeg += 360.0f;
+    m_controller->editEnvironment(env, tr("Rotate environment"), gestureKey);
 }
 
 void MainWindow::createMenus() {
@@ -98,6 +191,10 @@ void MainWindow::createMenus() {
     act->setShortcut(QKeySequence::New);
     act = file->addAction(tr("&Open…"), this, &MainWindow::openDocument);
     act->setShortcut(QKeySequence::Open);
+    m_recentMenu = file->addMenu(tr("Open &Recent"));
+    m_recentMenu->setObjectName(QStringLiteral("recentMenu"));
+    connect(m_recentMenu, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
+    fillRecentMenu(); // an empty menu is disabled until something is opened
     act = file->addAction(tr("&Save"), this, &MainWindow::saveDocument);
     act->setShortcut(QKeySequence::Save);
     act = file->addAction(tr("Save &As…"), this, &MainWindow::saveDocumentAs);
@@ -119,8 +216,136 @@ void MainWindow::createMenus() {
     edit->addAction(redo);
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
+    act = view->addAction(tr("&Frame Mesh"), m_viewport, &ViewportWidget::frameMesh);
+    act->setObjectName(QStringLiteral("frameMeshAction"));
+    act->setShortcut(QKeySequence(Qt::Key_F));
+    act = view->addAction(tr("Reload &Shaders"), this, &MainWindow::reloadShaders);
+    act->setObjectName(QStringLiteral("reloadShadersAction"));
+    act->setShortcut(QKeySequence(Qt::Key_T));
+    act = view->addAction(tr("&Reload Scene"), this, &MainWindow::reloadScene);
+    act->setObjectName(QStringLiteral("reloadSceneAction"));
+    act->setShortcut(QKeySequence(Qt::Key_R));
+    view->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>())
         view->addAction(dock->toggleViewAction());
+    for (QToolBar* bar : findChildren<QToolBar*>())
+        view->addAction(bar->toggleViewAction());
+}
+
+void MainWindow::fillRecentMenu() {
+    m_recentMenu->clear();
+    const QStringList files = recentFiles();
+    for (const QString& path : files) {
+        QAction* act = m_recentMenu->addAction(QFileInfo(path).fileName());
+        act->setToolTip(path);
+        act->setStatusTip(path);
+        connect(act, &QAction::triggered, this, [this, path] {
+            if (maybeSave())
+                openFile(path);
+        });
+    }
+    if (!files.isEmpty()) {
+        m_recentMenu->addSeparator();
+        m_recentMenu->addAction(tr("Clear Menu"), this, [this] {
+            QSettings().remove(kRecentKey);
+            fillRecentMenu();
+        });
+    }
+    m_recentMenu->setEnabled(!files.isEmpty());
+}
+
+QStringList MainWindow::recentFiles() {
+    return QSettings().value(kRecentKey).toStringList();
+}
+
+void MainWindow::addRecentFile(const QString& path) {
+    const QString absolute = QFileInfo(path).absoluteFilePath();
+    QStringList files = recentFiles();
+    files.removeAll(absolute);
+    files.prepend(absolute);
+    while (files.size() > kMaxRecentFiles)
+        files.removeLast();
+    QSettings().setValue(kRecentKey, files);
+}
+
+bool MainWindow::reloadShaders() {
+    QString error;
+    if (m_viewport->reloadShaders(&error)) {
+        m_log->info(tr("Shaders reloaded from disk"));
+        statusBar()->showMessage(tr("Shaders reloaded"), 3000);
+        return true;
+    }
+    m_log->error(tr("Shader reload failed; the last good shaders stay in use:\n%1").arg(error));
+    statusBar()->showMessage(tr("Shader reload failed (see the Log)"), 10000);
+    return false;
+}
+
+bool MainWindow::reloadScene() {
+    const QString path = m_controller->filePath();
+    if (path.isEmpty()) {
+        m_log->info(tr("Reload: the document has no file yet"));
+        return false;
+    }
+    if (m_controller->isDirty()) {
+        const auto answer =
+            QMessageBox::question(this, tr("Reload %1").arg(m_controller->displayName()),
+                                  tr("Discard the unsaved changes and read %1 again from disk?")
+                                      .arg(m_controller->displayName()),
+                                  QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Cancel);
+        if (answer != QMessageBox::Discard)
+            return false;
+    }
+    if (!openFile(path))
+        return false;
+    m_log->info(tr("Reloaded %1").arg(path));
+    return true;
+}
+
+bool MainWindow::openDroppedFile(const QString& path) {
+    switch (dropKindOf(path)) {
+    case DropKind::Document:
+        return maybeSave() && openFile(path);
+    case DropKind::Hdri: {
+        Environment env = m_controller->scene().environment;
+        env.hdri = documentPath(path);
+        m_controller->editEnvironment(env, tr("HDRI %1").arg(QFileInfo(path).fileName()));
+        m_log->info(tr("Environment: %1").arg(path));
+        return true;
+    }
+    case DropKind::Mesh: {
+        MeshRef mesh;
+        mesh.kind = PreviewMeshKind::Custom;
+        mesh.file = documentPath(path);
+        m_controller->editMesh(mesh);
+        m_log->info(tr("Preview mesh: %1").arg(path));
+        return true;
+    }
+    case DropKind::None:
+        break;
+    }
+    m_log->warning(tr("%1: not a scene, preset, HDRI or mesh; nothing done").arg(path));
+    return false;
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+    if (!event->mimeData()->hasUrls())
+        return;
+    for (const QUrl& url : event->mimeData()->urls())
+        if (url.isLocalFile() && dropKindOf(url.toLocalFile()) != DropKind::None) {
+            event->acceptProposedAction();
+            return;
+        }
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+    if (!event->mimeData()->hasUrls())
+        return;
+    bool handled = false;
+    for (const QUrl& url : event->mimeData()->urls())
+        if (url.isLocalFile())
+            handled |= openDroppedFile(url.toLocalFile());
+    if (handled)
+        event->acceptProposedAction();
 }
 
 void MainWindow::updateTitle() {
@@ -137,12 +362,29 @@ void MainWindow::showFrameTime(double cpuMs) {
             text += tr(" · GPU %1 ms").arg(gpuMs, 0, 'f', 1);
     }
     m_frameLabel->setText(text);
+
+    // Environment prefiltering, where the renderer reports it (negative: it does not).
+    const double progress = m_viewport->environmentProgress();
+    if (progress >= 0.0 && progress < 1.0) {
+        m_progressLabel->setText(tr("Prefiltering environment %1 %").arg(int(progress * 100.0)));
+        m_progressLabel->show();
+        // The renderer bakes a slice per frame: keep frames coming until it is done.
+        QTimer::singleShot(15, m_viewport, qOverload<>(&QWidget::update));
+    } else {
+        m_progressLabel->setMinimumWidth(
+            m_progressLabel->fontMetrics().horizontalAdvance(tr("Prefiltering environment 100 %")) +
+            8);
+        m_progressLabel->hide();
+    }
 }
 
 bool MainWindow::openFile(const QString& path) {
     QStringList problems;
-    if (m_controller->openFile(path, &problems))
+    if (m_controller->openFile(path, &problems)) {
+        addRecentFile(path);
         return true;
+    }
+    m_log->error(tr("Could not open %1:\n%2").arg(path, problems.join(QLatin1Char('\n'))));
     QMessageBox box(QMessageBox::Warning, tr("Could not open %1").arg(path),
                     tr("%1 could not be opened; the current document is unchanged.").arg(path),
                     QMessageBox::Ok, this);
@@ -176,6 +418,7 @@ bool MainWindow::saveDocument() {
     QString error;
     if (m_controller->save(&error))
         return true;
+    m_log->error(tr("Save failed: %1").arg(error));
     QMessageBox::warning(this, tr("Save failed"), error);
     return false;
 }
@@ -190,8 +433,11 @@ bool MainWindow::saveDocumentAs() {
         path += QStringLiteral(".json");
     settings.setValue(kLastDirKey, QFileInfo(path).absolutePath());
     QString error;
-    if (m_controller->saveAs(path, &error))
+    if (m_controller->saveAs(path, &error)) {
+        addRecentFile(path);
         return true;
+    }
+    m_log->error(tr("Save failed: %1").arg(error));
     QMessageBox::warning(this, tr("Save failed"), error);
     return false;
 }
@@ -217,6 +463,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         QSettings settings;
         settings.setValue(kGeometryKey, saveGeometry());
         settings.setValue(kStateKey, saveState(kLayoutVersion));
+        m_viewToolbar->saveSettings();
     }
     event->accept();
 }

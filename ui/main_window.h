@@ -1,55 +1,102 @@
 #pragma once
 /// @file main_window.h
-/// The editor window: the viewport in the centre, docks around it (Properties, History), the File
-/// and Edit menus, a status bar with the frame time, and the dirty-document prompt on close.
+/// The editor window: the viewport in the centre with its toolbars (view state; scene mesh and
+/// environment), docks around it (Properties, History, Log), the File, Edit and View menus,
+/// recent files, drag and drop of scenes, presets, HDRIs and meshes, a status bar with the frame
+/// time and environment progress, and the dirty-document prompt on close.
 
 #include <QMainWindow>
+#include <QStringList>
+#include <memory>
 
 class QLabel;
+class QMenu;
 class QUndoView;
+
+namespace velvet {
+class ColorManagement;
+}
 
 namespace velvet::ui {
 
 class DocumentController;
+class LogPanel;
 class PropertyPanel;
+class SceneToolbar;
+class ViewportToolbar;
 class ViewportWidget;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
 public:
-    /// @p restoreLayout: restore geometry and dock state from QSettings (off for screenshots).
+    /// @p restoreLayout: restore geometry, dock state and view state from QSettings and save
+    /// them on close (off for screenshots and tests that need the defaults).
     explicit MainWindow(bool restoreLayout = true, QWidget* parent = nullptr);
     ~MainWindow() override;
+
+    /// Bump when docks or toolbars are added or renamed (QMainWindow::saveState's version).
+    static constexpr int kLayoutVersion = 2;
+    /// At most this many entries in File > Open Recent.
+    static constexpr int kMaxRecentFiles = 8;
 
     DocumentController* controller() const { return m_controller; }
     ViewportWidget* viewport() const { return m_viewport; }
     PropertyPanel* propertyPanel() const { return m_properties; }
+    LogPanel* logPanel() const { return m_log; }
+    ViewportToolbar* viewportToolbar() const { return m_viewToolbar; }
+    SceneToolbar* sceneToolbar() const { return m_sceneToolbar; }
 
-    /// Opens @p path, showing problems in a message box. False when it could not be opened.
+    /// Opens @p path, showing problems in a message box and the Log. False when it could not be
+    /// opened. Successful opens go to the recent files.
     bool openFile(const QString& path);
+    /// A file dropped onto the window: .json opens (after the dirty prompt), .exr/.hdr becomes
+    /// the HDRI and a mesh file the custom preview mesh (both undoable). False when the type is
+    /// not handled or the open failed.
+    bool openDroppedFile(const QString& path);
+
+    /// File > Open Recent, newest first (QSettings, at most kMaxRecentFiles).
+    static QStringList recentFiles();
+    static void addRecentFile(const QString& path);
 
 public slots:
     void newDocument();
     void openDocument();
     bool saveDocument();
     bool saveDocumentAs();
+    /// T: recompiles the shaders from disk; errors (file:line) go to the Log, the last good
+    /// programs keep drawing.
+    bool reloadShaders();
+    /// R: reads the document's file again (asks first when there are unsaved changes).
+    bool reloadScene();
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
 
 private:
     void createDocks();
+    void createToolbars();
     void createMenus();
     void updateTitle();
+    void fillRecentMenu();
     /// Asks whether to save a dirty document. False when the artist cancels.
     bool maybeSave();
     void showFrameTime(double cpuMs);
+    void applyViewState();
+    void rotateEnvironment(float deltaDeg, int gestureKey);
 
+    std::shared_ptr<const ColorManagement> m_colorManagement;
     DocumentController* m_controller;
     ViewportWidget* m_viewport;
     PropertyPanel* m_properties = nullptr;
     QUndoView* m_history = nullptr;
+    LogPanel* m_log = nullptr;
+    ViewportToolbar* m_viewToolbar = nullptr;
+    SceneToolbar* m_sceneToolbar = nullptr;
+    QMenu* m_recentMenu = nullptr;
     QLabel* m_frameLabel = nullptr;
+    QLabel* m_progressLabel = nullptr;
     bool m_saveLayout;
 };
 

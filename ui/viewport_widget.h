@@ -3,17 +3,31 @@
 /// The 3D viewport: a thin QOpenGLWidget that forwards initializeGL / resizeGL / paintGL to
 /// velvet::render::Renderer and holds no GL logic of its own (DESIGN.md, "Layers"). Setters store
 /// a value, mark it dirty and call update(); paintGL hands dirty state to the renderer.
+///
+/// Navigation (view state, never in the document): left drag orbits, middle drag pans, the wheel
+/// zooms, right drag looks around (fly mode) while W A S D Q E move, F frames the mesh.
+/// Shift + right drag rotates the HDRI: that is a document edit, so the widget only reports it
+/// (environmentRotationDragged) and the window turns it into an undoable command.
 
 #include "core/scene.h"
 #include "render/renderer.h"
 
+#include <QElapsedTimer>
 #include <QOpenGLWidget>
 #include <QPoint>
+#include <QSet>
 #include <QString>
 #include <QStringList>
 #include <QSurfaceFormat>
 #include <memory>
 #include <optional>
+
+class QLabel;
+class QTimer;
+
+namespace velvet {
+class ColorManagement;
+}
 
 namespace velvet::ui {
 
@@ -33,6 +47,21 @@ public:
     void resetView();
     /// Frame settings other than the size (exposure, tone mapper, debug view).
     void setFrameSettings(const render::FrameSettings& settings);
+    const render::FrameSettings& frameSettings() const { return m_settings; }
+    /// The OCIO config the display transform uses (shared with the toolbar and pickers).
+    void setColorManagement(std::shared_ptr<const ColorManagement> colorManagement);
+    /// Shows the last frame's per-pass GPU timings in a label over the viewport.
+    void setTimingOverlayVisible(bool visible);
+    bool isTimingOverlayVisible() const;
+    /// Centres the view on the mesh at the default framing distance (keeps yaw and pitch).
+    void frameMesh();
+    /// Recompiles every shader program from disk (Renderer::reloadShaders). On a compile error
+    /// the last good programs stay, the viewport keeps drawing, and @p error gets file:line and
+    /// the driver's message. False also when there is no renderer yet.
+    bool reloadShaders(QString* error);
+    /// Environment prefiltering progress in [0, 1], or a negative value when the renderer does
+    /// not report one.
+    double environmentProgress() const;
 
     /// The camera the viewport draws with: the scene's, or the artist's orbit of it.
     Camera viewCamera() const;
@@ -53,6 +82,9 @@ signals:
     void renderFailed(const QString& message);
     /// Problems found while taking a scene (a missing HDRI or texture); a fallback is used.
     void sceneProblems(const QStringList& problems);
+    /// Shift + right drag moved by @p deltaDeg degrees of HDRI rotation. Every move of one drag
+    /// carries the same @p gestureKey, so the edits merge into one undo command.
+    void environmentRotationDragged(float deltaDeg, int gestureKey);
 
 protected:
     void initializeGL() override;
@@ -63,8 +95,16 @@ protected:
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
+    void keyReleaseEvent(QKeyEvent* event) override;
+    void focusOutEvent(QFocusEvent* event) override;
 
 private:
+    enum class Drag { None, Orbit, Pan, Look, RotateEnvironment };
+
+    void setViewCamera(const Camera& camera);
+    void flyStep();
+    void updateOverlay();
     void releaseRenderer();
     void fail(const QString& message);
     void paintError();
@@ -76,8 +116,14 @@ private:
     bool m_sceneDirty = true;
     QString m_error;
     int m_frameCount = 0;
-    bool m_dragging = false;
+    std::shared_ptr<const ColorManagement> m_colorManagement;
+    Drag m_drag = Drag::None;
+    int m_gestureKey = 0;
     QPoint m_lastMouse;
+    QSet<int> m_flyKeys; ///< W A S D Q E held while looking
+    QTimer* m_flyTimer;
+    QElapsedTimer m_flyClock;
+    QLabel* m_overlay;
 };
 
 } // namespace velvet::ui

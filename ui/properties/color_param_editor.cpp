@@ -1,7 +1,5 @@
 #include "ui/properties/color_param_editor.h"
 
-#include "core/color_management.h"
-
 #include <QColorDialog>
 #include <QHBoxLayout>
 #include <QPainter>
@@ -10,21 +8,6 @@
 #include <algorithm>
 
 namespace velvet::ui {
-namespace {
-
-// The picker works in display-encoded sRGB; the document stores scene-linear Rec.709.
-QColor displayColor(glm::vec3 linear) {
-    auto encode = [](float v) { return std::clamp(linearToSrgb(v), 0.0f, 1.0f); };
-    return QColor::fromRgbF(encode(linear.x), encode(linear.y), encode(linear.z));
-}
-
-glm::vec3 linearColor(const QColor& display) {
-    return {srgbToLinear(static_cast<float>(display.redF())),
-            srgbToLinear(static_cast<float>(display.greenF())),
-            srgbToLinear(static_cast<float>(display.blueF()))};
-}
-
-} // namespace
 
 ColorParamEditor::ColorParamEditor(ParamId id, QWidget* parent)
     : ParamEditor(id, parent), m_swatch(new QToolButton(this)) {
@@ -44,7 +27,7 @@ ColorParamEditor::ColorParamEditor(ParamId id, QWidget* parent)
 
 void ColorParamEditor::setValue(glm::vec3 linear) {
     m_linear = linear;
-    const QColor shown = displayColor(linear);
+    const QColor shown = m_space.toQColor(linear);
     QPixmap pixmap(m_swatch->iconSize());
     pixmap.fill(shown);
     {
@@ -53,20 +36,27 @@ void ColorParamEditor::setValue(glm::vec3 linear) {
         painter.drawRect(pixmap.rect().adjusted(0, 0, -1, -1));
     }
     m_swatch->setIcon(QIcon(pixmap));
-    m_swatch->setToolTip(tr("%1\nlinear %2, %3, %4 · sRGB %5")
+    m_swatch->setToolTip(tr("%1\nscene-linear %2, %3, %4 · %6 %5")
                              .arg(QString::fromUtf8(meta().tooltip))
                              .arg(linear.x, 0, 'f', 3)
                              .arg(linear.y, 0, 'f', 3)
                              .arg(linear.z, 0, 'f', 3)
-                             .arg(shown.name()));
+                             .arg(shown.name(), m_space.name()));
+}
+
+void ColorParamEditor::setColorSpace(const PickerColorSpace& space) {
+    m_space = space;
+    setValue(m_linear);
 }
 
 void ColorParamEditor::pick() {
-    const QColor chosen =
-        QColorDialog::getColor(displayColor(m_linear), this, QString::fromUtf8(meta().label));
-    if (!chosen.isValid())
+    const QColor initial = m_space.toQColor(m_linear);
+    const QColor chosen = QColorDialog::getColor(
+        initial, this, tr("%1 (%2)").arg(QString::fromUtf8(meta().label), m_space.name()));
+    // Unchanged (or cancelled): keep the stored value exactly, rather than its round trip.
+    if (!chosen.isValid() || chosen.rgb() == initial.rgb())
         return;
-    emit edited(param(), linearColor(chosen), 0);
+    emit edited(param(), m_space.fromQColor(chosen), 0);
 }
 
 } // namespace velvet::ui

@@ -1,8 +1,10 @@
 #pragma once
 /// @file color_param_editor.h
 /// A Color parameter: a swatch button that opens a colour picker. The document stores
-/// scene-linear Rec.709; the swatch and the picker show display-encoded sRGB.
+/// scene-linear Rec.709; the swatch and the picker show display values through the viewport's
+/// display / view (PickerColorSpace; plain sRGB with the built-in tone mapper).
 
+#include "ui/color_picking.h"
 #include "ui/properties/param_editor.h"
 
 class QToolButton;
@@ -14,6 +16,9 @@ class ColorParamEditor : public ParamEditor {
 public:
     ColorParamEditor(ParamId id, QWidget* parent = nullptr);
     void setValue(glm::vec3 linear) override;
+    /// How values are shown and picked; redraws the swatch.
+    void setColorSpace(const PickerColorSpace& space);
+    const PickerColorSpace& colorSpace() const { return m_space; }
 
     QToolButton* swatch() const { return m_swatch; }
     /// The linear value shown.
@@ -24,6 +29,7 @@ private:
 
     QToolButton* m_swatch;
     glm::vec3 m_linear{0.0f};
+    PickerColorSpace m_space;
 };
 
 } // namespace velvet::ui

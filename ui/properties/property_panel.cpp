@@ -1,6 +1,7 @@
 #include "ui/properties/property_panel.h"
 
 #include "ui/document_controller.h"
+#include "ui/properties/color_param_editor.h"
 #include "ui/properties/param_editor.h"
 
 #include <QFormLayout>
@@ -75,6 +76,12 @@ void PropertyPanel::onEdited(ParamId id, glm::vec3 value, int mergeKey) {
     if (m_refreshing)
         return; // a value coming from the document, not from the artist
     m_controller->editParam(id, value, mergeKey);
+}
+
+void PropertyPanel::setPickerColorSpace(const PickerColorSpace& space) {
+    for (ParamEditor* editor : m_editors)
+        if (auto* color = qobject_cast<ColorParamEditor*>(editor))
+            color->setColorSpace(space);
 }
 
 } // namespace velvet::ui

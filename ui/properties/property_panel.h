@@ -5,6 +5,7 @@
 /// changes (undo, redo, open) refresh the editors without creating commands.
 
 #include "core/material.h"
+#include "ui/color_picking.h"
 
 #include <QWidget>
 #include <vector>
@@ -21,6 +22,8 @@ public:
 
     /// The editor of @p id (never null).
     ParamEditor* editor(ParamId id) const { return m_editors[static_cast<size_t>(id)]; }
+    /// How colour swatches and pickers show and pick values (the viewport's display / view).
+    void setPickerColorSpace(const PickerColorSpace& space);
 
 private:
     void refresh(ParamId id);

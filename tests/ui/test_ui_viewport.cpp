@@ -1,0 +1,435 @@
+// Drives the real MainWindow's viewport toolbars, mouse and keys under xvfb-run: debug views,
+// OCIO view and exposure change the viewport's pixels; preview mesh and HDRI changes (combo,
+// Shift + right drag, file drop) are undoable document edits; T with a broken shader keeps the
+// viewport drawing and logs file:line, and recovers once the file is fixed; the dock layout
+// restores; colour pickers round-trip through the OCIO view; recent files keep the newest 8.
+#include "core/color_management.h"
+#include "core/resources.h"
+#include "render/renderer.h"
+#include "ui/color_picking.h"
+#include "ui/document_controller.h"
+#include "ui/log_panel.h"
+#include "ui/main_window.h"
+#include "ui/viewport_toolbar.h"
+#include "ui/viewport_widget.h"
+
+#include <QApplication>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QMimeData>
+#include <QRegularExpression>
+#include <QSignalSpy>
+#include <QStandardPaths>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QToolBar>
+#include <QUndoStack>
+#include <QUrl>
+#include <cmath>
+#include <filesystem>
+#include <glm/geometric.hpp>
+
+using namespace velvet;
+using namespace velvet::ui;
+
+namespace {
+
+constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
+
+/// Mean colour of a 5x5 block around the centre (on the sphere), in 0..255 units.
+QVector<double> centrePixel(const QImage& image) {
+    QVector<double> sum(3, 0.0);
+    const int cx = image.width() / 2, cy = image.height() / 2;
+    for (int y = cy - 2; y <= cy + 2; ++y)
+        for (int x = cx - 2; x <= cx + 2; ++x) {
+            const QColor c = image.pixelColor(x, y);
+            sum[0] += c.red();
+            sum[1] += c.green();
+            sum[2] += c.blue();
+        }
+    for (double& s : sum)
+        s /= 25.0;
+    return sum;
+}
+
+double maxDifference(const QVector<double>& a, const QVector<double>& b) {
+    double d = 0.0;
+    for (int i = 0; i < 3; ++i)
+        d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+double luma(const QVector<double>& p) {
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+QString describe(const QVector<double>& p) {
+    return QStringLiteral("(%1, %2, %3)").arg(p[0]).arg(p[1]).arg(p[2]);
+}
+
+bool copyTree(const QString& from, const QString& to) {
+    std::error_code ec;
+    std::filesystem::copy(from.toStdString(), to.toStdString(),
+                          std::filesystem::copy_options::recursive, ec);
+    return !ec;
+}
+
+void sendMouse(QWidget* w, QEvent::Type type, QPoint pos, Qt::MouseButton button,
+               Qt::MouseButtons buttons, Qt::KeyboardModifiers modifiers) {
+    QMouseEvent event(type, QPointF(pos), w->mapToGlobal(QPointF(pos)), button, buttons, modifiers);
+    QCoreApplication::sendEvent(w, &event);
+}
+
+} // namespace
+
+class TestUiViewport : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void cleanupTestCase();
+    void init();
+
+    void debugViewComboListsEveryView();
+    void debugViewChangesPixel();
+    void ocioViewAndExposureChangePixel();
+    void previewMeshIsUndoable();
+    void shiftRightDragRotatesEnvironment();
+    void frameMeshResetsTargetAndDistance();
+    void brokenShaderKeepsDrawingAndLogs();
+    void droppedExrSetsHdri();
+    void dockLayoutRestores();
+    void pickerRoundTripsThroughOcioView();
+    void recentFilesKeepNewestEight();
+
+private:
+    QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
+    template <class T>
+    T* find(const QString& name) {
+        T* w = m_window->findChild<T*>(name);
+        if (!w)
+            qWarning("no widget named %s", qPrintable(name));
+        return w;
+    }
+    /// Resets the view state to the defaults (built-in tone mapper, Final, 0 EV).
+    void resetViewState();
+
+    QTemporaryDir m_resources; ///< a copy of resources/ the shader test may break
+    std::unique_ptr<MainWindow> m_window;
+    DocumentController* m_doc = nullptr;
+};
+
+void TestUiViewport::initTestCase() {
+    QVERIFY(m_resources.isValid());
+    const QString copy = m_resources.filePath(QStringLiteral("resources"));
+    QVERIFY(copyTree(QStringLiteral(VELVET_SOURCE_DIR "/resources"), copy));
+    // Read by core::resources at every lookup; must be set before the renderer loads shaders.
+    qputenv("VELVET_RESOURCES", copy.toUtf8());
+
+    m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
+    m_doc = m_window->controller();
+    ViewportWidget* viewport = m_window->viewport();
+    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
+    QSignalSpy failures(viewport, &ViewportWidget::renderFailed);
+    m_window->resize(800, 600);
+    m_window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+    m_window->activateWindow();
+    QApplication::setActiveWindow(m_window.get());
+    QTRY_VERIFY(m_window->isActiveWindow());
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() || !failures.isEmpty(), kFrameTimeoutMs);
+    QVERIFY2(failures.isEmpty(), qPrintable(viewport->errorMessage()));
+    QVERIFY(viewport->renderer() != nullptr);
+}
+
+void TestUiViewport::cleanupTestCase() {
+    m_doc->newDocument();
+    QVERIFY(m_window->close());
+    m_window.reset();
+}
+
+void TestUiViewport::init() {
+    m_doc->newDocument();
+    resetViewState();
+}
+
+void TestUiViewport::resetViewState() {
+    find<QComboBox>(QStringLiteral("debugViewCombo"))->setCurrentIndex(0);
+    find<QComboBox>(QStringLiteral("displayCombo"))->setCurrentIndex(0);
+    find<QDoubleSpinBox>(QStringLiteral("exposureSpin"))->setValue(0.0);
+}
+
+void TestUiViewport::debugViewComboListsEveryView() {
+    // The combo is built from the toolbar's table; every row names a distinct DebugView.
+    auto* combo = find<QComboBox>(QStringLiteral("debugViewCombo"));
+    QVERIFY(combo);
+    const auto views = ViewportToolbar::debugViews();
+    QCOMPARE(combo->count(), int(views.size()));
+    for (size_t i = 0; i < views.size(); ++i) {
+        QCOMPARE(combo->itemData(int(i)).toInt(), int(views[i].view));
+        QCOMPARE(int(views[i].view), int(i)); // in enum order, none skipped
+    }
+}
+
+void TestUiViewport::debugViewChangesPixel() {
+    auto* combo = find<QComboBox>(QStringLiteral("debugViewCombo"));
+    const QVector<double> final = centrePixel(viewportImage());
+    combo->setCurrentIndex(combo->findText(QStringLiteral("Normal")));
+    QCOMPARE(m_window->viewport()->frameSettings().view, render::DebugView::Normal);
+    const QVector<double> normal = centrePixel(viewportImage());
+    QVERIFY2(maxDifference(final, normal) > 10.0,
+             qPrintable(describe(final) + " vs " + describe(normal)));
+    combo->setCurrentIndex(0);
+    QVERIFY(maxDifference(final, centrePixel(viewportImage())) < 2.0);
+}
+
+void TestUiViewport::ocioViewAndExposureChangePixel() {
+    auto* display = find<QComboBox>(QStringLiteral("displayCombo"));
+    auto* view = find<QComboBox>(QStringLiteral("viewCombo"));
+    auto* exposure = find<QDoubleSpinBox>(QStringLiteral("exposureSpin"));
+    const int srgb = display->findText(QStringLiteral("sRGB"));
+    QVERIFY2(srgb > 0, "the shipped config offers the sRGB display");
+    display->setCurrentIndex(srgb);
+    QVERIFY(view->isEnabled());
+    view->setCurrentIndex(view->findText(QStringLiteral("Standard")));
+    QCOMPARE(m_window->viewport()->frameSettings().displayView, std::string("Standard"));
+    const QVector<double> standard = centrePixel(viewportImage());
+    view->setCurrentIndex(view->findText(QStringLiteral("ACES")));
+    QCOMPARE(m_window->viewport()->frameSettings().displayView, std::string("ACES"));
+    const QVector<double> aces = centrePixel(viewportImage());
+    QVERIFY2(maxDifference(standard, aces) > 3.0,
+             qPrintable(describe(standard) + " vs " + describe(aces)));
+
+    exposure->setValue(1.0);
+    QCOMPARE(m_window->viewport()->frameSettings().exposureEv, 1.0f);
+    const QVector<double> brighter = centrePixel(viewportImage());
+    QVERIFY2(luma(brighter) > luma(aces) + 5.0,
+             qPrintable(describe(aces) + " -> " + describe(brighter)));
+    // View state, never a document edit.
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+}
+
+void TestUiViewport::previewMeshIsUndoable() {
+    auto* combo = find<QComboBox>(QStringLiteral("meshCombo"));
+    QVERIFY(combo);
+    QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::Sphere);
+    const int cube = combo->findData(int(PreviewMeshKind::Cube));
+    QVERIFY(cube >= 0);
+    combo->setCurrentIndex(cube);
+    emit combo->activated(cube); // what a click on the item does
+    QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::Cube);
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::Sphere);
+    QCOMPARE(combo->currentData().toInt(), int(PreviewMeshKind::Sphere));
+    m_doc->undoStack()->redo();
+    QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::Cube);
+}
+
+void TestUiViewport::shiftRightDragRotatesEnvironment() {
+    ViewportWidget* viewport = m_window->viewport();
+    const float before = m_doc->scene().environment.rotationDeg;
+    const Camera camera = viewport->viewCamera();
+    QPoint pos = viewport->rect().center();
+    sendMouse(viewport, QEvent::MouseButtonPress, pos, Qt::RightButton, Qt::RightButton,
+              Qt::ShiftModifier);
+    for (int i = 0; i < 5; ++i) {
+        pos += QPoint(20, 0);
+        sendMouse(viewport, QEvent::MouseMove, pos, Qt::NoButton, Qt::RightButton,
+                  Qt::ShiftModifier);
+    }
+    sendMouse(viewport, QEvent::MouseButtonRelease, pos, Qt::RightButton, Qt::NoButton,
+              Qt::ShiftModifier);
+    const float after = m_doc->scene().environment.rotationDeg;
+    QVERIFY2(std::abs(after - before) > 10.0f, qPrintable(QString::number(after)));
+    QCOMPARE(m_doc->undoStack()->count(), 1);  // five moves, one command
+    QVERIFY(viewport->viewCamera() == camera); // the camera did not move
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->scene().environment.rotationDeg, before);
+
+    // A plain right drag looks around (view state): no document edit.
+    sendMouse(viewport, QEvent::MouseButtonPress, pos, Qt::RightButton, Qt::RightButton,
+              Qt::NoModifier);
+    sendMouse(viewport, QEvent::MouseMove, pos + QPoint(30, 10), Qt::NoButton, Qt::RightButton,
+              Qt::NoModifier);
+    sendMouse(viewport, QEvent::MouseButtonRelease, pos + QPoint(30, 10), Qt::RightButton,
+              Qt::NoButton, Qt::NoModifier);
+    QVERIFY(!m_doc->undoStack()->canUndo());
+    QVERIFY(!(viewport->viewCamera() == camera));
+}
+
+void TestUiViewport::frameMeshResetsTargetAndDistance() {
+    ViewportWidget* viewport = m_window->viewport();
+    // Middle drag pans: the target moves.
+    const QPoint c = viewport->rect().center();
+    sendMouse(viewport, QEvent::MouseButtonPress, c, Qt::MiddleButton, Qt::MiddleButton,
+              Qt::NoModifier);
+    sendMouse(viewport, QEvent::MouseMove, c + QPoint(40, 25), Qt::NoButton, Qt::MiddleButton,
+              Qt::NoModifier);
+    sendMouse(viewport, QEvent::MouseButtonRelease, c + QPoint(40, 25), Qt::MiddleButton,
+              Qt::NoButton, Qt::NoModifier);
+    QVERIFY(glm::length(viewport->viewCamera().target) > 0.01f);
+    QWheelEvent wheel(QPointF(c), viewport->mapToGlobal(QPointF(c)), QPoint(), QPoint(0, 240),
+                      Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+    QCoreApplication::sendEvent(viewport, &wheel);
+    QTest::keyClick(m_window.get(), Qt::Key_F);
+    const Camera framed = viewport->viewCamera();
+    QVERIFY(glm::length(framed.target) < 1e-6f);
+    QCOMPARE(framed.distance, Camera{}.distance);
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+}
+
+void TestUiViewport::brokenShaderKeepsDrawingAndLogs() {
+    ViewportWidget* viewport = m_window->viewport();
+    LogPanel* log = m_window->logPanel();
+    const QString file = QString::fromStdString(resources::path("shaders/lighting.frag").string());
+    QVERIFY2(file.startsWith(m_resources.path()), qPrintable(file));
+    QFile f(file);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QByteArray good = f.readAll();
+    f.close();
+
+    // Insert a syntax error right after the output declaration; remember its line.
+    QList<QByteArray> lines = good.split('\n');
+    int brokenLine = -1;
+    for (int i = 0; i < lines.size(); ++i)
+        if (lines[i].contains("out vec4 outColor")) {
+            lines.insert(i + 1, "float velvetBroken = ;");
+            brokenLine = i + 2; // 1-based
+            break;
+        }
+    QVERIFY(brokenLine > 0);
+    QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    f.write(lines.join('\n'));
+    f.close();
+
+    const QVector<double> before = centrePixel(viewportImage());
+    const int compiles = viewport->renderer()->shaderCompileCount();
+    const size_t logged = log->entries().size();
+    QTest::keyClick(m_window.get(), Qt::Key_T);
+    QCOMPARE(log->entries().size(), logged + 1);
+    const LogPanel::Entry& entry = log->entries().back();
+    QCOMPARE(entry.severity, LogPanel::Severity::Error);
+    const QRegularExpressionMatch match =
+        QRegularExpression(QStringLiteral("lighting\\.frag:(\\d+)")).match(entry.text);
+    QVERIFY2(match.hasMatch(), qPrintable(entry.text));
+    QCOMPARE(match.captured(1).toInt(), brokenLine);
+    // The last good programs keep drawing the same picture.
+    QVERIFY(viewport->renderer() != nullptr);
+    QVERIFY(viewport->errorMessage().isEmpty());
+    const int frames = viewport->frameCount();
+    const QVector<double> during = centrePixel(viewportImage());
+    QVERIFY(maxDifference(before, during) < 2.0);
+    QVERIFY(viewport->frameCount() > frames);
+
+    // Fixed on disk: T recovers (every program rebuilt, no error logged).
+    QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    f.write(good);
+    f.close();
+    QTest::keyClick(m_window.get(), Qt::Key_T);
+    QCOMPARE(log->entries().back().severity, LogPanel::Severity::Info);
+    QVERIFY(viewport->renderer()->shaderCompileCount() > compiles);
+    QVERIFY(maxDifference(before, centrePixel(viewportImage())) < 2.0);
+}
+
+void TestUiViewport::droppedExrSetsHdri() {
+    QTemporaryDir dir;
+    const QString exr = dir.filePath(QStringLiteral("dropped.exr"));
+    QVERIFY(QFile::copy(QString::fromStdString(resources::path("hdri/studio.exr").string()), exr));
+    const Environment before = m_doc->scene().environment;
+
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(exr)});
+    const QPointF pos = QPointF(m_window->rect().center());
+    QDragEnterEvent enter(pos.toPoint(), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QCoreApplication::sendEvent(m_window.get(), &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QCoreApplication::sendEvent(m_window.get(), &drop);
+    QVERIFY(drop.isAccepted());
+
+    QCOMPARE(QString::fromStdString(m_doc->scene().environment.hdri),
+             QFileInfo(exr).absoluteFilePath());
+    QCOMPARE(find<QComboBox>(QStringLiteral("hdriCombo"))->currentText(),
+             QStringLiteral("dropped.exr"));
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    m_doc->undoStack()->undo();
+    QVERIFY(m_doc->scene().environment == before);
+
+    // Not a file Velvet takes: refused at the door.
+    QMimeData text;
+    text.setUrls({QUrl::fromLocalFile(dir.filePath(QStringLiteral("notes.txt")))});
+    QDragEnterEvent refused(pos.toPoint(), Qt::CopyAction, &text, Qt::LeftButton, Qt::NoModifier);
+    refused.setAccepted(false);
+    QCoreApplication::sendEvent(m_window.get(), &refused);
+    QVERIFY(!refused.isAccepted());
+}
+
+void TestUiViewport::dockLayoutRestores() {
+    QByteArray saved;
+    {
+        MainWindow first(/*restoreLayout=*/true);
+        first.resize(800, 600);
+        auto* log = first.findChild<QDockWidget*>(QStringLiteral("logDock"));
+        auto* history = first.findChild<QDockWidget*>(QStringLiteral("historyDock"));
+        QVERIFY(log && history);
+        first.addDockWidget(Qt::LeftDockWidgetArea, log); // the artist moved the Log
+        history->hide();                                  // and closed History
+        saved = first.saveState(MainWindow::kLayoutVersion);
+        QVERIFY(first.close()); // saves the layout to QSettings
+    }
+    MainWindow second(/*restoreLayout=*/true);
+    second.resize(800, 600);
+    auto* log = second.findChild<QDockWidget*>(QStringLiteral("logDock"));
+    auto* history = second.findChild<QDockWidget*>(QStringLiteral("historyDock"));
+    QCOMPARE(second.dockWidgetArea(log), Qt::LeftDockWidgetArea);
+    QVERIFY(history->isHidden());
+    QCOMPARE(second.saveState(MainWindow::kLayoutVersion), saved);
+    QVERIFY(second.close());
+}
+
+void TestUiViewport::pickerRoundTripsThroughOcioView() {
+    auto cm = std::make_shared<ColorManagement>();
+    std::string error;
+    QVERIFY2(cm->loadDefault(&error), error.c_str());
+    PickerColorSpace srgb;
+    const glm::vec3 linear(0.18f, 0.5f, 0.02f);
+    QVERIFY(glm::length(srgb.toLinear(srgb.toDisplay(linear)) - linear) < 1e-5f);
+
+    PickerColorSpace aces{cm, DisplaySettings{"sRGB", "ACES", "", 0.0f}};
+    QVERIFY(!aces.isSrgb());
+    const glm::vec3 shown = aces.toDisplay(linear);
+    QVERIFY(glm::length(shown - srgb.toDisplay(linear)) > 0.01f); // the view is not plain sRGB
+    const glm::vec3 back = aces.toLinear(shown);
+    const glm::vec3 again = aces.toDisplay(back);
+    for (int c = 0; c < 3; ++c)
+        QVERIFY2(
+            std::abs(again[c] - shown[c]) < 1.0f / 255.0f,
+            qPrintable(QStringLiteral("channel %1: %2 -> %3").arg(c).arg(shown[c]).arg(again[c])));
+}
+
+void TestUiViewport::recentFilesKeepNewestEight() {
+    for (int i = 0; i < 10; ++i)
+        MainWindow::addRecentFile(QStringLiteral("/tmp/velvet-recent-%1.json").arg(i));
+    MainWindow::addRecentFile(QStringLiteral("/tmp/velvet-recent-5.json")); // again: to the top
+    const QStringList files = MainWindow::recentFiles();
+    QCOMPARE(files.size(), MainWindow::kMaxRecentFiles);
+    QCOMPARE(files.front(), QStringLiteral("/tmp/velvet-recent-5.json"));
+    QCOMPARE(files.count(QStringLiteral("/tmp/velvet-recent-5.json")), 1);
+    QVERIFY(!files.contains(QStringLiteral("/tmp/velvet-recent-0.json")));
+}
+
+int main(int argc, char** argv) {
+    QStandardPaths::setTestModeEnabled(true); // QSettings go to a throwaway place
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("VelvetViewportTest"));
+    QApplication::setOrganizationName(QStringLiteral("VelvetTest"));
+    TestUiViewport test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_ui_viewport.moc"

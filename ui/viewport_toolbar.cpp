@@ -1,0 +1,421 @@
+#include "ui/viewport_toolbar.h"
+
+#include "core/color_management.h"
+#include "core/resources.h"
+#include "ui/commands/set_scene_command.h"
+#include "ui/document_controller.h"
+
+#include <QAction>
+#include <QComboBox>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLabel>
+#include <QSettings>
+#include <QSignalBlocker>
+#include <QSlider>
+#include <cmath>
+#include <filesystem>
+
+namespace velvet::ui {
+namespace {
+
+using render::DebugView;
+
+/// Keep in step with render::DebugView (renderer.h): one row per value, in enum order.
+constexpr DebugViewEntry kDebugViews[] = {
+    {DebugView::Final, "Final"},
+    {DebugView::Albedo, "Albedo"},
+    {DebugView::Normal, "Normal"},
+    {DebugView::Depth, "Depth"},
+    {DebugView::Roughness, "Roughness"},
+    {DebugView::Metallic, "Metallic"},
+    {DebugView::Position, "Position"},
+    {DebugView::Specular, "Specular"},
+    {DebugView::Clearcoat, "Clearcoat"},
+    {DebugView::Sheen, "Sheen"},
+    {DebugView::Occlusion, "Occlusion"},
+    {DebugView::Emissive, "Emissive"},
+    {DebugView::MaterialId, "Material ID"},
+    {DebugView::LightsPerPixel, "Lights per pixel"},
+    {DebugView::DiffuseOnly, "Diffuse only"},
+    {DebugView::SpecularOnly, "Specular only"},
+    {DebugView::BaseSpecular, "Base specular"},
+    {DebugView::SheenOnly, "Sheen only"},
+    {DebugView::ClearcoatOnly, "Clearcoat only"},
+};
+
+const char* const kDebugViewKey = "viewport/debugView";
+const char* const kDisplayKey = "viewport/display";
+const char* const kViewKey = "viewport/view";
+const char* const kLookKey = "viewport/look";
+const char* const kExposureKey = "viewport/exposureEv";
+const char* const kOverlayKey = "viewport/timingOverlay";
+
+constexpr double kMaxExposure = 10.0;
+constexpr int kExposureSliderSteps = 10; // slider units per EV
+
+constexpr int kRoleAction = Qt::UserRole + 1; ///< combo items that open a file dialog
+
+/// The form core uses for resource paths (document_io.cpp): absolute, normal, '/' separators.
+QString normalPath(const QString& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path p(path.toStdString());
+    const fs::path abs = fs::absolute(p, ec);
+    return QString::fromStdString((ec ? p : abs).lexically_normal().generic_string());
+}
+
+QString fromView(std::string_view text) {
+    return QString::fromUtf8(text.data(), static_cast<qsizetype>(text.size()));
+}
+
+/// "rounded-cube" -> "Rounded cube".
+QString prettyName(std::string_view name) {
+    QString text = fromView(name).replace(QLatin1Char('-'), QLatin1Char(' '));
+    if (!text.isEmpty())
+        text[0] = text[0].toUpper();
+    return text;
+}
+
+QComboBox* makeCombo(const QString& name, const QString& tip, QWidget* parent) {
+    auto* combo = new QComboBox(parent);
+    combo->setObjectName(name);
+    combo->setToolTip(tip);
+    combo->setSizeAdjustPolicy(QComboBox::AdjustToContents);
+    return combo;
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// ViewportToolbar
+
+ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorManagement,
+                                 QWidget* parent)
+    : QToolBar(tr("View"), parent), m_colorManagement(std::move(colorManagement)) {
+    setObjectName(QStringLiteral("viewportToolbar"));
+
+    m_debugView = makeCombo(QStringLiteral("debugViewCombo"),
+                            tr("What the viewport shows: the final image or one G-buffer or "
+                               "lighting channel"),
+                            this);
+    for (const DebugViewEntry& entry : kDebugViews)
+        m_debugView->addItem(tr(entry.label), static_cast<int>(entry.view));
+    addWidget(m_debugView);
+    addSeparator();
+
+    m_display = makeCombo(QStringLiteral("displayCombo"),
+                          tr("OpenColorIO display, or the built-in PBR Neutral tone mapper"), this);
+    m_display->addItem(tr("Built-in (PBR Neutral)"), QString());
+    const bool haveOcio = m_colorManagement && m_colorManagement->isLoaded();
+    if (haveOcio)
+        for (const std::string& display : m_colorManagement->displays())
+            m_display->addItem(QString::fromStdString(display), QString::fromStdString(display));
+    m_view = makeCombo(QStringLiteral("viewCombo"), tr("OpenColorIO view of the display"), this);
+    m_look = makeCombo(QStringLiteral("lookCombo"), tr("OpenColorIO look"), this);
+    addWidget(m_display);
+    addWidget(m_view);
+    addWidget(m_look);
+    addSeparator();
+
+    auto* evLabel = new QLabel(tr(" EV "), this);
+    addWidget(evLabel);
+    m_exposureSlider = new QSlider(Qt::Horizontal, this);
+    m_exposureSlider->setObjectName(QStringLiteral("exposureSlider"));
+    m_exposureSlider->setRange(int(-kMaxExposure * kExposureSliderSteps),
+                               int(kMaxExposure * kExposureSliderSteps));
+    m_exposureSlider->setMaximumWidth(100);
+    m_exposureSlider->setToolTip(tr("Exposure in stops (scene-linear × 2^EV)"));
+    addWidget(m_exposureSlider);
+    m_exposure = new QDoubleSpinBox(this);
+    m_exposure->setObjectName(QStringLiteral("exposureSpin"));
+    m_exposure->setRange(-kMaxExposure, kMaxExposure);
+    m_exposure->setSingleStep(0.1);
+    m_exposure->setDecimals(1);
+    m_exposure->setToolTip(m_exposureSlider->toolTip());
+    addWidget(m_exposure);
+    addSeparator();
+
+    m_overlay = addAction(tr("Timings"));
+    m_overlay->setObjectName(QStringLiteral("timingOverlayAction"));
+    m_overlay->setCheckable(true);
+    m_overlay->setToolTip(tr("Show per-pass GPU timings over the viewport"));
+
+    fillViews();
+
+    connect(m_debugView, &QComboBox::currentIndexChanged, this, &ViewportToolbar::onChanged);
+    connect(m_display, &QComboBox::currentIndexChanged, this, [this] {
+        fillViews();
+        onChanged();
+    });
+    connect(m_view, &QComboBox::currentIndexChanged, this, &ViewportToolbar::onChanged);
+    connect(m_look, &QComboBox::currentIndexChanged, this, &ViewportToolbar::onChanged);
+    connect(m_exposure, &QDoubleSpinBox::valueChanged, this, [this](double ev) {
+        const QSignalBlocker block(m_exposureSlider);
+        m_exposureSlider->setValue(int(std::lround(ev * kExposureSliderSteps)));
+        onChanged();
+    });
+    connect(m_exposureSlider, &QSlider::valueChanged, this, [this](int steps) {
+        m_exposure->setValue(double(steps) / kExposureSliderSteps); // emits valueChanged
+    });
+    connect(m_overlay, &QAction::toggled, this, [this](bool on) {
+        saveSettings();
+        emit timingOverlayToggled(on);
+    });
+}
+
+std::span<const DebugViewEntry> ViewportToolbar::debugViews() {
+    return kDebugViews;
+}
+
+void ViewportToolbar::fillViews() {
+    const QSignalBlocker blockView(m_view);
+    const QSignalBlocker blockLook(m_look);
+    const QString previousView = m_view->currentText();
+    const QString previousLook = m_look->currentData().toString();
+    m_view->clear();
+    m_look->clear();
+    const std::string display = m_display->currentData().toString().toStdString();
+    const bool builtIn = display.empty();
+    m_view->setEnabled(!builtIn);
+    m_look->setEnabled(!builtIn);
+    m_look->addItem(tr("No look"), QString());
+    if (builtIn) {
+        m_view->addItem(tr("Built-in"));
+        return;
+    }
+    for (const std::string& view : m_colorManagement->views(display))
+        m_view->addItem(QString::fromStdString(view));
+    for (const std::string& look : m_colorManagement->looks())
+        m_look->addItem(QString::fromStdString(look), QString::fromStdString(look));
+    // Switching display keeps the view and look where the new display has them.
+    int index = m_view->findText(previousView);
+    if (index < 0)
+        index = m_view->findText(QString::fromStdString(m_colorManagement->defaultView(display)));
+    m_view->setCurrentIndex(std::max(0, index));
+    m_look->setCurrentIndex(std::max(0, m_look->findData(previousLook)));
+}
+
+void ViewportToolbar::onChanged() {
+    if (m_updating)
+        return;
+    saveSettings();
+    emit viewStateChanged();
+}
+
+render::FrameSettings ViewportToolbar::frameSettings() const {
+    render::FrameSettings fs;
+    fs.view = static_cast<DebugView>(m_debugView->currentData().toInt());
+    fs.exposureEv = static_cast<float>(m_exposure->value());
+    const QString display = m_display->currentData().toString();
+    if (!display.isEmpty()) {
+        fs.display = display.toStdString();
+        fs.displayView = m_view->currentText().toStdString();
+        fs.look = m_look->currentData().toString().toStdString();
+    }
+    return fs;
+}
+
+PickerColorSpace ViewportToolbar::pickerColorSpace() const {
+    const render::FrameSettings fs = frameSettings();
+    PickerColorSpace space;
+    if (fs.usesColorManagement()) {
+        space.colorManagement = m_colorManagement;
+        space.display = DisplaySettings{fs.display, fs.displayView, fs.look, 0.0f};
+    }
+    return space;
+}
+
+bool ViewportToolbar::timingOverlay() const {
+    return m_overlay->isChecked();
+}
+
+void ViewportToolbar::restoreSettings() {
+    QSettings settings;
+    m_updating = true;
+    const int debugIndex = m_debugView->findText(settings.value(kDebugViewKey).toString());
+    m_debugView->setCurrentIndex(std::max(0, debugIndex));
+    m_display->setCurrentIndex(
+        std::max(0, m_display->findData(settings.value(kDisplayKey).toString())));
+    fillViews();
+    if (const int i = m_view->findText(settings.value(kViewKey).toString()); i >= 0)
+        m_view->setCurrentIndex(i);
+    if (const int i = m_look->findData(settings.value(kLookKey).toString()); i >= 0)
+        m_look->setCurrentIndex(i);
+    m_exposure->setValue(settings.value(kExposureKey, 0.0).toDouble());
+    m_updating = false;
+    m_overlay->setChecked(settings.value(kOverlayKey, false).toBool());
+    emit viewStateChanged();
+}
+
+void ViewportToolbar::saveSettings() const {
+    QSettings settings;
+    settings.setValue(kDebugViewKey, m_debugView->currentText());
+    settings.setValue(kDisplayKey, m_display->currentData().toString());
+    settings.setValue(kViewKey, m_view->isEnabled() ? m_view->currentText() : QString());
+    settings.setValue(kLookKey, m_look->currentData().toString());
+    settings.setValue(kExposureKey, m_exposure->value());
+    settings.setValue(kOverlayKey, m_overlay->isChecked());
+}
+
+// ---------------------------------------------------------------------------------------------
+// SceneToolbar
+
+SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
+    : QToolBar(tr("Scene"), parent), m_controller(controller) {
+    setObjectName(QStringLiteral("sceneToolbar"));
+
+    m_mesh = makeCombo(QStringLiteral("meshCombo"), tr("Preview mesh"), this);
+    addWidget(m_mesh);
+    m_hdri =
+        makeCombo(QStringLiteral("hdriCombo"), tr("Environment (HDRI) lighting the scene"), this);
+    addWidget(m_hdri);
+
+    addWidget(new QLabel(tr(" Intensity "), this));
+    m_intensity = new QDoubleSpinBox(this);
+    m_intensity->setObjectName(QStringLiteral("environmentIntensity"));
+    m_intensity->setRange(0.0, 100.0);
+    m_intensity->setSingleStep(0.1);
+    m_intensity->setDecimals(2);
+    m_intensity->setToolTip(tr("Multiplier on the environment's radiance"));
+    addWidget(m_intensity);
+
+    addWidget(new QLabel(tr(" Rotation "), this));
+    m_rotation = new QSlider(Qt::Horizontal, this);
+    m_rotation->setObjectName(QStringLiteral("environmentRotation"));
+    m_rotation->setRange(0, 360);
+    m_rotation->setMaximumWidth(120);
+    m_rotation->setToolTip(tr("Environment rotation about +Y in degrees (also Shift + right drag "
+                              "in the viewport)"));
+    addWidget(m_rotation);
+
+    m_intensityKey = SetEnvironmentCommand::nextMergeKey();
+    refresh();
+
+    connect(m_mesh, &QComboBox::activated, this, &SceneToolbar::onMeshChosen);
+    connect(m_hdri, &QComboBox::activated, this, &SceneToolbar::onHdriChosen);
+    connect(m_intensity, &QDoubleSpinBox::valueChanged, this, [this](double value) {
+        if (!m_updating)
+            editEnvironment(tr("Environment intensity"), m_intensityKey, float(value),
+                            m_controller->scene().environment.rotationDeg);
+    });
+    // One typing or arrow session is one command; the next starts a new one.
+    connect(m_intensity, &QDoubleSpinBox::editingFinished, this,
+            [this] { m_intensityKey = SetEnvironmentCommand::nextMergeKey(); });
+    connect(m_rotation, &QSlider::sliderPressed, this,
+            [this] { m_rotationKey = SetEnvironmentCommand::nextMergeKey(); });
+    connect(m_rotation, &QSlider::valueChanged, this, [this](int degrees) {
+        if (!m_updating)
+            editEnvironment(tr("Rotate environment"),
+                            m_rotation->isSliderDown() ? m_rotationKey : 0,
+                            m_controller->scene().environment.intensity, float(degrees));
+    });
+    connect(m_controller, &DocumentController::sceneChanged, this, &SceneToolbar::refresh);
+}
+
+void SceneToolbar::refresh() {
+    m_updating = true;
+    const Scene& scene = m_controller->scene();
+    {
+        const QSignalBlocker block(m_mesh);
+        m_mesh->clear();
+        const auto names = previewMeshKindNames();
+        for (size_t i = 0; i < names.size(); ++i) {
+            const auto kind = static_cast<PreviewMeshKind>(i);
+            if (kind != PreviewMeshKind::Custom)
+                m_mesh->addItem(prettyName(names[i]), static_cast<int>(kind));
+        }
+        if (scene.mesh.kind == PreviewMeshKind::Custom)
+            m_mesh->addItem(QFileInfo(QString::fromStdString(scene.mesh.file)).fileName(),
+                            static_cast<int>(PreviewMeshKind::Custom));
+        m_mesh->addItem(tr("Custom mesh…"), static_cast<int>(PreviewMeshKind::Custom));
+        m_mesh->setItemData(m_mesh->count() - 1, true, kRoleAction);
+        m_mesh->setCurrentIndex(std::max(0, m_mesh->findData(static_cast<int>(scene.mesh.kind))));
+    }
+    {
+        const QSignalBlocker block(m_hdri);
+        m_hdri->clear();
+        m_hdri->addItem(tr("Uniform white"), QString());
+        const QDir dir(QString::fromStdString(resources::path("hdri").string()));
+        for (const QFileInfo& file :
+             dir.entryInfoList({QStringLiteral("*.exr")}, QDir::Files, QDir::Name))
+            m_hdri->addItem(file.completeBaseName(), normalPath(file.absoluteFilePath()));
+        const QString current = scene.environment.hdri.empty()
+                                    ? QString()
+                                    : normalPath(QString::fromStdString(scene.environment.hdri));
+        int index = m_hdri->findData(current);
+        if (index < 0) {
+            m_hdri->addItem(QFileInfo(current).fileName(), current);
+            index = m_hdri->count() - 1;
+        }
+        m_hdri->addItem(tr("Other HDRI…"), QString());
+        m_hdri->setItemData(m_hdri->count() - 1, true, kRoleAction);
+        m_hdri->setCurrentIndex(index);
+    }
+    {
+        const QSignalBlocker block(m_intensity);
+        m_intensity->setValue(scene.environment.intensity);
+    }
+    {
+        const QSignalBlocker block(m_rotation);
+        float degrees = std::fmod(scene.environment.rotationDeg, 360.0f);
+        if (degrees < 0.0f)
+            degrees += 360.0f;
+        m_rotation->setValue(int(std::lround(degrees)));
+    }
+    m_updating = false;
+}
+
+void SceneToolbar::onMeshChosen(int index) {
+    MeshRef mesh;
+    mesh.kind = static_cast<PreviewMeshKind>(m_mesh->itemData(index).toInt());
+    if (mesh.kind == PreviewMeshKind::Custom) {
+        if (m_mesh->itemData(index, kRoleAction).toBool()) {
+            const QString file = QFileDialog::getOpenFileName(
+                this, tr("Preview mesh"), QString(),
+                tr("Meshes (*.obj *.fbx *.gltf *.glb *.ply *.stl *.dae)"));
+            if (file.isEmpty()) {
+                refresh();
+                return;
+            }
+            mesh.file = normalPath(file).toStdString();
+        } else {
+            mesh.file = m_controller->scene().mesh.file;
+        }
+    }
+    m_controller->editMesh(mesh);
+    refresh(); // a no-op choice sends no signal
+}
+
+void SceneToolbar::onHdriChosen(int index) {
+    Environment env = m_controller->scene().environment;
+    QString path = m_hdri->itemData(index).toString();
+    if (m_hdri->itemData(index, kRoleAction).toBool()) {
+        path = QFileDialog::getOpenFileName(this, tr("Environment"), QString(),
+                                            tr("HDR images (*.exr *.hdr)"));
+        if (path.isEmpty()) {
+            refresh();
+            return;
+        }
+        path = normalPath(path);
+    }
+    env.hdri = path.toStdString();
+    if (path.isEmpty())
+        env.color = glm::vec3(1.0f);
+    m_controller->editEnvironment(env, path.isEmpty()
+                                           ? tr("Uniform white environment")
+                                           : tr("HDRI %1").arg(QFileInfo(path).fileName()));
+    refresh();
+}
+
+void SceneToolbar::editEnvironment(const QString& text, int mergeKey, float intensity,
+                                   float rotationDeg) {
+    Environment env = m_controller->scene().environment;
+    env.intensity = intensity;
+    env.rotationDeg = rotationDeg;
+    m_controller->editEnvironment(env, text, mergeKey);
+}
+
+} // namespace velvet::ui
