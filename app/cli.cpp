@@ -90,16 +90,25 @@ struct Subcommand {
     std::string_view summary;
     int (*run)(const std::vector<std::string>&);
 };
-const std::array<Subcommand, 4> kSubcommands{{
+const std::array<Subcommand, 5> kSubcommands{{
     {"render", "render a scene or material preset to an image, headless", runRender},
     {"validate", "check presets and scenes, printing every problem", runValidate},
     {"info", "version, headless OpenGL and dependency versions", runInfo},
     {"schema", "print the JSON Schema of material presets or scenes", runSchema},
+    {"bench", "measure renderer variants side by side (medians, ratios; --json)", runBench},
+}};
+/// Run by Velvet itself, left out of --help: `import-mesh IN OUT` is the child process of the
+/// crash-isolated mesh import (core/mesh_import.h).
+const std::array<Subcommand, 1> kHiddenSubcommands{{
+    {"import-mesh", "import a mesh file into a mesh cache (internal)", runImportMesh},
 }};
 } // namespace
 
 bool isSubcommand(std::string_view name) {
     for (const auto& c : kSubcommands)
+        if (c.name == name)
+            return true;
+    for (const auto& c : kHiddenSubcommands)
         if (c.name == name)
             return true;
     return false;
@@ -127,6 +136,9 @@ std::string topLevelHelp() {
 
 int run(const std::vector<std::string>& args) {
     for (const auto& c : kSubcommands)
+        if (!args.empty() && c.name == args[0])
+            return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
+    for (const auto& c : kHiddenSubcommands)
         if (!args.empty() && c.name == args[0])
             return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
     std::cerr << "velvet: unknown command '" << (args.empty() ? "" : args[0]) << "'\n";

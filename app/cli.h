@@ -49,5 +49,8 @@ int runRender(const std::vector<std::string>& args);
 int runValidate(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runSchema(const std::vector<std::string>& args);
+int runBench(const std::vector<std::string>& args);
+/// Hidden: the child process of the crash-isolated mesh import (command_import_mesh.cpp).
+int runImportMesh(const std::vector<std::string>& args);
 
 } // namespace velvet::cli

@@ -4,6 +4,7 @@
 #include "core/color_management.h"
 #include "core/document_io.h"
 #include "core/image.h"
+#include "core/post_chain_io.h"
 #include "render/offscreen.h"
 
 #include <algorithm>
@@ -29,7 +30,12 @@ const std::vector<OptionSpec> kOptions{
     {"view", 0, true, "NAME", "OpenColorIO view, e.g. Standard, ACES, AgX, Raw"},
     {"look", 0, true, "NAME", "OpenColorIO look applied before the view (a,b for several)"},
     {"debug-view", 0, true, "NAME",
-     "final (default), albedo, normal, depth, roughness or metallic"},
+     "final (default), albedo, normal, depth, roughness, metallic, position, specular, "
+     "clearcoat, sheen, occlusion, emissive, material-id, lights-per-pixel (heat map), "
+     "diffuse-only, specular-only, base-specular, sheen-only, clearcoat-only (lobe views: direct "
+     "light only)"},
+    {"chain", 0, true, "CHAIN.json",
+     "post-effect chain preset (resources/post-chains/) replacing the scene's chain"},
     {"help", 'h', false, "", "this text"},
 };
 
@@ -80,6 +86,16 @@ const std::pair<const char*, render::DebugView> kDebugViews[] = {
     {"final", render::DebugView::Final},         {"albedo", render::DebugView::Albedo},
     {"normal", render::DebugView::Normal},       {"depth", render::DebugView::Depth},
     {"roughness", render::DebugView::Roughness}, {"metallic", render::DebugView::Metallic},
+    {"position", render::DebugView::Position},   {"specular", render::DebugView::Specular},
+    {"clearcoat", render::DebugView::Clearcoat}, {"sheen", render::DebugView::Sheen},
+    {"occlusion", render::DebugView::Occlusion}, {"emissive", render::DebugView::Emissive},
+    {"material-id", render::DebugView::MaterialId},
+    {"lights-per-pixel", render::DebugView::LightsPerPixel},
+    {"diffuse-only", render::DebugView::DiffuseOnly},
+    {"specular-only", render::DebugView::SpecularOnly},
+    {"base-specular", render::DebugView::BaseSpecular},
+    {"sheen-only", render::DebugView::SheenOnly},
+    {"clearcoat-only", render::DebugView::ClearcoatOnly},
 };
 
 /// Keeps the first three channels (the file holds opaque colour).
@@ -238,6 +254,14 @@ int runRender(const std::vector<std::string>& argv) {
     if (!scene || problems.hasErrors()) {
         printProblems(problems);
         return BadInput;
+    }
+    if (args->has("chain")) {
+        const auto preset = loadPostChainFile(args->value("chain"), problems);
+        if (!preset || problems.hasErrors()) {
+            printProblems(problems);
+            return BadInput;
+        }
+        scene->post = preset->chain;
     }
 
     Image linear, display;

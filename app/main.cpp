@@ -1,15 +1,25 @@
 // velvet: the editor when run alone (or with a FILE), a headless CLI with a subcommand.
 #include "app/cli.h"
 #include "app/resource_root.h"
+#include "core/mesh_import.h"
 #include "ui/editor.h"
 
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
 int main(int argc, char** argv) {
     velvet::app::locateResources(argv[0]);
+    // Custom meshes are imported by this same executable in a child process (`velvet
+    // import-mesh`), so a crashing importer cannot take the document down (DESIGN.md).
+    {
+        std::error_code ec;
+        const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+        if (!ec)
+            velvet::setMeshImportHelper(self);
+    }
     std::vector<std::string> args(argv + 1, argv + argc);
 
     if (!args.empty() && velvet::cli::isSubcommand(args[0]))

@@ -190,44 +190,55 @@ glm::vec2 envBrdfApprox(float roughness, float NdotV) {
     return glm::vec2(-1.04f, 1.04f) * a004 + glm::vec2(r.z, r.w);
 }
 
-const std::vector<float>& sheenAlbedoLut() {
-    static const std::vector<float> table = [] {
-        // E(v) = integral over the hemisphere of D_Charlie * V_ContyKulla * (n.l) dl, midpoint
-        // rule in (theta_l, phi_l), using the symmetry phi -> -phi.
-        constexpr int N = kSheenLutSize;
-        constexpr int kTheta = 96, kPhi = 48;
-        std::vector<float> t(size_t(N) * N);
-        for (int ri = 0; ri < N; ++ri) {
-            const float rough = std::max(float(ri) / float(N - 1), kMinSheenRoughness);
-            for (int vi = 0; vi < N; ++vi) {
-                const float NdotV = std::max(float(vi) / float(N - 1), 1e-3f);
-                const glm::vec3 v(std::sqrt(1.0f - NdotV * NdotV), 0.0f, NdotV);
-                double sum = 0.0;
-                for (int a = 0; a < kTheta; ++a) {
-                    const float theta = (float(a) + 0.5f) / kTheta * 0.5f * kPi;
-                    const float ct = std::cos(theta), st = std::sin(theta);
-                    for (int b = 0; b < kPhi; ++b) {
-                        const float phi = (float(b) + 0.5f) / kPhi * kPi;
-                        const glm::vec3 l(st * std::cos(phi), st * std::sin(phi), ct);
-                        const glm::vec3 h = glm::normalize(l + v);
-                        const float f = distributionCharlie(h.z, rough) *
-                                        visibilitySheenContyKulla(ct, NdotV, rough);
-                        sum += double(f) * ct * st;
-                    }
+namespace {
+
+/// E(v) = integral over the hemisphere of D_Charlie * V_model * (n.l) dl, midpoint rule in
+/// (theta_l, phi_l), using the symmetry phi -> -phi.
+std::vector<float> integrateSheenAlbedo(SheenModel model) {
+    constexpr int N = kSheenLutSize;
+    constexpr int kTheta = 96, kPhi = 48;
+    std::vector<float> t(size_t(N) * N);
+    for (int ri = 0; ri < N; ++ri) {
+        const float rough = std::max(float(ri) / float(N - 1), kMinSheenRoughness);
+        for (int vi = 0; vi < N; ++vi) {
+            const float NdotV = std::max(float(vi) / float(N - 1), 1e-3f);
+            const glm::vec3 v(std::sqrt(1.0f - NdotV * NdotV), 0.0f, NdotV);
+            double sum = 0.0;
+            for (int a = 0; a < kTheta; ++a) {
+                const float theta = (float(a) + 0.5f) / kTheta * 0.5f * kPi;
+                const float ct = std::cos(theta), st = std::sin(theta);
+                for (int b = 0; b < kPhi; ++b) {
+                    const float phi = (float(b) + 0.5f) / kPhi * kPi;
+                    const glm::vec3 l(st * std::cos(phi), st * std::sin(phi), ct);
+                    const glm::vec3 h = glm::normalize(l + v);
+                    const float f = distributionCharlie(h.z, rough) *
+                                    visibilitySheen(model, ct, NdotV, rough);
+                    sum += double(f) * ct * st;
                 }
-                const double dOmega = (0.5 * kPi / kTheta) * (kPi / kPhi) * 2.0;
-                t[size_t(ri) * N + vi] = float(std::min(sum * dOmega, 1.0));
             }
+            const double dOmega = (0.5 * kPi / kTheta) * (kPi / kPhi) * 2.0;
+            t[size_t(ri) * N + vi] = float(std::min(sum * dOmega, 1.0));
         }
-        return t;
-    }();
-    return table;
+    }
+    return t;
 }
 
-float sheenDirectionalAlbedo(float NdotV, float sheenRoughness) {
+} // namespace
+
+const std::vector<float>& sheenAlbedoLut(SheenModel model) {
+    // One table per sheen model (KHR_materials_sheen's albedo scaling needs the albedo of the
+    // lobe actually drawn). Ashikhmin and Neubelt are the same visibility function (see
+    // visibilityNeubelt), so their tables are equal by construction; both are kept so that every
+    // SheenModel has its own entry, as the GPU's three-channel texture has.
+    static const std::vector<float> tables[2] = {integrateSheenAlbedo(SheenModel::CharlieContyKulla),
+                                                 integrateSheenAlbedo(SheenModel::CharlieAshikhmin)};
+    return model == SheenModel::CharlieContyKulla ? tables[0] : tables[1];
+}
+
+float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, SheenModel model) {
     // Bilinear lookup with texel centres at i / (N - 1): the GPU samples the same table at
     // (i * (N - 1) + 0.5) / N with GL_LINEAR and clamp-to-edge, which is the same function.
-    const auto& t = sheenAlbedoLut();
+    const auto& t = sheenAlbedoLut(model);
     constexpr int N = kSheenLutSize;
     const float x = saturate(NdotV) * (N - 1), y = saturate(sheenRoughness) * (N - 1);
     const int x0 = std::min(int(x), N - 2), y0 = std::min(int(y), N - 2);
@@ -369,14 +380,16 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
     const glm::vec3 metal = fMetal * specular;
     glm::vec3 f = glm::mix(dielectric, metal, s.metallic);
 
-    // KHR_materials_sheen: sheen on top, base scaled by the sheen's albedo (the Conty-Kulla
-    // table for every sheen model; see sheenDirectionalAlbedo()).
+    // KHR_materials_sheen: sheen on top, base scaled by the albedo of the sheen lobe drawn (one
+    // table per sheen model; see sheenDirectionalAlbedo()).
     if (max3(s.sheenColor) > 0.0f) {
         const float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
                             visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness);
         const float scaling =
-            std::min(1.0f - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness),
-                     1.0f - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness));
+            std::min(1.0f - max3(s.sheenColor) *
+                                sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel),
+                     1.0f - max3(s.sheenColor) *
+                                sheenDirectionalAlbedo(NdotL, s.sheenRoughness, s.sheenModel));
         f = f * scaling + s.sheenColor * sheen;
     }
 

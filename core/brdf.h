@@ -106,17 +106,18 @@ float visibilitySheen(SheenModel which, float NdotL, float NdotV, float sheenRou
 glm::vec2 envBrdfApprox(float roughness, float NdotV);
 /// @}
 
-/// Directional albedo E(NdotV, roughness) of the sheen lobe (Charlie D x Conty-Kulla V, white
-/// sheen colour), for KHR_materials_sheen's albedo scaling. Used for every SheenModel (the
-/// renderer uploads this one table), so the Ashikhmin/Neubelt models are scaled by the
-/// Conty-Kulla albedo: an approximation, documented and matched by the GPU. Tabulated once by
-/// numerical integration on a kSheenLutSize^2 grid and looked up bilinearly, exactly as the GPU
-/// samples the same table (texel centres at (i + 0.5) / size, clamped).
+/// Directional albedo E(NdotV, roughness) of the sheen lobe (Charlie D x the visibility of
+/// @p model, white sheen colour), for KHR_materials_sheen's albedo scaling and the sheen IBL term.
+/// One table per SheenModel (Ashikhmin and Neubelt are the same function, so their tables are
+/// equal). Tabulated once by numerical integration on a kSheenLutSize^2 grid and looked up
+/// bilinearly, exactly as the GPU samples the same tables (channel = model; texel centres at
+/// (i + 0.5) / size, clamped).
 inline constexpr int kSheenLutSize = 32;
-/// The table, row-major: index = roughnessIndex * size + NdotVIndex; cell i holds the value at
-/// NdotV = i / (size - 1) (likewise roughness).
-const std::vector<float>& sheenAlbedoLut();
-float sheenDirectionalAlbedo(float NdotV, float sheenRoughness);
+/// The table of @p model, row-major: index = roughnessIndex * size + NdotVIndex; cell i holds the
+/// value at NdotV = i / (size - 1) (likewise roughness).
+const std::vector<float>& sheenAlbedoLut(SheenModel model = SheenModel::CharlieContyKulla);
+float sheenDirectionalAlbedo(float NdotV, float sheenRoughness,
+                             SheenModel model = SheenModel::CharlieContyKulla);
 
 /// Material values as shading uses them.
 struct Surface {

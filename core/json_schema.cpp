@@ -3,6 +3,7 @@
 // (a test compares them with this output).
 #include "core/document_io.h"
 #include "core/material_json.h"
+#include "core/post_chain_json.h"
 #include "core/scene_fields.h"
 
 #include <cmath>
@@ -270,27 +271,8 @@ JsonValue fieldsSchema(std::span<const Field<S>> fields) {
 }
 
 JsonValue postSchema() {
-    JsonValue effect = closedObject();
-    effect.add("required", strings(std::array<std::string_view, 1>{"type"}));
-    JsonValue& p = effect.add("properties", object());
-    JsonValue& type = p.add("type", object());
-    type.add("type", str("string"));
-    type.add("minLength", JsonValue::makeNumber(1));
-    type.add("description", str("Effect type id, e.g. \"bloom\", \"tonemap\", \"vignette\"."));
-    JsonValue& enabled = p.add("enabled", object());
-    enabled.add("type", str("boolean"));
-    enabled.add("default", JsonValue::makeBool(true));
-    JsonValue& params = p.add("params", object());
-    params.add("type", str("object"));
-    JsonValue& values = params.add("additionalProperties", object());
-    values.add("type", str("array"));
-    values.add("items", object()).add("type", str("number"));
-    values.add("minItems", JsonValue::makeNumber(1));
-
     JsonValue o = closedObject();
-    JsonValue& effects = o.add("properties", object()).add("effects", object());
-    effects.add("type", str("array"));
-    effects.add("items", std::move(effect));
+    o.add("properties", object()).add("effects", postEffectsSchema());
     return o;
 }
 

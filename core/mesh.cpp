@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/common.hpp>
 #include <numbers>
 
 namespace velvet {
@@ -49,6 +50,33 @@ MeshData makeSphere(float radius, int segments, int rings) {
         }
     }
     return mesh;
+}
+
+} // namespace velvet
+
+namespace velvet {
+
+MeshBounds meshBounds(const MeshData& mesh) {
+    MeshBounds b;
+    for (const Vertex& v : mesh.vertices) {
+        b.min = glm::min(b.min, v.position);
+        b.max = glm::max(b.max, v.position);
+    }
+    return b;
+}
+
+void fitToUnitBox(MeshData& mesh, float halfExtent) {
+    const MeshBounds b = meshBounds(mesh);
+    if (b.empty())
+        return;
+    const glm::vec3 size = b.size();
+    const float largest = std::max({size.x, size.y, size.z});
+    if (!(largest > 0.0f) || !std::isfinite(largest))
+        return;
+    const glm::vec3 center = b.center();
+    const float scale = 2.0f * halfExtent / largest;
+    for (Vertex& v : mesh.vertices)
+        v.position = (v.position - center) * scale;
 }
 
 } // namespace velvet

@@ -3,6 +3,7 @@
 #include "core/document_io.h"
 #include "core/document_paths.h"
 #include "core/material_json.h"
+#include "core/post_chain_json.h"
 #include "core/scene_fields.h"
 
 #include <array>
@@ -17,7 +18,6 @@ constexpr std::array<std::string_view, 9> kSceneKeys{"format",   "version",     
                                                      "lights",   "environment",    "mesh",
                                                      "material", "materialPreset", "post"};
 constexpr std::array<std::string_view, 1> kPostKeys{"effects"};
-constexpr std::array<std::string_view, 3> kEffectKeys{"type", "enabled", "params"};
 
 template <class S>
 std::vector<std::string_view> keysOf(std::span<const Field<S>> fields) {
@@ -190,50 +190,9 @@ void readLights(JsonReader& r, const JsonValue& v, const fs::path& baseDir, Scen
 void readPost(JsonReader& r, const JsonValue& v, PostChain& post) {
     if (!r.expectObject(v, "post", kPostKeys))
         return;
-    const JsonValue* effects = v.find("effects");
-    if (!effects || effects->kind == JsonValue::Kind::Invalid)
-        return;
-    if (!effects->isArray()) {
-        r.error("post.effects", "expected an array of effects, got " + describeValue(*effects));
-        return;
-    }
-    for (size_t i = 0; i < effects->items.size(); ++i) {
-        const JsonValue& e = effects->items[i];
-        const std::string path = jsonPathIndex("post.effects", i);
-        if (!r.expectObject(e, path, kEffectKeys))
-            continue;
-        EffectInstance effect;
-        if (const JsonValue* type = r.require(e, path, "type"))
-            if (auto t = r.string(*type, jsonPathKey(path, "type"), false))
-                effect.type = *t;
-        if (const JsonValue* enabled = e.find("enabled"))
-            if (auto b = r.boolean(*enabled, jsonPathKey(path, "enabled")))
-                effect.enabled = *b;
-        if (const JsonValue* params = e.find("params")) {
-            const std::string paramsPath = jsonPathKey(path, "params");
-            if (params->kind != JsonValue::Kind::Invalid && !params->isObject()) {
-                r.error(paramsPath,
-                        "expected an object of number arrays, got " + describeValue(*params));
-            } else {
-                for (const JsonMember& p : params->members) {
-                    const std::string pPath = jsonPathKey(paramsPath, p.key);
-                    if (p.value.kind == JsonValue::Kind::Invalid)
-                        continue;
-                    if (!p.value.isArray() || p.value.items.empty()) {
-                        r.error(pPath,
-                                "expected an array of numbers, got " + describeValue(p.value));
-                        continue;
-                    }
-                    std::vector<float> values;
-                    for (size_t k = 0; k < p.value.items.size(); ++k)
-                        if (auto x = r.number(p.value.items[k], jsonPathIndex(pPath, k), {}))
-                            values.push_back(static_cast<float>(*x));
-                    effect.params[p.key] = std::move(values);
-                }
-            }
-        }
-        post.effects.push_back(std::move(effect));
-    }
+    // Types, parameters and the stage order are checked against the effect catalogue.
+    if (const JsonValue* effects = v.find("effects"))
+        readPostEffects(r, *effects, "post.effects", post);
 }
 
 void readMaterialReference(JsonReader& r, const JsonValue& root, const fs::path& baseDir,
@@ -265,18 +224,7 @@ void readMaterialReference(JsonReader& r, const JsonValue& root, const fs::path&
 
 JsonValue postToJson(const PostChain& post) {
     JsonValue o = JsonValue::makeObject();
-    JsonValue& effects = o.add("effects", JsonValue::makeArray());
-    for (const EffectInstance& e : post.effects) {
-        JsonValue& je = effects.push(JsonValue::makeObject());
-        je.add("type", JsonValue::makeString(e.type));
-        je.add("enabled", JsonValue::makeBool(e.enabled));
-        JsonValue& params = je.add("params", JsonValue::makeObject());
-        for (const auto& [key, values] : e.params) {
-            JsonValue& a = params.add(key, JsonValue::makeArray());
-            for (float x : values)
-                a.push(JsonValue::makeFloat(x));
-        }
-    }
+    o.add("effects", postEffectsToJson(post));
     return o;
 }
 

@@ -71,6 +71,10 @@ std::string uniformKey(glm::vec3 c) {
 
 } // namespace
 
+GpuEnvironment uploadEquirect(const Image& radiance, std::string key) {
+    return upload(radiance, std::move(key));
+}
+
 EnvironmentCache::~EnvironmentCache() {
     for (auto& e : m_entries)
         if (e.texture)

@@ -4,6 +4,7 @@
 /// radiance, cached by source so a value edit never reloads an HDRI.
 
 #include "core/diagnostics.h"
+#include "core/image.h"
 #include "core/scene.h"
 #include "core/spherical_harmonics.h"
 
@@ -20,6 +21,10 @@ struct GpuEnvironment {
     SH9 sh{};            ///< radiance SH9 (intensity not applied)
     std::string warning; ///< non-empty when a fallback replaced a missing or broken file
 };
+
+/// Uploads an equirectangular radiance image as EnvironmentCache does (RGBA16F, full mip chain,
+/// its SH9); the caller owns the texture.
+GpuEnvironment uploadEquirect(const Image& radiance, std::string key);
 
 class EnvironmentCache {
 public:

@@ -38,6 +38,7 @@ bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Ima
         renderer.setScene(scene, problems);
         if (colorManagement)
             renderer.setColorManagement(std::move(colorManagement));
+        renderer.finishEnvironment(); // the whole IBL bake before the one frame
         ColorTarget target;
         if (!target.resize(settings.width, settings.height, GL_RGBA8, error))
             return false;

@@ -2,14 +2,19 @@
 
 #include "core/brdf.h"
 #include "core/color_management.h"
+#include "core/mesh_import.h"
 #include "render/camera.h"
 #include "render/display_transform.h"
 #include "render/environment_map.h"
 #include "render/gbuffer.h"
 #include "render/gbuffer_layout.h"
 #include "render/gpu_mesh.h"
+#include "render/ibl_bake.h"
+#include "render/light_passes.h"
 #include "render/material_table.h"
+#include "render/post_chain.h"
 #include "render/shader_program.h"
+#include "render/texture_set.h"
 
 #include <algorithm>
 #include <chrono>
@@ -38,6 +43,18 @@ struct FrameBlock {
     glm::vec4 lightDirection[kMaxLights];
     glm::vec4 lightRadiance[kMaxLights];
 };
+
+/// Mirrors IblBlock in common_environment.glsl (std140, vec4 only).
+struct IblBlock {
+    glm::vec4 state;      ///< cube ready, its last level, DFG LUT ready, multiple scattering on
+    glm::vec4 background; ///< blurred background level, time (s), unused, unused
+};
+
+/// IBL bake time allowed at the start of a frame (render/ibl_bake.h adapts its slices to
+/// IblBakeOptions::sliceTargetMs; a frame may run one slice past this).
+constexpr double kIblFrameBudgetMs = 12.0;
+/// Roughness of the prefiltered level shown by BackgroundMode::Blurred.
+constexpr float kBlurredBackgroundRoughness = 0.6f;
 
 std::string glErrorName(GLenum e) {
     switch (e) {
@@ -97,6 +114,12 @@ Image readFramebuffer(GLuint fbo, int width, int height) {
     return img;
 }
 
+/// Views the point, spot and area lights contribute to (debug_views.glsl, isLightView).
+bool isLightView(DebugView view) {
+    return view == DebugView::Final || view == DebugView::LightsPerPixel ||
+           (view >= DebugView::DiffuseOnly && view <= DebugView::ClearcoatOnly);
+}
+
 } // namespace
 
 struct Renderer::Impl {
@@ -106,14 +129,29 @@ struct Renderer::Impl {
     ShaderProgram gbufferProgram, lightingProgram, tonemapProgram;
     GBuffer gbuffer;
     ColorTarget hdr;
-    GpuMesh mesh;
+    // Preview meshes, uploaded once per kind / custom file; a failed custom import is
+    // remembered (its message re-reported) so it is not retried at every setScene.
+    struct MeshEntry {
+        GpuMesh gpu;
+        bool doubleSided = false;
+        std::string failure;
+    };
+    std::map<std::string, std::unique_ptr<MeshEntry>> meshes;
+    const MeshEntry* mesh = nullptr;
+    TextureSet textures;
     MaterialTable materials;
     EnvironmentCache environments;
     GLuint frameUbo = 0;
     GLuint emptyVao = 0;
-    GLuint sheenLut = 0;
+    IblBaker ibl; ///< prefiltered cube, DFG LUT, sheen tables
+    GLuint iblUbo = 0;
     GLuint queries[4] = {};
+    GLuint lightsQuery = 0; ///< between the full-screen lighting pass and the local lights
+    LightPasses lights;
     bool queriesIssued = false;
+    PostChainRenderer post; ///< the scene's post chain, run after lighting
+    glm::mat4 lastViewProj{1.0f};
+    bool haveLastViewProj = false;
 
     // The OCIO display transform: the config, the programs (cached by OCIO cache id inside
     // DisplayTransform) and which (display, view, look) maps to which cache id, so that switching
@@ -137,13 +175,17 @@ struct Renderer::Impl {
             glDeleteBuffers(1, &frameUbo);
         if (emptyVao)
             glDeleteVertexArrays(1, &emptyVao);
-        if (sheenLut)
-            glDeleteTextures(1, &sheenLut);
+        if (iblUbo)
+            glDeleteBuffers(1, &iblUbo);
         if (queries[0])
             glDeleteQueries(4, queries);
+        if (lightsQuery)
+            glDeleteQueries(1, &lightsQuery);
     }
 
-    bool buildPrograms(std::string* error) {
+    /// Builds every program from disk. With @p keepGoing (shader reload) a failed program keeps
+    /// its last good build, the others are still rebuilt and the errors are joined.
+    bool buildPrograms(std::string* error, bool keepGoing = false) {
         struct {
             ShaderProgram& program;
             const char* vs;
@@ -151,24 +193,20 @@ struct Renderer::Impl {
         } programs[] = {{gbufferProgram, "gbuffer.vert", "gbuffer.frag"},
                         {lightingProgram, "fullscreen.vert", "lighting.frag"},
                         {tonemapProgram, "fullscreen.vert", "post_tonemap.frag"}};
+        std::string errors;
         for (auto& p : programs) {
-            if (!p.program.build(p.vs, p.fs, {}, error))
-                return false;
+            std::string message;
+            if (!p.program.build(p.vs, p.fs, {}, &message)) {
+                errors += (errors.empty() ? "" : "\n") + message;
+                if (!keepGoing)
+                    break;
+                continue;
+            }
             ++compileCount;
         }
-        return true;
-    }
-
-    void uploadSheenLut() {
-        const auto& table = brdf::sheenAlbedoLut();
-        glCreateTextures(GL_TEXTURE_2D, 1, &sheenLut);
-        glTextureStorage2D(sheenLut, 1, GL_R32F, brdf::kSheenLutSize, brdf::kSheenLutSize);
-        glTextureSubImage2D(sheenLut, 0, 0, 0, brdf::kSheenLutSize, brdf::kSheenLutSize, GL_RED,
-                            GL_FLOAT, table.data());
-        glTextureParameteri(sheenLut, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(sheenLut, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(sheenLut, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(sheenLut, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        if (!errors.empty() && error)
+            *error = errors;
+        return errors.empty();
     }
 
     /// Selects the display transform @p fs names, building it the first time. Exposure is left
@@ -195,6 +233,83 @@ struct Renderer::Impl {
             return false;
         displayCacheIds[key] = transform->cacheId;
         displayKey = key;
+        return true;
+    }
+
+    /// Selects (uploading once) the mesh @p ref names; a custom mesh that fails to import is
+    /// reported and the sphere drawn instead.
+    void selectMesh(const MeshRef& ref, Problems* problems) {
+        const bool custom = ref.kind == PreviewMeshKind::Custom;
+        const std::string key = std::to_string(int(ref.kind)) + (custom ? ":" + ref.file : "");
+        auto& entry = meshes[key];
+        if (!entry) {
+            entry = std::make_unique<MeshEntry>();
+            MeshData data;
+            std::string error;
+            // importMesh runs `velvet import-mesh` in a child process when the application set
+            // the helper, in process otherwise (core/mesh_import.h).
+            if (custom && ref.file.empty())
+                entry->failure = "a custom mesh needs a file";
+            else if (custom && !importMesh(ref.file, data, &error))
+                entry->failure = error;
+            else if (!custom)
+                data = makePreviewMesh(ref.kind);
+            if (entry->failure.empty()) {
+                entry->gpu.upload(data);
+                entry->doubleSided = data.doubleSided;
+            }
+        }
+        if (!entry->failure.empty()) {
+            if (problems)
+                problems->error(ref.file, "mesh", entry->failure + "; showing the sphere");
+            selectMesh(MeshRef{}, nullptr);
+            return;
+        }
+        mesh = entry.get();
+    }
+
+    /// The material record: parameters, then texture presence bits and the means of the slots
+    /// the G-buffer cannot carry (render/texture_set.h). Never a shader.
+    void uploadMaterial() {
+        GpuMaterial g = packMaterial(scene.material);
+        textures.applyTo(g);
+        materials.upload({g});
+    }
+
+    /// Runs scene.post on the lit HDR target (render/post_chain.h).
+    bool runPost(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
+                 unsigned& finalInput, bool& displayed, std::string* error) {
+        gbuffer.bindTextures(); // depth and normals for motion blur, DoF, toon, vaporwave
+        PostRunInputs in;
+        in.hdrTexture = hdr.texture();
+        in.width = fs.width;
+        in.height = fs.height;
+        in.viewProj = b.viewProj;
+        in.proj = b.proj;
+        in.prevViewProj = fs.hasPreviousViewProj ? fs.previousViewProj
+                          : haveLastViewProj     ? lastViewProj
+                                                 : b.viewProj;
+        in.time = fs.time;
+        in.exposureEv = fs.exposureEv;
+        // The tonemap effect's operator indices: pbr-neutral, aces, reinhard, …, linear (5).
+        in.implicitToneMapper = fs.toneMapper == ToneMapper::AcesFitted ? 1
+                                : fs.toneMapper == ToneMapper::Reinhard ? 2
+                                : fs.toneMapper == ToneMapper::Linear   ? 5
+                                                                        : 0;
+        in.forceDisplayTransform = fs.usesColorManagement();
+        in.displayTransform = [this, &fs](unsigned texture, float ev, std::string* err) {
+            if (!fs.usesColorManagement() && !selectDisplayTransform(fs, err))
+                return false;
+            displayTransform.draw(texture, fs.exposureEv + ev);
+            return true;
+        };
+        in.finalFbo = targetFbo;
+        PostRunResult r;
+        if (!post.run(scene.post, in, r, error))
+            return false;
+        displayed = r.displayEncoded;
+        if (!displayed)
+            finalInput = r.hdrTexture;
         return true;
     }
 
@@ -228,7 +343,7 @@ struct Renderer::Impl {
                 b.lightRadiance[count] = glm::vec4(l.color * l.intensity, 0.0f);
                 ++count;
             }
-            // Point, spot and area lights arrive with the renderer issue.
+            // Point, spot and area lights: LightPasses (render/light_passes.h).
         }
         b.ambientRadiance = glm::vec4(ambient, 0.0f);
         const float backgroundLod = env.background == BackgroundMode::Blurred
@@ -259,15 +374,33 @@ bool Renderer::initialize(std::string* error) {
     glNamedBufferStorage(d.frameUbo, sizeof(FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glCreateVertexArrays(1, &d.emptyVao);
     glCreateQueries(GL_TIMESTAMP, 4, d.queries);
-    d.uploadSheenLut();
-    d.mesh.upload(makeSphere());
-    d.materials.upload({packMaterial(Material())});
+    glCreateQueries(GL_TIMESTAMP, 1, &d.lightsQuery);
+    if (!d.lights.initialize(error))
+        return false;
+    d.compileCount += d.lights.compileCount();
+    if (d.haveScene)
+        d.lights.upload(d.scene.lights);
+    if (!d.ibl.initialize(error))
+        return false;
+    d.compileCount += 3; // the IBL bake's compute programs
+    glCreateBuffers(1, &d.iblUbo);
+    glNamedBufferStorage(d.iblUbo, sizeof(IblBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    d.selectMesh(d.scene.mesh, nullptr);
+    d.textures.setMaterial(d.scene.material, nullptr);
+    d.uploadMaterial();
     if (const std::string e = takeGlErrors(); !e.empty())
         return fail(error, "OpenGL error while creating renderer resources: " + e);
     d.initialized = true;
     if (!d.haveScene)
         setScene(Scene{});
     return true;
+}
+
+bool Renderer::reloadShaders(std::string* error) {
+    Impl& d = *m_impl;
+    if (!d.initialized)
+        return fail(error, "Renderer::reloadShaders called before initialize()");
+    return d.buildPrograms(error, /*keepGoing=*/true);
 }
 
 void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
@@ -277,6 +410,12 @@ void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorMa
     // cache id, same shader).
     d.displayCacheIds.clear();
     d.displayKey.clear();
+    // Input colour space names are looked up in the new config too.
+    d.textures.setColorManagement(d.colorManagement);
+    if (d.initialized) {
+        d.textures.setMaterial(d.scene.material, nullptr);
+        d.uploadMaterial();
+    }
 }
 
 void Renderer::setScene(const Scene& scene, Problems* problems) {
@@ -285,12 +424,13 @@ void Renderer::setScene(const Scene& scene, Problems* problems) {
     d.haveScene = true;
     if (!d.initialized)
         return; // uploaded by initialize()
-    if (scene.mesh.kind != PreviewMeshKind::Sphere && problems)
-        problems->warning(scene.mesh.file, "mesh",
-                          "only the sphere preview mesh is drawn so far; showing a sphere");
+    d.selectMesh(scene.mesh, problems);
+    d.textures.setMaterial(scene.material, problems);
     // Numbers only: rewrite the material table (never a shader).
-    d.materials.upload({packMaterial(scene.material)});
+    d.uploadMaterial();
+    d.lights.upload(scene.lights);
     d.environment = &d.environments.get(scene.environment, problems);
+    d.ibl.request(*d.environment);
 }
 
 bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* error) {
@@ -302,12 +442,24 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
                                std::to_string(fs.height));
     const auto cpuStart = std::chrono::steady_clock::now();
     takeGlErrors(); // errors left by whoever owns the context are not ours
+    // A texture file changed on disk (edited in another program): re-upload, re-pack the record.
+    if (d.textures.poll())
+        d.uploadMaterial();
     // An unknown display, view or look fails here, before anything is drawn.
     const bool ocioDisplay = fs.usesColorManagement() && fs.view == DebugView::Final;
     if (ocioDisplay && !d.selectDisplayTransform(fs, error))
         return false;
     if (!d.environment)
         d.environment = &d.environments.get(d.scene.environment, nullptr);
+    // Environment prefiltering: a few slices per frame (render/ibl_bake.h).
+    d.ibl.request(*d.environment);
+    {
+        const auto iblStart = std::chrono::steady_clock::now();
+        d.ibl.step(kIblFrameBudgetMs);
+        d.timings.iblMs = std::chrono::duration<double, std::milli>(
+                              std::chrono::steady_clock::now() - iblStart)
+                              .count();
+    }
     if (!d.gbuffer.resize(fs.width, fs.height, error) ||
         !d.hdr.resize(fs.width, fs.height, GL_RGBA16F, error))
         return false;
@@ -348,7 +500,11 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
     glUseProgram(d.gbufferProgram.id());
     glProgramUniform1i(d.gbufferProgram.id(), 0, 0); // uMaterialId: one material for now
-    d.mesh.draw();
+    d.textures.bind(d.gbufferProgram.id());
+    if (d.mesh->doubleSided)
+        glDisable(GL_CULL_FACE);
+    d.mesh->gpu.draw();
+    d.textures.unbind();
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
 
     // 2. Lighting + background into the HDR target.
@@ -358,19 +514,52 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glBindFramebuffer(GL_FRAMEBUFFER, d.hdr.framebuffer());
     d.gbuffer.bindTextures();
     glBindTextureUnit(binding::kEnvironmentTex, d.environment->texture);
-    glBindTextureUnit(binding::kSheenLutTex, d.sheenLut);
+    glBindTextureUnit(binding::kSheenLutTex, d.ibl.sheenLut());
+    glBindTextureUnit(binding::kIblSpecularTex, d.ibl.specularCube());
+    glBindTextureUnit(binding::kIblDfgTex, d.ibl.dfgLut());
+    {
+        const int levels = d.ibl.specularLevels();
+        const IblBlock iblBlock{
+            glm::vec4(d.ibl.specularReady() ? 1.0f : 0.0f, float(std::max(levels - 1, 0)),
+                      d.ibl.dfgReady() ? 1.0f : 0.0f, fs.specularMultiScatter ? 1.0f : 0.0f),
+            glm::vec4(kBlurredBackgroundRoughness * float(std::max(levels - 1, 0)), fs.time,
+                      0.0f, 0.0f)};
+        glNamedBufferSubData(d.iblUbo, 0, sizeof(IblBlock), &iblBlock);
+        glBindBufferBase(GL_UNIFORM_BUFFER, binding::kIblUbo, d.iblUbo);
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    }
     glBindVertexArray(d.emptyVao);
     glUseProgram(d.lightingProgram.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
+    // Point, spot and area lights, added on top by the path the frame asks for.
+    if (isLightView(fs.view))
+        d.lights.draw(fs.lightPath, fs.width, fs.height, d.gbuffer.framebuffer(),
+                      d.hdr.framebuffer(), d.hdr.texture(), d.emptyVao);
     glQueryCounter(d.queries[2], GL_TIMESTAMP);
 
-    // 3. Into the target: OCIO's display transform (exposure, look, display/view in one generated
+    // 3. The scene's post chain. When it tone maps it writes the target itself; otherwise its
+    // HDR result feeds the final pass below (an empty chain changes nothing).
+    unsigned finalInput = d.hdr.texture();
+    bool chainDisplayed = false;
+    if (fs.view == DebugView::Final && PostChainRenderer::hasEnabledEffects(d.scene.post)) {
+        if (!d.runPost(fs, block, targetFbo, finalInput, chainDisplayed, error))
+            return false;
+        glViewport(0, 0, fs.width, fs.height);
+        glBindVertexArray(d.emptyVao);
+    }
+    d.lastViewProj = block.viewProj;
+    d.haveLastViewProj = true;
+
+    // 4. Into the target: OCIO's display transform (exposure, look, display/view in one generated
     // function), or the built-in exposure, tone mapper and sRGB OETF.
     glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
-    if (ocioDisplay) {
-        d.displayTransform.draw(d.hdr.texture(), fs.exposureEv);
+    if (chainDisplayed) {
+        // done by the chain's tone map and LDR effects
+    } else if (ocioDisplay) {
+        d.displayTransform.draw(finalInput, fs.exposureEv);
     } else {
-        glBindTextureUnit(binding::kHdrTex, d.hdr.texture());
+        glBindTextureUnit(binding::kHdrTex, finalInput);
         glUseProgram(d.tonemapProgram.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -382,7 +571,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glBindVertexArray(0);
     glDepthMask(GL_TRUE);
     for (GLuint unit : {0u, 1u, 2u, 3u, GLuint(binding::kEnvironmentTex),
-                        GLuint(binding::kSheenLutTex), GLuint(binding::kHdrTex)})
+                        GLuint(binding::kSheenLutTex), GLuint(binding::kHdrTex),
+                        GLuint(binding::kIblSpecularTex), GLuint(binding::kIblDfgTex)})
         glBindTextureUnit(unit, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
 
@@ -411,7 +601,12 @@ Image Renderer::readDisplay() const {
 }
 
 int Renderer::shaderCompileCount() const {
-    return m_impl->compileCount + m_impl->displayTransform.compileCount();
+    return m_impl->compileCount + m_impl->displayTransform.compileCount() +
+           m_impl->post.compileCount();
+}
+
+PostChainRenderer& Renderer::postChain() {
+    return m_impl->post;
 }
 
 FrameTimings Renderer::lastTimings() const {
@@ -424,8 +619,30 @@ FrameTimings Renderer::lastTimings() const {
         d.timings.lightingMs = double(t[2] - t[1]) * 1e-6;
         d.timings.postMs = double(t[3] - t[2]) * 1e-6;
         d.timings.totalMs = double(t[3] - t[0]) * 1e-6;
+        GLuint64 lightsStart = t[2];
+        glGetQueryObjectui64v(d.lightsQuery, GL_QUERY_RESULT, &lightsStart);
+        d.timings.localLightsMs = double(t[2] - lightsStart) * 1e-6;
     }
     return d.timings;
+}
+
+float Renderer::environmentProgress() const {
+    return m_impl->initialized ? m_impl->ibl.progress() : 0.0f;
+}
+
+void Renderer::finishEnvironment() {
+    Impl& d = *m_impl;
+    if (!d.initialized)
+        return;
+    if (!d.environment)
+        d.environment = &d.environments.get(d.scene.environment, nullptr);
+    d.ibl.request(*d.environment);
+    d.ibl.finish();
+}
+
+Renderer::EnvironmentBakeStats Renderer::environmentBakeStats() const {
+    const IblBakeStats& s = m_impl->ibl.stats();
+    return {s.slices, s.worstSliceMs, s.totalMs, m_impl->ibl.warmUpMs()};
 }
 
 } // namespace velvet::render

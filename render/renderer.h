@@ -8,6 +8,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 
+#include <glm/mat4x4.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,11 +19,46 @@ class ColorManagement;
 
 namespace velvet::render {
 
+class PostChainRenderer;
+
 /// What the final pass shows (the renderer issue adds every G-buffer and lighting view).
 /// Debug views write raw values to the linear image (readLinear): Albedo linear base colour, Normal
 /// world normal, Depth view-space distance along -Z in metres, Roughness, Metallic, Position world
 /// position; the display image maps them for viewing.
-enum class DebugView { Final, Albedo, Normal, Depth, Roughness, Metallic, Position };
+enum class DebugView {
+    Final,
+    Albedo,
+    Normal,
+    Depth,
+    Roughness,
+    Metallic,
+    Position,
+    /// @name Appended with the lights (numbers are stable; resources/shaders/debug_views.glsl)
+    /// G-buffer / material views write raw values: Specular colour x weight, Clearcoat (weight,
+    /// roughness, 0), Sheen colour, Occlusion, Emissive colour x strength, MaterialId (the integer
+    /// id). LightsPerPixel: the number of point/spot/area lights whose radius contains the pixel
+    /// (the display image is a heat map, 0 black .. 32+ red). The lobe views show the direct light
+    /// of every analytic light (not the environment) through one lobe: DiffuseOnly, SpecularOnly
+    /// (base specular + sheen + clearcoat), BaseSpecular, SheenOnly, ClearcoatOnly alone.
+    /// @{
+    Specular,
+    Clearcoat,
+    Sheen,
+    Occlusion,
+    Emissive,
+    MaterialId,
+    LightsPerPixel,
+    DiffuseOnly,
+    SpecularOnly,
+    BaseSpecular,
+    SheenOnly,
+    ClearcoatOnly,
+    /// @}
+};
+
+/// How point, spot and area lights are drawn (render/light_passes.h); all give the same image.
+/// Auto: brute force up to a few lights, tiled above.
+enum class LightPath { Auto, Volumes, Tiled, Brute };
 
 /// Built-in tone-mapping operators, used when no OCIO display/view is chosen (FrameSettings).
 enum class ToneMapper { KhronosPbrNeutral, AcesFitted, Reinhard, Linear };
@@ -35,6 +71,17 @@ struct FrameSettings {
     float exposureEv = 0.0f;
     ToneMapper toneMapper = ToneMapper::KhronosPbrNeutral;
     DebugView view = DebugView::Final;
+    /// The many-lights path for point, spot and area lights (chosen per frame).
+    LightPath lightPath = LightPath::Auto;
+    /// @name Image-based lighting
+    /// @{
+    /// Seconds of animation for BackgroundMode::ProceduralFbm (a fixed time gives a fixed image).
+    float time = 0.0f;
+    /// Adds the energy of multiply scattered light to the environment's specular lobes
+    /// (Fdez-Agüera 2019); off gives the single-scattering split sum, which loses energy on rough
+    /// surfaces.
+    bool specularMultiScatter = true;
+    /// @}
     /// @name OpenColorIO display transform (docs/color-management.md)
     /// All three empty (the default): the built-in toneMapper and the sRGB OETF. Any of them set:
     /// the final view goes through OCIO's own GPU shader for display / displayView / look, where
@@ -48,11 +95,23 @@ struct FrameSettings {
     bool usesColorManagement() const {
         return !display.empty() || !displayView.empty() || !look.empty();
     }
+    /// @name Post chain (render/post_chain.h; `time` above also animates grain and brushes)
+    /// The previous frame's view-projection, for motion blur. Unset: the one this renderer drew
+    /// last (the first frame counts as a still camera).
+    /// @{
+    bool hasPreviousViewProj = false;
+    glm::mat4 previousViewProj{1.0f};
+    /// @}
 };
 
 /// GPU timings of the last frame (GL timer queries; 0 where unavailable). Logged, never asserted.
 struct FrameTimings {
     double gbufferMs = 0, lightingMs = 0, postMs = 0, totalMs = 0;
+    /// The point/spot/area light pass alone (part of lightingMs).
+    double localLightsMs = 0;
+    /// Environment prefiltering (IBL bake slices) run at the start of this frame, wall clock
+    /// with glFinish; 0 once the bake is complete.
+    double iblMs = 0;
 };
 
 class Renderer {
@@ -66,6 +125,11 @@ public:
     /// Loads and compiles shaders; needs a current GL 4.5 core context. False + message on failure
     /// (a compile error names file:line).
     bool initialize(std::string* error);
+
+    /// Recompiles every shader program from disk (the editor's T key). A program that fails to
+    /// compile keeps its last good build, so rendering goes on; false + message (file:line and
+    /// the driver's log for each failure). The OCIO display programs are not rebuilt.
+    bool reloadShaders(std::string* error);
 
     /// Takes the scene to draw. Cheap for value edits (material numbers go to a uniform buffer, no
     /// shader is recompiled); mesh and HDRI are (re)loaded only when their source changes.
@@ -81,6 +145,8 @@ public:
     /// settings.width x settings.height, display-encoded (the built-in tone mapper + sRGB, or the
     /// chosen OCIO display/view). False + message on GL failure, or, before anything is drawn, on
     /// an unknown display, view or look (the message names it and the config).
+    /// Each frame first stats the material's texture files (one stat each) and re-uploads the
+    /// ones changed on disk, so an image edited in another program shows without setScene.
     bool render(const FrameSettings& settings, unsigned targetFbo, std::string* error = nullptr);
 
     /// The last frame's scene-linear HDR colour (before exposure and tone mapping), RGBA float.
@@ -91,7 +157,30 @@ public:
     /// Number of shader programs compiled since construction (tests assert value edits add none;
     /// a new OCIO display/view/look adds one, exposure none).
     int shaderCompileCount() const;
+    /// The post-chain runner: its render-target pool and per-step timings (tests, bench).
+    PostChainRenderer& postChain();
     FrameTimings lastTimings() const;
+
+    /// @name Environment bake (render/ibl_bake.h)
+    /// A new HDRI is prefiltered in slices of a few milliseconds at the start of each render()
+    /// (at most about 12 ms a frame), so a window never freezes; until the bake completes the
+    /// previous environment's bake, or the approximate path, is drawn. A host should keep
+    /// repainting while environmentProgress() < 1.
+    /// @{
+    /// Completion of the environment bake in [0, 1].
+    float environmentProgress() const;
+    /// Runs the rest of the bake now (headless rendering: renderSceneOffscreen calls it).
+    void finishEnvironment();
+    /// Slices run since construction: count, worst and total wall-clock milliseconds; and the
+    /// one-off shader warm-up of the first sliced frame (llvmpipe compiles a shader's machine
+    /// code at its first dispatch), which is not a slice.
+    struct EnvironmentBakeStats {
+        int slices = 0;
+        double worstSliceMs = 0, totalMs = 0;
+        double warmUpMs = 0;
+    };
+    EnvironmentBakeStats environmentBakeStats() const;
+    /// @}
 
 private:
     struct Impl;

@@ -20,7 +20,11 @@ std::string bindingsGlsl() {
       << "#define BINDING_ENVIRONMENT_TEX " << binding::kEnvironmentTex << "\n"
       << "#define BINDING_SHEEN_LUT_TEX " << binding::kSheenLutTex << "\n"
       << "#define BINDING_HDR_TEX " << binding::kHdrTex << "\n"
+      << "#define BINDING_IBL_UBO " << binding::kIblUbo << "\n"
+      << "#define BINDING_IBL_SPECULAR_TEX " << binding::kIblSpecularTex << "\n"
+      << "#define BINDING_IBL_DFG_TEX " << binding::kIblDfgTex << "\n"
       << "#define BINDING_DISPLAY_LUT_TEX_FIRST " << binding::kDisplayLutTexFirst << "\n"
+      << "#define BINDING_MATERIAL_TEX_FIRST " << binding::kMaterialTexFirst << "\n"
       << "#define MAX_MATERIALS " << kMaxMaterials << "\n";
     return s.str();
 }

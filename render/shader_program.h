@@ -18,9 +18,18 @@ inline constexpr int kMaterialSsbo = 1;
 inline constexpr int kEnvironmentTex = 4; ///< units 0..3 are the G-buffer (gbuffer_layout.h)
 inline constexpr int kSheenLutTex = 5;
 inline constexpr int kHdrTex = 6;
+/// Image-based lighting (render/ibl_bake.h): its uniform block, the prefiltered specular cube and
+/// the DFG LUT.
+inline constexpr int kIblUbo = 3;
+inline constexpr int kIblSpecularTex = 8;
+inline constexpr int kIblDfgTex = 9;
 /// Units kDisplayLutTexFirst.. hold the LUT textures of the OCIO display transform (as many as
 /// OCIO asks for, display_transform.cpp checks them against GL_MAX_TEXTURE_IMAGE_UNITS).
 inline constexpr int kDisplayLutTexFirst = 16;
+/// Units kMaterialTexFirst + TextureSlot hold a material's textures in the G-buffer pass
+/// (render/texture_set.h): 13 units, above the OCIO LUTs and within GL 4.5's minimum of 80
+/// combined units.
+inline constexpr int kMaterialTexFirst = 40;
 } // namespace binding
 
 /// Include files made at run time (name, GLSL text), e.g. OCIO's generated display transform.

@@ -204,11 +204,12 @@ vec2 envBrdfApprox(float roughness, float NdotV) {
     return vec2(-1.04, 1.04) * a004 + r.zw;
 }
 
-// Directional albedo of the sheen lobe, tabulated on the CPU (core/brdf.cpp, sheenAlbedoLut).
-float sheenDirectionalAlbedo(float NdotV, float sheenRoughness) {
+// Directional albedo of the sheen lobe of each sheen model (channel = SHEEN_* id), tabulated on
+// the CPU (core/brdf.cpp, sheenAlbedoLut) and uploaded by render/ibl_bake.cpp.
+float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, int model) {
     vec2 uv = (vec2(saturate(NdotV), saturate(sheenRoughness)) * (SHEEN_LUT_SIZE - 1.0) + 0.5) /
               SHEEN_LUT_SIZE;
-    return textureLod(uSheenLut, uv, 0.0).r;
+    return textureLod(uSheenLut, uv, 0.0)[clamp(model, 0, 2)];
 }
 
 // ---- Dispatch ----
@@ -327,12 +328,13 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
     vec3 f = mix(dielectric, metal, s.metallic);
 
     if (max3(s.sheenColor) > 0.0) {
-        // The albedo scaling uses the Charlie x Conty-Kulla table for every sheen model (the one
-        // table the renderer uploads); see velvet::brdf::sheenDirectionalAlbedo().
+        // The albedo scaling uses the table of the sheen model drawn; see
+        // velvet::brdf::sheenDirectionalAlbedo().
         float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
                       visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness);
-        float scaling = min(1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness),
-                            1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness));
+        float scaling =
+            min(1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel),
+                1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness, s.sheenModel));
         f = f * scaling + s.sheenColor * sheen;
     }
 

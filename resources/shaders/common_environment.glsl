@@ -1,8 +1,20 @@
-// The environment: equirectangular radiance (mip-mapped) and its SH9 irradiance.
+// The environment: equirectangular radiance (mip-mapped) and its SH9 irradiance; the baked IBL
+// (render/ibl_bake.h): the GGX-prefiltered specular cube and the DFG LUT, with the approximate
+// path while a bake is incomplete; the background modes, the procedural FBM one included.
 #include "common_math.glsl"
 #include "common_frame.glsl"
+#include "common_brdf.glsl"
 
 layout(binding = BINDING_ENVIRONMENT_TEX) uniform sampler2D uEnvironment;
+layout(binding = BINDING_IBL_SPECULAR_TEX) uniform samplerCube uSpecularCube;
+layout(binding = BINDING_IBL_DFG_TEX) uniform sampler2D uDfgLut;
+
+// Mirrors struct IblBlock in render/renderer.cpp (std140, vec4 only).
+layout(std140, binding = BINDING_IBL_UBO) uniform IblBlock {
+    vec4 state;      // x: prefiltered cube ready, y: its last level, z: DFG LUT ready,
+                     // w: multiple-scattering compensation on
+    vec4 background; // x: level of the blurred background, y: time in seconds (FBM), zw unused
+} ibl;
 
 // Direction of equirect coordinates (u, v), v = 0 at +Y, u = 0.5 looking down -Z.
 // Must match velvet::equirectDirection() in core/spherical_harmonics.cpp.
@@ -43,9 +55,109 @@ vec3 irradianceOverPi(vec3 nWorld) {
     return max(e, vec3(0.0)) + frame.ambientRadiance.rgb;
 }
 
-// Mip level whose texel footprint roughly matches a GGX lobe of width alpha (an approximation:
-// the renderer issue replaces this with a GGX-prefiltered cubemap).
+// Mip level of the equirect whose texel footprint roughly matches a GGX lobe of width alpha (the
+// approximate path, used only until the prefiltered cube is ready).
 float specularLod(float perceptualRoughness) {
     float alpha = perceptualRoughness * perceptualRoughness;
     return clamp(log2(max(alpha * frame.post.z / PI, 1e-6)), 0.0, frame.envParams.w);
+}
+
+// Split-sum prefiltered radiance (Karis 2013, "Real Shading in Unreal Engine 4") at reflection
+// direction r for a perceptual roughness: the GGX-prefiltered cube, level = r (levels - 1)
+// (velvet::ibl::lodOfRoughness); intensity applied.
+vec3 specularRadiance(vec3 r, float perceptualRoughness) {
+    if (ibl.state.x < 0.5)
+        return environmentRadiance(r, specularLod(perceptualRoughness));
+    return textureLod(uSpecularCube, toEnvironment(r), perceptualRoughness * ibl.state.y).rgb *
+               frame.envParams.z +
+           frame.ambientRadiance.rgb;
+}
+
+// (A, B) of the split-sum environment BRDF, E = f0 A + B: the DFG LUT (texel centres at
+// (i + 0.5) / N, velvet::ibl::sampleDfgLut), or Karis 2014's fit until the LUT is made.
+vec2 environmentDfg(float NdotV, float perceptualRoughness) {
+    if (ibl.state.z < 0.5)
+        return envBrdfApprox(perceptualRoughness, NdotV);
+    return textureLod(uDfgLut, vec2(NdotV, perceptualRoughness), 0.0).rg;
+}
+
+// Directional albedo of a specular lobe of Fresnel f0 from (A, B), with the multiple-scattering
+// energy of Fdez-Aguera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based
+// Lighting" (eq. 16) when enabled. Mirrors velvet::ibl::specularAlbedo().
+vec3 specularAlbedo(vec3 f0, vec2 dfg) {
+    vec3 single = f0 * dfg.x + dfg.y;
+    if (ibl.state.w < 0.5)
+        return single;
+    float ems = 1.0 - (dfg.x + dfg.y);
+    vec3 favg = f0 + (1.0 - f0) / 21.0;
+    return single + ems * single * favg / (1.0 - ems * favg);
+}
+
+// ---- Procedural background (seed 004: Perlin noise made smoky by FBM; in HSV a hue that turns
+// with time, a fixed value, the saturation from the noise) ----
+
+// An integer hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg2d): the same
+// bits on every GPU, so a fixed time gives a fixed image.
+uvec2 pcg2d(uvec2 v) {
+    v = v * 1664525u + 1013904223u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v = v ^ (v >> 16u);
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v = v ^ (v >> 16u);
+    return v;
+}
+vec2 gradientAt(ivec2 cell) {
+    uvec2 h = pcg2d(uvec2(cell + 32768));
+    float a = float(h.x & 0xffffu) / 65536.0 * 2.0 * PI;
+    return vec2(cos(a), sin(a));
+}
+// Perlin 2002, "Improving Noise" (gradient noise with the quintic fade), in about [-1, 1].
+float perlinNoise(vec2 p) {
+    ivec2 i = ivec2(floor(p));
+    vec2 f = fract(p);
+    vec2 u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
+    float a = dot(gradientAt(i), f);
+    float b = dot(gradientAt(i + ivec2(1, 0)), f - vec2(1.0, 0.0));
+    float c = dot(gradientAt(i + ivec2(0, 1)), f - vec2(0.0, 1.0));
+    float d = dot(gradientAt(i + ivec2(1, 1)), f - vec2(1.0, 1.0));
+    return mix(mix(a, b, u.x), mix(c, d, u.x), u.y) * 1.4142;
+}
+// Fractional Brownian motion: 5 octaves, lacunarity 2, gain 0.5; in [0, 1].
+float fbm(vec2 p) {
+    float sum = 0.0, amplitude = 0.5;
+    for (int o = 0; o < 5; ++o) {
+        sum += amplitude * perlinNoise(p);
+        p = p * 2.0 + vec2(17.3, 9.1);
+        amplitude *= 0.5;
+    }
+    return saturate(sum / 0.96875 * 0.5 + 0.5);
+}
+vec3 hsvToRgb(vec3 c) {
+    vec3 p = abs(fract(c.xxx + vec3(0.0, 2.0, 1.0) / 3.0) * 6.0 - 3.0);
+    return c.z * mix(vec3(1.0), clamp(p - 1.0, 0.0, 1.0), c.y);
+}
+// The background at screen position uv (height-normalised) and time t (seconds): display-referred
+// colour decoded to scene-linear, so the tone mapper gives it back about as the seed showed it.
+vec3 proceduralBackground(vec2 uv, float t) {
+    float n = fbm(uv * 3.0 + vec2(0.05, 0.03) * t);
+    float hue = fract(t * 0.02);
+    return srgbDecode(hsvToRgb(vec3(hue, n, 0.55)));
+}
+
+// The background along world direction dir at screen position uv, for BackgroundMode (scene.h):
+// Sharp the environment itself, Blurred a prefiltered level, SolidColor the colour exactly,
+// ProceduralFbm the seed's noise.
+vec3 backgroundRadiance(vec3 dir, vec2 uv) {
+    int mode = frame.modes.w;
+    if (mode == 2)
+        return frame.backgroundColor.rgb;
+    if (mode == 3)
+        return proceduralBackground(uv, ibl.background.y);
+    if (mode == 1 && ibl.state.x > 0.5)
+        return textureLod(uSpecularCube, toEnvironment(dir), ibl.background.x).rgb *
+                   frame.envParams.z +
+               frame.ambientRadiance.rgb;
+    return environmentRadiance(dir, frame.backgroundColor.w);
 }

@@ -10,7 +10,8 @@ struct GpuMaterial {
     vec4 sheenColorRoughness;    // rgb sheen weight x colour, a sheen roughness
     vec4 clearcoat;              // weight, roughness, normal scale, unused
     ivec4 terms;                 // distribution, visibility, fresnel, diffuse
-    ivec4 terms2;                // sheen model, unused x3
+    ivec4 terms2;                // sheen model, texture-slot presence bits, atlas-region bits
+                                 // (render/texture_set.h), unused
 };
 
 layout(std430, binding = BINDING_MATERIAL_SSBO) readonly buffer MaterialTable {

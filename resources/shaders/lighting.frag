@@ -1,12 +1,13 @@
 #version 450 core
 // Full-screen lighting: reads the G-buffer, reconstructs the position from depth, adds the
-// directional lights, ambient lights and the environment (SH9 diffuse + mip-mapped equirect
-// specular); where depth is far, draws the background. Debug views write raw values.
+// directional lights, ambient lights and the environment (SH9 diffuse + GGX-prefiltered cube and
+// DFG LUT specular); where depth is far, draws the background. Debug views write raw values.
 #include "common_frame.glsl"
 #include "common_gbuffer.glsl"
 #include "common_material.glsl"
 #include "common_brdf.glsl"
 #include "common_environment.glsl"
+#include "light_lobes.glsl"
 
 layout(location = 0) out vec4 outColor;
 
@@ -18,13 +19,11 @@ vec3 viewPositionFromDepth(vec2 ndcXY, float depth) {
 }
 
 vec3 background(vec2 ndcXY) {
-    if (frame.modes.w == 2) // BackgroundMode::SolidColor
-        return frame.backgroundColor.rgb;
     vec3 dirView = frame.cameraPosition.w > 0.5
                        ? vec3(0.0, 0.0, -1.0)
                        : normalize(viewPositionFromDepth(ndcXY, 1.0));
     vec3 dir = normalize((frame.invViewMatrix * vec4(dirView, 0.0)).xyz);
-    return environmentRadiance(dir, frame.backgroundColor.w);
+    return backgroundRadiance(dir, gl_FragCoord.xy * frame.viewport.w); // common_environment.glsl
 }
 
 void main() {
@@ -64,13 +63,29 @@ void main() {
     vec3 toEyeView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, 1.0) : -posView;
     vec3 v = normalize((frame.invViewMatrix * vec4(toEyeView, 0.0)).xyz);
 
+    if (isLobeView(view) || view == DEBUG_LIGHTS_PER_PIXEL) {
+        // Directional lights through one lobe; light_passes adds the other lights.
+        vec3 lobes = vec3(0.0);
+        for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
+            vec3 l = frame.lightDirection[i].xyz;
+            lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb;
+        }
+        outColor = vec4(lobes, 1.0);
+        return;
+    }
     if (view != DEBUG_FINAL) {
         vec3 value = view == DEBUG_ALBEDO      ? s.baseColor
                      : view == DEBUG_NORMAL    ? n
                      : view == DEBUG_DEPTH     ? vec3(-posView.z)
                      : view == DEBUG_ROUGHNESS ? vec3(s.roughness)
                      : view == DEBUG_METALLIC  ? vec3(s.metallic)
-                                               : posWorld;
+                     : view == DEBUG_POSITION  ? posWorld
+                     : view == DEBUG_SPECULAR  ? s.specularColor * s.specularWeight
+                     : view == DEBUG_CLEARCOAT ? vec3(s.clearcoat, s.clearcoatRoughness, 0.0)
+                     : view == DEBUG_SHEEN     ? s.sheenColor
+                     : view == DEBUG_OCCLUSION ? vec3(occlusion)
+                     : view == DEBUG_EMISSIVE  ? s.emissive
+                                               : vec3(float(decodeMaterialId(rt2.b)));
         outColor = vec4(value, 1.0);
         return;
     }
@@ -80,31 +95,34 @@ void main() {
     for (int i = 0; i < frame.modes.x; ++i)
         color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb;
 
-    // Ambient: SH9 irradiance for the diffuse lobes, the mip-mapped environment at the reflection
-    // vector times Karis 2014's analytic environment BRDF for the specular ones (approximations
-    // of the split sum; see common_environment.glsl).
+    // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes; the split sum for
+    // the specular ones, the GGX-prefiltered cube times the DFG LUT with Fdez-Aguera 2019's
+    // multiple-scattering energy (or the approximate path while the bake is incomplete).
     float NdotV = max(dot(n, v), 1e-4);
     vec3 irradiance = irradianceOverPi(n);
     vec3 r = reflect(-v, n);
     float rough = max(s.roughness, MIN_ROUGHNESS);
-    vec3 prefiltered = environmentRadiance(r, specularLod(rough));
-    vec2 ab = envBrdfApprox(rough, NdotV);
-    vec3 specDielectric = s.specularWeight * (dielectricF0(s) * ab.x + ab.y);
-    vec3 specMetal = s.baseColor * ab.x + ab.y;
+    vec3 prefiltered = specularRadiance(r, rough);
+    vec2 ab = environmentDfg(NdotV, rough);
+    vec3 specDielectric = s.specularWeight * specularAlbedo(dielectricF0(s), ab);
+    vec3 specMetal = specularAlbedo(s.baseColor, ab);
     vec3 ambient = mix((1.0 - max3(specDielectric)) * s.baseColor * irradiance +
                            specDielectric * prefiltered,
                        specMetal * prefiltered, s.metallic);
     if (max3(s.sheenColor) > 0.0) {
-        float e = sheenDirectionalAlbedo(NdotV, s.sheenRoughness);
-        ambient = ambient * (1.0 - max3(s.sheenColor) * e) + s.sheenColor * e * irradiance;
+        // The sheen model's own albedo for both the scaling and the sheen lobe, lit by the
+        // prefiltered radiance at the sheen roughness (as Filament's evaluateSheenIBL).
+        float e = sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel);
+        ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
+                  s.sheenColor * e * specularRadiance(r, s.sheenRoughness);
     }
     vec3 emissive = s.emissive;
     if (s.clearcoat > 0.0) {
         float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
-        vec2 abc = envBrdfApprox(cr, NdotV);
+        vec2 abc = environmentDfg(NdotV, cr);
         float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotV);
         ambient = ambient * (1.0 - fc) +
-                  s.clearcoat * (0.04 * abc.x + abc.y) * environmentRadiance(r, specularLod(cr));
+                  s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(r, cr);
         emissive *= 1.0 - fc;
     }
     color += ambient * occlusion + emissive;

@@ -107,10 +107,11 @@ Scene everyLightScene(const fs::path& dir) {
     EffectInstance vignette;
     vignette.type = "vignette";
     vignette.enabled = false;
-    vignette.params = {{"strength", {0.35f}}};
+    vignette.params = {{"intensity", {0.35f}}};
     EffectInstance tonemap;
     tonemap.type = "tonemap";
-    s.post.effects = {bloom, vignette, tonemap};
+    // Stage order (core/post_effects.h): pre-pass, tone mapping, LDR.
+    s.post.effects = {bloom, tonemap, vignette};
     return s;
 }
 

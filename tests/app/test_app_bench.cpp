@@ -1,0 +1,60 @@
+// `velvet bench --short --json` (DESIGN.md, "Measuring"): one JSON object with every key the
+// renderer issue names, a G-buffer within budget, and finite positive ratios. Times and ratio
+// targets are recorded in BENCHMARKS.md, never asserted (llvmpipe shares 2 cores here).
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QtTest>
+#include <cmath>
+
+class TestAppBench : public QObject {
+    Q_OBJECT
+private slots:
+    void shortBenchPrintsEveryKey() {
+        QProcess p;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.remove("DISPLAY");
+        env.remove("WAYLAND_DISPLAY");
+        p.setProcessEnvironment(env);
+        p.start(VELVET_BINARY, {"bench", "--short", "--json"});
+        QVERIFY2(p.waitForFinished(240000), "velvet bench --short did not finish in 240 s");
+        const QByteArray out = p.readAllStandardOutput();
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        QVERIFY2(p.exitCode() == 0, p.readAllStandardError().constData());
+        QJsonParseError parseError;
+        const QJsonDocument doc = QJsonDocument::fromJson(out, &parseError);
+        QVERIFY2(doc.isObject(), qPrintable(parseError.errorString() + ": " + out));
+        const QJsonObject o = doc.object();
+        qInfo("%s", out.constData());
+
+        const char* keys[] = {"gbuffer_bytes_per_pixel",
+                              "lights1000_avg_lights_per_pixel",
+                              "lights1000_speedup_vs_volumes",
+                              "lights1000_speedup_vs_brute",
+                              "lights_growth_1000_vs_100",
+                              "light_pixel_pairs_ratio_1000_vs_100",
+                              "gbuffer_ms",
+                              "lighting_ms",
+                              "ibl_ms",
+                              "post_ms",
+                              "total_ms",
+                              "post_chain_share",
+                              "bloom_vs_gauss9",
+                              "effect_bloom_ms"};
+        for (const char* k : keys)
+            QVERIFY2(o.contains(k) && o.value(k).isDouble(), k);
+        QVERIFY(o.value("gbuffer_bytes_per_pixel").toDouble() <= 16.0);
+        for (const char* k : {"lights1000_speedup_vs_volumes", "lights1000_speedup_vs_brute",
+                              "lights_growth_1000_vs_100", "light_pixel_pairs_ratio_1000_vs_100",
+                              "lights1000_avg_lights_per_pixel", "bloom_vs_gauss9"}) {
+            const double v = o.value(k).toDouble();
+            QVERIFY2(std::isfinite(v) && v > 0.0, k);
+        }
+        // A share of a frame: strictly between nothing and the whole frame.
+        const double share = o.value("post_chain_share").toDouble();
+        QVERIFY(std::isfinite(share) && share > 0.0 && share < 1.0);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestAppBench)
+#include "test_app_bench.moc"
