@@ -104,6 +104,9 @@ const std::array kNightVision{
 const std::array kMotionBlur{
     scalar("samples", "Samples", 2, 32, 8, "", "Taps along the motion vector."),
     scalar("strength", "Strength", 0, 4, 1.0f, "", "Scale of the per-pixel motion vector."),
+    scalar("frameBlend", "Frame blending", 0, 0.9f, 0.0f, "",
+           "Weight of the previous frame's image blended in (Unity post-processing v1 frame "
+           "blending); 0 keeps no previous frame."),
 };
 const std::array kToon{
     scalar("bands", "Bands", 2, 16, 3, "", "Number of luminance bands (seed 002: levels)."),
@@ -178,8 +181,10 @@ const std::array<EffectMeta, 17> kCatalogue{{
      "Soft-knee bright pass, half-resolution mip down/up-sample chain, added to the image.",
      PostStage::PrePass, kReadsColor, false, kBloom},
     {"motion_blur", "Motion blur",
-     "Camera motion blur from depth and the previous view-projection (seed 002).", PostStage::Hdr,
-     kReadsColor | kReadsDepth | kReadsCameraMotion, false, kMotionBlur},
+     "Camera motion blur from depth and the previous view-projection (seed 002), optionally "
+     "blended with the previous frame.",
+     PostStage::Hdr, kReadsColor | kReadsDepth | kReadsCameraMotion | kReadsPreviousFrame, false,
+     kMotionBlur},
     {"depth_of_field", "Depth of field",
      "Circle of confusion from the focal distance and range blends a blurred copy.", PostStage::Hdr,
      kReadsColor | kReadsDepth, false, kDof},
@@ -438,6 +443,47 @@ std::vector<ChainIssue> checkEffectParams(const PostChain& chain) {
         }
     }
     return issues;
+}
+
+std::string postEffectCatalogueMarkdown() {
+    auto number = [](float v) { return formatNumber(double(v)); };
+    auto value = [&](const ParamMeta& p, glm::vec3 v) {
+        if (p.type == ParamType::Choice)
+            return "`" + std::string(p.choices[size_t(std::lround(v.x))]) + "`";
+        if (p.type == ParamType::Color)
+            return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
+        return number(v.x);
+    };
+    std::string s;
+    for (const EffectMeta& m : kCatalogue) {
+        s += "### " + std::string(m.label) + " (`" + std::string(m.type) + "`)\n\n";
+        s += std::string(m.description) + "\n\n";
+        s += "Stage: " + std::string(postStageName(m.stage)) +
+             ". Reads: " + describeReads(m.reads) + ". " +
+             (m.pointwise ? "Pointwise: fused with neighbouring pointwise effects into one pass."
+                          : "Own pass(es).") +
+             "\n\n";
+        s += "| Parameter | Label | Range | Default | Unit | Description |\n"
+             "|---|---|---|---|---|---|\n";
+        for (const ParamMeta& p : m.params) {
+            std::string range;
+            if (p.type == ParamType::Choice) {
+                for (std::string_view c : p.choices) {
+                    range.append(range.empty() ? "`" : ", `");
+                    range.append(c);
+                    range.append("`");
+                }
+            } else {
+                range = "[" + number(p.min) + ", " + number(p.max) + "]" +
+                        (p.type == ParamType::Color ? " per channel" : "");
+            }
+            s += "| `" + std::string(p.id) + "` | " + std::string(p.label) + " | " + range + " | " +
+                 value(p, p.defaultValue) + " | " + std::string(p.unit) + " | " +
+                 std::string(p.tooltip) + " |\n";
+        }
+        s += "\n";
+    }
+    return s;
 }
 
 PostChain defaultPostChain() {

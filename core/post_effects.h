@@ -96,6 +96,12 @@ std::vector<ChainIssue> checkStageOrder(const PostChain& chain);
 /// Unknown type (with a suggestion), unknown parameter, wrong component count, out of range.
 std::vector<ChainIssue> checkEffectParams(const PostChain& chain);
 
+/// The catalogue as Markdown (one section per effect: stage, reads, fusion, a parameter table
+/// with ranges, defaults and units). docs/post-effects.md embeds this text between its
+/// `<!-- catalogue:begin -->` and `<!-- catalogue:end -->` markers (a test keeps them equal;
+/// `velvet post-catalogue` prints it).
+std::string postEffectCatalogueMarkdown();
+
 /// The default chain (the "Bloom + ACES" preset): bloom, ACES tone mapping, vignette, FXAA. The
 /// bench's post_chain_share measures this chain.
 PostChain defaultPostChain();

@@ -21,15 +21,14 @@ struct PostFrameBlock {
     glm::vec4 misc;
 };
 
-std::string pointwiseFile(std::string_view type) {
-    return type == "tonemap" ? "post_tonemap_curve.frag" : "post_" + std::string(type) + ".frag";
-}
-
-/// One pass of the plan: a fused group of pointwise effects, or one effect with its own class.
+/// One pass of the plan: a fused group of pointwise effects, or one effect run by its class.
 struct Step {
     std::vector<const EffectInstance*> fused;
+    std::vector<const FusableEffect*> fusedEffects; ///< the classes of `fused`
     const EffectInstance* single = nullptr;
+    PostEffect* singleEffect = nullptr;
     bool displayToneMap = false; ///< a tone map drawn by the OCIO display transform
+    size_t listIndex = 0;        ///< position of `single` among the enabled effects
     std::string name() const {
         if (single)
             return single->type + (displayToneMap ? " (display)" : "");
@@ -73,6 +72,14 @@ struct PostChainRenderer::Impl {
     int compiles = 0;
     GLuint ubo = 0, vao = 0, sampler = 0;
     std::vector<PostTarget> held; ///< targets owned by the last run until endFrame()
+    /// Last frame's input of each effect that reads the previous frame, keyed by its position
+    /// among the enabled effects; pooled targets held across frames (valid: written last run).
+    struct History {
+        PostTarget target;
+        bool valid = false;
+    };
+    std::map<size_t, History> history;
+    GLuint copyFbo = 0; ///< reads an arbitrary texture for the history copy
     int lastSteps = 0;
     bool profiling = false;
     std::vector<PostStepTiming> timings;
@@ -84,6 +91,8 @@ struct PostChainRenderer::Impl {
             glDeleteVertexArrays(1, &vao);
         if (sampler)
             glDeleteSamplers(1, &sampler);
+        if (copyFbo)
+            glDeleteFramebuffers(1, &copyFbo);
     }
 
     void init() {
@@ -103,51 +112,51 @@ struct PostChainRenderer::Impl {
         ctx.compileCount = &compiles;
     }
 
-    PostEffect* effect(const std::string& type, std::string* error) {
-        if (auto it = effects.find(type); it != effects.end())
+    /// The effect class of @p type, built (after its dependencies) on first use.
+    PostEffect* effect(std::string_view type, std::string* error) {
+        if (auto it = effects.find(std::string(type)); it != effects.end())
             return it->second.get();
-        if (type == "depth_of_field" && !effect("gaussian_blur", error))
-            return nullptr; // DoF borrows the blur
-        std::unique_ptr<PostEffect> e;
-        if (type == "bloom")
-            e = makeBloomEffect();
-        else if (type == "gaussian_blur")
-            e = makeGaussianBlurEffect();
-        else if (type == "depth_of_field")
-            e = makeDepthOfFieldEffect();
-        else if (type == "paintbrush")
-            e = makePaintbrushEffect();
-        else
-            e = makeSinglePassEffect(type);
+        std::unique_ptr<PostEffect> e = makePostEffect(type);
         if (!e) {
             if (error)
-                *error = "post chain: no renderer for effect \"" + type + "\"";
+                *error = "post chain: no renderer for effect \"" + std::string(type) + "\"";
             return nullptr;
         }
+        for (std::string_view dependency : e->dependencies())
+            if (!effect(dependency, error))
+                return nullptr;
         if (!e->build(ctx, error))
             return nullptr;
-        return (effects[type] = std::move(e)).get();
+        return (effects[std::string(type)] = std::move(e)).get();
+    }
+
+    /// Copies @p input into the history target of the effect at @p listIndex for next frame.
+    void keepHistory(size_t listIndex, const PostTarget& input) {
+        History& h = history[listIndex];
+        if (h.target.texture &&
+            (h.target.width != input.width || h.target.height != input.height)) {
+            pool.release(h.target);
+            h = {};
+        }
+        if (!h.target.texture)
+            h.target = pool.acquire(input.width, input.height);
+        if (!copyFbo)
+            glCreateFramebuffers(1, &copyFbo);
+        glNamedFramebufferTexture(copyFbo, GL_COLOR_ATTACHMENT0, input.texture, 0);
+        glNamedFramebufferReadBuffer(copyFbo, GL_COLOR_ATTACHMENT0);
+        glBlitNamedFramebuffer(copyFbo, h.target.fbo, 0, 0, input.width, input.height, 0, 0,
+                               input.width, input.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glNamedFramebufferTexture(copyFbo, GL_COLOR_ATTACHMENT0, 0, 0);
+        h.valid = true;
     }
 
     ShaderProgram* fused(const Step& step, std::string* error) {
         const std::string key = step.name();
         if (auto it = fusedPrograms.find(key); it != fusedPrograms.end())
             return it->second.get();
-        // Generated main: include each effect's function once, call them in chain order.
-        std::string main = "#version 450 core\n#include \"post_common.glsl\"\n";
-        for (const EffectInstance* e : step.fused)
-            main += "#include \"" + pointwiseFile(e->type) + "\"\n";
-        main += "layout(location = 0) out vec4 outColor;\nvoid main() {\n"
-                "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
-                "    vec4 c = texelFetch(uInput, px, 0);\n";
-        int base = 0;
-        for (const EffectInstance* e : step.fused) {
-            main += "    c = post_" + e->type + "(c, px, " + std::to_string(base) + ");\n";
-            base += int(findPostEffect(e->type)->params.size());
-        }
-        main += "    outColor = c;\n}\n";
         auto program = std::make_unique<ShaderProgram>();
-        if (!buildPostProgram(*program, "post_fused.frag", {{"post_fused.frag", main}}, error,
+        if (!buildPostProgram(*program, "post_fused.frag",
+                              {{"post_fused.frag", fusedPassSource(step.fusedEffects)}}, error,
                               &compiles))
             return nullptr;
         return (fusedPrograms[key] = std::move(program)).get();
@@ -166,20 +175,27 @@ struct PostChainRenderer::Impl {
             return in.displayTransform(input.texture, effectFloat(*step.single, "exposure"), error);
         }
         if (step.single) {
-            PostEffect* e = effect(step.single->type, error);
-            if (!e)
-                return false;
-            e->run(ctx, *step.single, input, output);
+            const bool reads = step.singleEffect->readsPreviousFrame(*step.single);
+            ctx.previousFrame = {};
+            if (reads)
+                if (auto it = history.find(step.listIndex);
+                    it != history.end() && it->second.valid &&
+                    it->second.target.width == input.width &&
+                    it->second.target.height == input.height)
+                    ctx.previousFrame = it->second.target;
+            step.singleEffect->run(ctx, *step.single, input, output);
+            ctx.previousFrame = {};
+            if (reads)
+                keepHistory(step.listIndex, input);
             return true;
         }
         ShaderProgram* program = fused(step, error);
         if (!program)
             return false;
         int base = 0;
-        for (const EffectInstance* e : step.fused) {
-            const EffectMeta& meta = *findPostEffect(e->type);
-            setEffectParams(program->id(), meta, *e, base);
-            base += int(meta.params.size());
+        for (size_t k = 0; k < step.fused.size(); ++k) {
+            step.fusedEffects[k]->upload(program->id(), *step.fused[k], base);
+            base += step.fusedEffects[k]->slotCount();
         }
         drawPostPass(ctx, program->id(), input, output, 0);
         return true;
@@ -222,27 +238,50 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
         }
         list.push_back(&e);
     }
-    const float displayOp = 6.0f; // "display" in the operator choice list
+    // The plan: consecutive fusable effects share a pass while their uniforms fit.
     std::vector<Step> steps;
-    for (const EffectInstance* e : list) {
-        const EffectMeta& meta = *findPostEffect(e->type);
-        const bool display = e->type == "tonemap" &&
-                             (in.forceDisplayTransform || effectFloat(*e, "operator") == displayOp);
-        if (meta.pointwise && !display) {
+    std::vector<size_t> readers; ///< list positions that read the previous frame this run
+    for (size_t i = 0; i < list.size(); ++i) {
+        const EffectInstance* e = list[i];
+        PostEffect* renderer = d.effect(e->type, error);
+        if (!renderer)
+            return false;
+        const FusableEffect* fusable = renderer->fusable();
+        if (fusable && fusable->fuses(*e, in.forceDisplayTransform)) {
             int slots = 0;
             if (!steps.empty() && !steps.back().fused.empty())
-                for (const EffectInstance* f : steps.back().fused)
-                    slots += int(findPostEffect(f->type)->params.size());
+                for (const FusableEffect* f : steps.back().fusedEffects)
+                    slots += f->slotCount();
             if (!steps.empty() && !steps.back().fused.empty() &&
-                slots + int(meta.params.size()) <= kPostMaxSlots)
+                slots + fusable->slotCount() <= kPostMaxSlots) {
                 steps.back().fused.push_back(e);
-            else
-                steps.push_back(Step{{e}, nullptr, false});
+                steps.back().fusedEffects.push_back(fusable);
+            } else {
+                Step step;
+                step.fused = {e};
+                step.fusedEffects = {fusable};
+                steps.push_back(std::move(step));
+            }
         } else {
-            steps.push_back(Step{{}, e, display});
+            Step step;
+            step.single = e;
+            step.singleEffect = renderer;
+            step.displayToneMap = fusable != nullptr; // a fusable effect that does not fuse
+            step.listIndex = i;
+            steps.push_back(std::move(step));
+            if (renderer->readsPreviousFrame(*e))
+                readers.push_back(i);
         }
     }
     d.lastSteps = int(steps.size());
+    // History no effect of this chain reads goes back to the pool.
+    for (auto it = d.history.begin(); it != d.history.end();)
+        if (std::find(readers.begin(), readers.end(), it->first) == readers.end()) {
+            d.pool.release(it->second.target);
+            it = d.history.erase(it);
+        } else {
+            ++it;
+        }
 
     PostFrameBlock block{};
     block.viewProj = in.viewProj;

@@ -5,7 +5,10 @@
 /// Consecutive pointwise effects (tone mapping, colour grading, toon, vignette, night vision,
 /// film grain) are fused into one generated pass; blur-like effects run at half resolution;
 /// render targets come from a pool and are reused across frames. Effects that need depth or
-/// normals read the G-buffer textures bound at their layout units (gbuffer_layout.h).
+/// normals read the G-buffer textures bound at their layout units (gbuffer_layout.h). Each effect
+/// type is one class (render/post_effects/post_<type>.cpp, render/post_effect.h); an effect
+/// instance that reads the previous frame (motion blur with frame blending) gets last frame's
+/// copy of its input, kept in a pooled target only while such an instance is in the chain.
 /// Needs a current OpenGL 4.5 core context from the first run to destruction.
 
 #include "core/image.h"

@@ -151,4 +151,108 @@ bool buildPostProgram(ShaderProgram& program, const std::string& fragment,
     return true;
 }
 
+PostEffect::PostEffect(std::string_view type) : m_meta(findPostEffect(type)) {}
+
+SinglePassEffect::SinglePassEffect(std::string_view type)
+    : PostEffect(type), m_shader("post_" + std::string(type) + ".frag") {}
+
+std::vector<PostPassInfo> SinglePassEffect::passes() const {
+    return {{meta().label, m_shader, 1}};
+}
+
+bool SinglePassEffect::build(PostContext& ctx, std::string* error) {
+    return buildPostProgram(m_program, m_shader, {}, error, ctx.compileCount);
+}
+
+unsigned SinglePassEffect::bindInputs(PostContext& /*ctx*/, const EffectInstance& /*effect*/,
+                                      int& /*level*/) {
+    return 0;
+}
+
+void SinglePassEffect::run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
+                           const PostTarget& output) {
+    setEffectParams(m_program.id(), meta(), effect, 0);
+    int level = 0;
+    const unsigned aux = bindInputs(ctx, effect, level);
+    drawPostPass(ctx, m_program.id(), input, output, 0, level, aux);
+}
+
+FusableEffect::FusableEffect(std::string_view type, std::string glslFile)
+    : PostEffect(type),
+      m_glslFile(glslFile.empty() ? "post_" + std::string(type) + ".frag" : std::move(glslFile)) {}
+
+std::vector<PostPassInfo> FusableEffect::passes() const {
+    return {{"fused pointwise pass", m_glslFile, 1}};
+}
+
+std::string FusableEffect::glslFunction() const {
+    return "post_" + std::string(meta().type);
+}
+
+void FusableEffect::upload(unsigned program, const EffectInstance& effect, int base) const {
+    setEffectParams(program, meta(), effect, base);
+}
+
+bool FusableEffect::build(PostContext& /*ctx*/, std::string* /*error*/) {
+    return true; // the chain compiles fused passes; run() compiles the effect alone when used
+}
+
+void FusableEffect::run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
+                        const PostTarget& output) {
+    if (!m_program.id() && !buildPostProgram(m_program, "post_fused.frag",
+                                             {{"post_fused.frag", fusedPassSource({this})}},
+                                             nullptr, ctx.compileCount))
+        return; // the same sources compile as part of every fused pass
+    upload(m_program.id(), effect, 0);
+    drawPostPass(ctx, m_program.id(), input, output, 0);
+}
+
+std::string fusedPassSource(const std::vector<const FusableEffect*>& effects) {
+    // Include each effect's file once (a chain may repeat an effect), call them in chain order.
+    std::string main = "#version 450 core\n#include \"post_common.glsl\"\n";
+    std::vector<std::string> included;
+    for (const FusableEffect* e : effects)
+        if (std::find(included.begin(), included.end(), e->glslFile()) == included.end()) {
+            included.push_back(e->glslFile());
+            main += "#include \"" + e->glslFile() + "\"\n";
+        }
+    main += "layout(location = 0) out vec4 outColor;\nvoid main() {\n"
+            "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+            "    vec4 c = texelFetch(uInput, px, 0);\n";
+    int base = 0;
+    for (const FusableEffect* e : effects) {
+        main += "    c = " + e->glslFunction() + "(c, px, " + std::to_string(base) + ");\n";
+        base += e->slotCount();
+    }
+    main += "    outColor = c;\n}\n";
+    return main;
+}
+
+std::unique_ptr<PostEffect> makePostEffect(std::string_view type) {
+    using Factory = std::unique_ptr<PostEffect> (*)();
+    static constexpr std::pair<std::string_view, Factory> kFactories[] = {
+        {"bloom", makeBloomEffect},
+        {"motion_blur", makeMotionBlurEffect},
+        {"depth_of_field", makeDepthOfFieldEffect},
+        {"toon", makeToonEffect},
+        {"color_grading", makeColorGradingEffect},
+        {"paintbrush", makePaintbrushEffect},
+        {"tonemap", makeToneMapEffect},
+        {"gaussian_blur", makeGaussianBlurEffect},
+        {"pixelate", makePixelateEffect},
+        {"chromatic_aberration", makeChromaticAberrationEffect},
+        {"vignette", makeVignetteEffect},
+        {"night_vision", makeNightVisionEffect},
+        {"pointillism", makePointillismEffect},
+        {"vaporwave", makeVaporwaveEffect},
+        {"film_grain", makeFilmGrainEffect},
+        {"sharpen", makeSharpenEffect},
+        {"fxaa", makeFxaaEffect},
+    };
+    for (const auto& [name, factory] : kFactories)
+        if (name == type)
+            return factory();
+    return nullptr;
+}
+
 } // namespace velvet::render

@@ -85,6 +85,9 @@ struct PostContext {
     std::function<void(unsigned input, float exposureEv)> displayTransform;
     /// Shader programs compiled (counted by the chain).
     int* compileCount = nullptr;
+    /// During run() of an effect whose readsPreviousFrame() is true: last frame's copy of its
+    /// input (same size), or a zero texture on the first frame and after a resize.
+    PostTarget previousFrame;
 };
 
 /// Uploads @p effect's parameters into uParams[base …] of @p program (catalogue order).
@@ -100,28 +103,130 @@ bool buildPostProgram(ShaderProgram& program, const std::string& fragment,
                       const GeneratedSources& extra, std::string* error, int* compileCount,
                       int pass = -1);
 
-/// One effect type. run() reads @p input and writes @p output (a pooled target or the final
-/// framebuffer, same size as the input); temporaries come from ctx.pool.
+/// One pass an effect draws, for the catalogue of renderer classes (tests, profiling).
+struct PostPassInfo {
+    std::string_view name;   ///< e.g. "bright pass"
+    std::string_view shader; ///< fragment shader file in resources/shaders/
+    int downscale = 1;       ///< 1 full resolution, 2 half, … (0: a chain of mip levels)
+};
+
+class FusableEffect;
+
+/// One effect type, one class (render/post_effects/post_<type>.cpp), one shader file. run()
+/// reads @p input and writes @p output (a pooled target or the final framebuffer, same size as
+/// the input); temporaries come from ctx.pool.
 class PostEffect {
 public:
+    /// @p type must be in the catalogue (core/post_effects.h).
+    explicit PostEffect(std::string_view type);
     virtual ~PostEffect() = default;
+    PostEffect(const PostEffect&) = delete;
+    PostEffect& operator=(const PostEffect&) = delete;
+
+    const EffectMeta& meta() const { return *m_meta; }
+    /// The passes run() draws, in order.
+    virtual std::vector<PostPassInfo> passes() const = 0;
+    /// Effects whose build() must have run before this one's (depth of field borrows the blur).
+    virtual std::vector<std::string_view> dependencies() const { return {}; }
+    /// Non-null for pointwise effects: the chain folds consecutive ones into one fused pass.
+    virtual const FusableEffect* fusable() const { return nullptr; }
+    /// Whether this instance needs last frame's copy of its input (PostContext::previousFrame);
+    /// the chain then keeps one pooled target per such effect across frames.
+    virtual bool readsPreviousFrame(const EffectInstance& /*effect*/) const { return false; }
+
     /// Compiles the programs; called once, before the first run.
     virtual bool build(PostContext& ctx, std::string* error) = 0;
     virtual void run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
                      const PostTarget& output) = 0;
+
+private:
+    const EffectMeta* m_meta;
 };
 
-/// @name The effects with their own class (render/post_<type>.cpp). Pointwise effects (tone map,
-/// colour grading, toon, vignette, night vision, film grain) are shader functions fused into
-/// one pass by render/post_chain.cpp.
+/// An effect that is one fullscreen pass of resources/shaders/post_<type>.frag with its
+/// parameters in uParams[0 …] (catalogue order). Effects that read neighbouring pixels (pixelation,
+/// motion blur, pointillism, vaporwave, chromatic aberration, sharpen, FXAA) derive from it; they
+/// cannot be fused with their neighbours.
+class SinglePassEffect : public PostEffect {
+public:
+    explicit SinglePassEffect(std::string_view type);
+    std::vector<PostPassInfo> passes() const override;
+    bool build(PostContext& ctx, std::string* error) override;
+    void run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
+             const PostTarget& output) override;
+
+protected:
+    /// Before the draw: binds extra inputs; returns the aux texture (kPostAuxUnit) and sets
+    /// @p level (uPass.y). Default: none.
+    virtual unsigned bindInputs(PostContext& ctx, const EffectInstance& effect, int& level);
+    const std::string& shaderFile() const { return m_shader; }
+    ShaderProgram m_program;
+
+private:
+    std::string m_shader;
+};
+
+/// A pointwise effect: its GLSL file defines `vec4 post_<type>(vec4 colour, ivec2 px, int base)`
+/// reading parameters from uParams[base …]. Consecutive fusable effects are one pass whose main
+/// (fusedPassSource) calls each function in chain order; each effect uploads its own uniforms at
+/// its base slot. Run alone, the effect is a fused pass of one.
+class FusableEffect : public PostEffect {
+public:
+    explicit FusableEffect(std::string_view type, std::string glslFile = {});
+    const FusableEffect* fusable() const override { return this; }
+    std::vector<PostPassInfo> passes() const override;
+
+    /// The file defining the function (default "post_<type>.frag").
+    const std::string& glslFile() const { return m_glslFile; }
+    /// "post_<type>"
+    std::string glslFunction() const;
+    /// vec4 slots the effect's uniforms take (one per parameter).
+    int slotCount() const { return int(meta().params.size()); }
+    /// Whether @p effect runs as a shader function (true) or as a step of its own (the tone map
+    /// drawn by the OCIO display transform).
+    virtual bool fuses(const EffectInstance& /*effect*/, bool /*forceDisplayTransform*/) const {
+        return true;
+    }
+    /// Uploads @p effect's parameters at uParams[base …] of @p program.
+    virtual void upload(unsigned program, const EffectInstance& effect, int base) const;
+
+    /// Compiles nothing: the chain compiles the fused passes (fusedPassSource).
+    bool build(PostContext& ctx, std::string* error) override;
+    /// The effect alone, as a fused pass of one (compiled on first use).
+    void run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
+             const PostTarget& output) override;
+
+private:
+    std::string m_glslFile;
+    ShaderProgram m_program; ///< the effect alone
+};
+
+/// The generated main of a fused pass: includes each effect's file once and calls the functions
+/// in order, effect i reading its parameters from the sum of the slot counts before it.
+std::string fusedPassSource(const std::vector<const FusableEffect*>& effects);
+
+/// A new renderer for catalogue type @p type, or nullptr when none exists.
+std::unique_ptr<PostEffect> makePostEffect(std::string_view type);
+
+/// @name One factory per effect class (render/post_effects/post_<type>.cpp)
 /// @{
 std::unique_ptr<PostEffect> makeBloomEffect();
-std::unique_ptr<PostEffect> makeGaussianBlurEffect();
+std::unique_ptr<PostEffect> makeMotionBlurEffect();
 std::unique_ptr<PostEffect> makeDepthOfFieldEffect();
+std::unique_ptr<PostEffect> makeToonEffect();
+std::unique_ptr<PostEffect> makeColorGradingEffect();
 std::unique_ptr<PostEffect> makePaintbrushEffect();
-/// Single-pass effects: pixelate, motion_blur, pointillism, vaporwave, chromatic_aberration,
-/// sharpen, fxaa (render/post_single_pass.cpp).
-std::unique_ptr<PostEffect> makeSinglePassEffect(std::string_view type);
+std::unique_ptr<PostEffect> makeToneMapEffect();
+std::unique_ptr<PostEffect> makeGaussianBlurEffect();
+std::unique_ptr<PostEffect> makePixelateEffect();
+std::unique_ptr<PostEffect> makeChromaticAberrationEffect();
+std::unique_ptr<PostEffect> makeVignetteEffect();
+std::unique_ptr<PostEffect> makeNightVisionEffect();
+std::unique_ptr<PostEffect> makePointillismEffect();
+std::unique_ptr<PostEffect> makeVaporwaveEffect();
+std::unique_ptr<PostEffect> makeFilmGrainEffect();
+std::unique_ptr<PostEffect> makeSharpenEffect();
+std::unique_ptr<PostEffect> makeFxaaEffect();
 /// @}
 
 } // namespace velvet::render

@@ -2,8 +2,9 @@
 // chain presets (round trips, all-or-nothing loading with JSON paths), the generated schema, and
 // scene loading checking effects against the catalogue.
 //
-// Regenerating resources/schemas/post-chain.schema.json after a catalogue change:
-//   VELVET_UPDATE_SCHEMAS=1 ctest --test-dir build -R test_core_post_chain
+// Regenerating resources/schemas/post-chain.schema.json and the catalogue in docs/post-effects.md
+// after a catalogue change:
+//   VELVET_UPDATE_SCHEMAS=1 VELVET_UPDATE_DOCS=1 ctest --test-dir build -R test_core_post_chain
 #include "core/atomic_file.h"
 #include "core/document_io.h"
 #include "core/post_chain_io.h"
@@ -61,7 +62,7 @@ private slots:
         QVERIFY(findPostEffect("motion_blur")->reads & kReadsCameraMotion);
         QVERIFY(findPostEffect("toon")->reads & kReadsNormals);
         QCOMPARE(describeReads(findPostEffect("motion_blur")->reads),
-                 std::string("colour, depth, camera motion"));
+                 std::string("colour, depth, previous frame, camera motion"));
     }
 
     void chainEdits() {
@@ -224,6 +225,37 @@ private slots:
         QVERIFY2(*text == generated, "resources/schemas/post-chain.schema.json is out of date; "
                                      "regenerate with VELVET_UPDATE_SCHEMAS=1");
         QVERIFY(generated.find("\"const\": \"paintbrush\"") != std::string::npos);
+    }
+
+    // docs/post-effects.md embeds the catalogue generated from the metadata (`velvet
+    // post-catalogue`), so every effect, parameter, range and default there is the code's.
+    void docsCatalogueIsGenerated() {
+        const fs::path file = fs::path(VELVET_SOURCE_DIR) / "docs/post-effects.md";
+        std::string error;
+        const auto text = readWholeFile(file, 1 << 24, &error);
+        QVERIFY2(text, error.c_str());
+        const std::string begin = "<!-- catalogue:begin -->\n", end = "<!-- catalogue:end -->";
+        const size_t a = text->find(begin), b = text->find(end);
+        QVERIFY2(a != std::string::npos && b != std::string::npos && a < b,
+                 "docs/post-effects.md lacks the catalogue markers");
+        const std::string generated = postEffectCatalogueMarkdown();
+        const char* update = std::getenv("VELVET_UPDATE_DOCS");
+        if (update && std::string(update) == "1" &&
+            text->substr(a + begin.size(), b - a - begin.size()) != generated) {
+            const std::string updated =
+                text->substr(0, a + begin.size()) + generated + text->substr(b);
+            QVERIFY2(writeFileAtomically(file, updated, &error), error.c_str());
+            qWarning("VELVET_UPDATE_DOCS=1: rewrote the catalogue in %s", file.string().c_str());
+            return;
+        }
+        QVERIFY2(text->substr(a + begin.size(), b - a - begin.size()) == generated,
+                 "the catalogue in docs/post-effects.md is out of date; regenerate with "
+                 "VELVET_UPDATE_DOCS=1 (or paste `velvet post-catalogue`)");
+        for (const EffectMeta& m : postEffectCatalogue()) {
+            QVERIFY(generated.find("(`" + std::string(m.type) + "`)") != std::string::npos);
+            for (const ParamMeta& p : m.params)
+                QVERIFY(generated.find("| `" + std::string(p.id) + "` |") != std::string::npos);
+        }
     }
 
     void sceneEffectsAreChecked() {

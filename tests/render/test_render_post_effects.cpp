@@ -15,6 +15,7 @@
 
 #include <QtTest>
 #include <cmath>
+#include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <set>
 
@@ -353,6 +354,54 @@ private slots:
         off.enabled = false;
         const Image c = run(chainOf({blur, off, pix}), in);
         QCOMPARE(maxDiff(a, c), 0.0f);
+    }
+
+    // Frame blending: with frameBlend > 0 motion blur mixes in last frame's input, which the
+    // chain keeps in a pooled target; at 0 (the default) nothing of the previous frame remains.
+    void motionBlurBlendsThePreviousFrame() {
+        const PostChain blend = chainOf({fx("motion_blur", {{"frameBlend", {0.5f}}})});
+        PostTestInput a = litSphere(), b = litSphere();
+        a.color = flat(0.2f);
+        b.color = flat(0.6f);
+        // First frame: no history yet; a still camera leaves the image as it is.
+        QVERIFY(maxDiff(run(blend, a), a.color) < 2e-3f);
+        const Image out = run(blend, b);
+        for (const auto& [x, y] : {std::pair{0, 0}, {kSize / 2, kSize / 2}, {kSize - 1, 7}})
+            QVERIFY(std::abs(out.at(x, y)[0] - 0.4f) < 2e-3f); // mix(0.6, 0.2, 0.5)
+        // The history target is reused, not reallocated, frame after frame.
+        const int allocated = m_post->textureAllocations();
+        for (int i = 0; i < 20; ++i)
+            run(blend, i % 2 ? a : b);
+        QCOMPARE(m_post->textureAllocations(), allocated);
+        // Without frame blending the previous frame plays no part.
+        const PostChain plain = chainOf({fx("motion_blur")});
+        run(plain, a);
+        QVERIFY(maxDiff(run(plain, b), b.color) < 2e-3f);
+    }
+
+    // One renderer class per catalogue effect; the pointwise ones are fusable, and every shader
+    // their passes name ships.
+    void everyEffectHasItsClass() {
+        for (const EffectMeta& m : postEffectCatalogue()) {
+            const std::string type(m.type);
+            const std::unique_ptr<render::PostEffect> e = render::makePostEffect(m.type);
+            QVERIFY2(e, type.c_str());
+            QCOMPARE(e->meta().type, m.type);
+            QCOMPARE(e->fusable() != nullptr, m.pointwise);
+            std::vector<std::string> shaders;
+            for (const render::PostPassInfo& p : e->passes())
+                shaders.emplace_back(p.shader);
+            if (e->fusable())
+                shaders.push_back(e->fusable()->glslFile());
+            QVERIFY2(!shaders.empty(), type.c_str());
+            for (const std::string& f : shaders)
+                QVERIFY2(std::filesystem::exists(std::string(VELVET_SOURCE_DIR) +
+                                                 "/resources/shaders/" + f),
+                         (type + ": " + f).c_str());
+            QCOMPARE(e->readsPreviousFrame(fx(type.c_str(), {{"frameBlend", {0.5f}}})),
+                     bool(m.reads & kReadsPreviousFrame));
+        }
+        QVERIFY(!render::makePostEffect("no_such_effect"));
     }
 
     void cheapLdrEffectsAreFused() {

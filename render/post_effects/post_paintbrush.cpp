@@ -7,8 +7,17 @@
 namespace velvet::render {
 namespace {
 
+/// Paintbrush (seed 004): post_paintbrush.frag as two programs, POST_PASS 0 the half-resolution
+/// curl field, 1 the strokes reading it on kPostAuxUnit; uniforms: the parameters at slot 0.
 class PaintbrushEffect final : public PostEffect {
 public:
+    PaintbrushEffect() : PostEffect("paintbrush") {}
+
+    std::vector<PostPassInfo> passes() const override {
+        return {{"curl-noise field", "post_paintbrush.frag", 2},
+                {"strokes", "post_paintbrush.frag", 1}};
+    }
+
     bool build(PostContext& ctx, std::string* error) override {
         return buildPostProgram(m_programs[0], "post_paintbrush.frag", {}, error, ctx.compileCount,
                                 0) &&
@@ -19,7 +28,7 @@ public:
     void run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
              const PostTarget& output) override {
         for (ShaderProgram& program : m_programs)
-            setEffectParams(program.id(), *findPostEffect("paintbrush"), effect, 0);
+            setEffectParams(program.id(), meta(), effect, 0);
         const PostTarget curl =
             ctx.pool->acquire(std::max(input.width / 2, 1), std::max(input.height / 2, 1));
         drawPostPass(ctx, m_programs[0].id(), input, curl, 0);

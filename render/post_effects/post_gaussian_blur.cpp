@@ -10,8 +10,20 @@
 namespace velvet::render {
 namespace {
 
+/// Separable gaussian (seed 001): post_gaussian_blur.frag, uPass.x 0 horizontal, 1 vertical,
+/// 2 box downsample / bilinear resample, 3 bilinear upsample; uniforms: the weights
+/// (kPostWeightsLocation) and the tap count (uPass.y). Also serves ctx.blur for other effects.
 class GaussianBlurEffect final : public PostEffect {
 public:
+    GaussianBlurEffect() : PostEffect("gaussian_blur") {}
+
+    std::vector<PostPassInfo> passes() const override {
+        return {{"downsample (sigma >= 3)", "post_gaussian_blur.frag", 2},
+                {"horizontal", "post_gaussian_blur.frag", 1},
+                {"vertical", "post_gaussian_blur.frag", 1},
+                {"upsample (sigma >= 3)", "post_gaussian_blur.frag", 1}};
+    }
+
     bool build(PostContext& ctx, std::string* error) override {
         if (!buildPostProgram(m_program, "post_gaussian_blur.frag", {}, error, ctx.compileCount))
             return false;

@@ -9,8 +9,20 @@
 namespace velvet::render {
 namespace {
 
+/// Bloom (Jimenez 2014, "Next Generation Post Processing in Call of Duty: Advanced Warfare"):
+/// four programs of post_bloom.frag (POST_PASS 0–3); uniforms: the bloom parameters at slot 0,
+/// uPass.y the level count of the composite.
 class BloomEffect final : public PostEffect {
 public:
+    BloomEffect() : PostEffect("bloom") {}
+
+    std::vector<PostPassInfo> passes() const override {
+        return {{"bright pass + 13-tap downsample", "post_bloom.frag", 2},
+                {"13-tap downsample", "post_bloom.frag", 0},
+                {"tent upsample, additive", "post_bloom.frag", 0},
+                {"composite", "post_bloom.frag", 1}};
+    }
+
     bool build(PostContext& ctx, std::string* error) override {
         for (int pass = 0; pass < 4; ++pass)
             if (!buildPostProgram(m_programs[pass], "post_bloom.frag", {}, error, ctx.compileCount,
@@ -21,11 +33,10 @@ public:
 
     void run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
              const PostTarget& output) override {
-        const EffectMeta& meta = *findPostEffect("bloom");
         unsigned p[4];
         for (int pass = 0; pass < 4; ++pass) {
             p[pass] = m_programs[pass].id();
-            setEffectParams(p[pass], meta, effect, 0);
+            setEffectParams(p[pass], meta(), effect, 0);
         }
         const int wanted = std::clamp(int(std::lround(effectFloat(effect, "radius"))), 1, 8);
         std::vector<PostTarget> levels;
