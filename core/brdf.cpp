@@ -211,8 +211,8 @@ std::vector<float> integrateSheenAlbedo(SheenModel model) {
                     const float phi = (float(b) + 0.5f) / kPhi * kPi;
                     const glm::vec3 l(st * std::cos(phi), st * std::sin(phi), ct);
                     const glm::vec3 h = glm::normalize(l + v);
-                    const float f = distributionCharlie(h.z, rough) *
-                                    visibilitySheen(model, ct, NdotV, rough);
+                    const float f =
+                        distributionCharlie(h.z, rough) * visibilitySheen(model, ct, NdotV, rough);
                     sum += double(f) * ct * st;
                 }
             }
@@ -230,8 +230,9 @@ const std::vector<float>& sheenAlbedoLut(SheenModel model) {
     // lobe actually drawn). Ashikhmin and Neubelt are the same visibility function (see
     // visibilityNeubelt), so their tables are equal by construction; both are kept so that every
     // SheenModel has its own entry, as the GPU's three-channel texture has.
-    static const std::vector<float> tables[2] = {integrateSheenAlbedo(SheenModel::CharlieContyKulla),
-                                                 integrateSheenAlbedo(SheenModel::CharlieAshikhmin)};
+    static const std::vector<float> tables[2] = {
+        integrateSheenAlbedo(SheenModel::CharlieContyKulla),
+        integrateSheenAlbedo(SheenModel::CharlieAshikhmin)};
     return model == SheenModel::CharlieContyKulla ? tables[0] : tables[1];
 }
 

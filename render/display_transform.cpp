@@ -92,6 +92,7 @@ struct DisplayTransform::Impl {
         ShaderProgram program;
         std::vector<GLuint> luts;
         GLint exposureLocation = -1;
+        GpuDisplayTransform source; ///< kept for reload() (shader text from disk, OCIO's GLSL)
         ~Program() {
             if (!luts.empty())
                 glDeleteTextures(GLsizei(luts.size()), luts.data());
@@ -119,29 +120,46 @@ struct DisplayTransform::Impl {
                                    std::to_string(binding::kDisplayLutTexFirst) +
                                    " but the GL context has " + std::to_string(maxUnits) +
                                    " texture units");
+        if (!compile(t, p, error))
+            return false;
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+        glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        for (const GpuLutTexture& lut : t.textures)
+            p.luts.push_back(uploadLut(lut));
+        setUniforms(t, p);
+        p.source = t;
+        for (GpuLutTexture& lut : p.source.textures)
+            lut.values = {}; // uploaded; reload() needs only the names
+        return true;
+    }
+
+    /// Compiles post_display.frag with @p t's GLSL into @p p (the last good program stays on
+    /// failure).
+    bool compile(const GpuDisplayTransform& t, Program& p, std::string* error) {
         if (!p.program.build("fullscreen.vert", "post_display.frag",
                              {"OCIO_DISPLAY " + t.functionName}, {{kGeneratedInclude, t.glsl}},
                              error))
             return false;
         ++compiles;
+        return true;
+    }
+
+    /// Sampler units and extraction-time uniform values of a freshly linked program.
+    void setUniforms(const GpuDisplayTransform& t, Program& p) {
         const GLuint program = p.program.id();
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-        glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
         for (size_t i = 0; i < t.textures.size(); ++i) {
-            const GpuLutTexture& lut = t.textures[i];
-            p.luts.push_back(uploadLut(lut));
-            const GLint loc = glGetUniformLocation(program, lut.samplerName.c_str());
+            const GLint loc = glGetUniformLocation(program, t.textures[i].samplerName.c_str());
             if (loc >= 0)
                 glProgramUniform1i(program, loc, binding::kDisplayLutTexFirst + int(i));
         }
+        p.exposureLocation = -1;
         for (const GpuUniform& u : t.uniforms) {
             setUniform(program, u);
             if (u.isExposure)
                 p.exposureLocation = glGetUniformLocation(program, u.name.c_str());
         }
-        return true;
     }
 };
 
@@ -159,6 +177,21 @@ bool DisplayTransform::select(const GpuDisplayTransform& transform, std::string*
     d.selectedId = transform.cacheId;
     d.cache[transform.cacheId] = std::move(program);
     return true;
+}
+
+bool DisplayTransform::reload(std::string* error) {
+    Impl& d = *m_impl;
+    std::string errors;
+    for (auto& [id, program] : d.cache) {
+        std::string message;
+        if (d.compile(program->source, *program, &message))
+            d.setUniforms(program->source, *program);
+        else
+            errors += (errors.empty() ? "" : "\n") + message;
+    }
+    if (!errors.empty() && error)
+        *error = errors;
+    return errors.empty();
 }
 
 bool DisplayTransform::selectCached(const std::string& cacheId) {

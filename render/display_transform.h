@@ -48,6 +48,11 @@ public:
     /// viewport. False + message when nothing is selected or GL fails.
     bool apply(const Image& linear, float exposureEv, Image& display, std::string* error);
 
+    /// Recompiles every cached program from disk (post_display.frag and its includes, with the
+    /// OCIO GLSL it was built with; the editor's shader reload). A program that fails keeps its
+    /// last good build. False + every failure's message (file:line).
+    bool reload(std::string* error);
+
     /// Programs compiled since construction (each new cache id compiles one).
     int compileCount() const;
     /// Programs held in the cache.

@@ -3,6 +3,8 @@
 #include <cstring>
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
+#include <map>
+#include <mutex>
 #include <vector>
 
 namespace velvet::render {
@@ -53,6 +55,19 @@ std::string eglErrorName(EGLint e) {
     }
 }
 
+// eglGetPlatformDisplayEXT returns one EGLDisplay per platform for the whole process, and
+// eglTerminate on it ends every context on it, in every thread. Contexts on several threads (the
+// editor's thumbnail worker beside renderSceneOffscreen elsewhere) count their display's users,
+// and the last one terminates it.
+std::mutex& displayMutex() {
+    static std::mutex mutex;
+    return mutex;
+}
+std::map<EGLDisplay, int>& displayUsers() {
+    static std::map<EGLDisplay, int> users;
+    return users;
+}
+
 std::string glString(GLenum name) {
     const auto* s = reinterpret_cast<const char*>(glGetString(name));
     return s ? s : "";
@@ -75,7 +90,11 @@ HeadlessContext::~HeadlessContext() {
             eglMakeCurrent(m_impl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (m_impl->context != EGL_NO_CONTEXT)
             eglDestroyContext(m_impl->display, m_impl->context);
-        eglTerminate(m_impl->display);
+        const std::lock_guard<std::mutex> lock(displayMutex());
+        if (--displayUsers()[m_impl->display] <= 0) {
+            displayUsers().erase(m_impl->display);
+            eglTerminate(m_impl->display);
+        }
     }
 }
 
@@ -103,6 +122,7 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(std::string* error) {
             return false;
         }
         EGLint major = 0, minor = 0;
+        const std::lock_guard<std::mutex> lock(displayMutex());
         if (!eglInitialize(dpy, &major, &minor)) {
             tried += std::string(tried.empty() ? "" : "; ") + name + ": eglInitialize failed (" +
                      eglErrorName(eglGetError()) + ")";
@@ -110,6 +130,7 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(std::string* error) {
         }
         d.display = dpy;
         d.platform = name;
+        ++displayUsers()[dpy];
         return true;
     };
     if (platformBase && hasExtension(clientExts, "EGL_MESA_platform_surfaceless"))

@@ -89,6 +89,7 @@ std::string cacheHeader() {
 IblBaker::IblBaker() = default;
 
 IblBaker::~IblBaker() {
+    abandonWarmUp();
     release(m_ready);
     release(m_pending);
     for (GLuint p : {m_equirectProgram, m_downsampleProgram, m_prefilterProgram, m_dfgProgram})
@@ -170,18 +171,56 @@ bool IblBaker::initialize(std::string* error) {
     return true;
 }
 
-void IblBaker::warmUp() {
+bool IblBaker::reload(std::string* error, int* compiled) {
+    struct {
+        unsigned* program;
+        const char* file;
+    } programs[] = {{&m_equirectProgram, "ibl_equirect_to_cube.comp"},
+                    {&m_downsampleProgram, "ibl_downsample.comp"},
+                    {&m_prefilterProgram, "ibl_prefilter.comp"},
+                    {&m_dfgProgram, "ibl_dfg.comp"}};
+    std::string errors;
+    for (auto& p : programs) {
+        std::string message;
+        const GLuint program = buildCompute(p.file, &message);
+        if (!program) { // the last good program stays
+            errors += (errors.empty() ? "" : "\n") + message;
+            continue;
+        }
+        glDeleteProgram(*p.program);
+        *p.program = program;
+        if (compiled)
+            ++*compiled;
+    }
+    // New programs: llvmpipe compiles their machine code again at the first dispatch.
+    abandonWarmUp();
+    m_warmedUp = false;
+    if (!errors.empty() && error)
+        *error = errors;
+    return errors.empty();
+}
+
+void IblBaker::abandonWarmUp() {
+    if (m_warm.started) {
+        release(m_warm.bake);
+        if (m_warm.source.texture)
+            glDeleteTextures(1, &m_warm.source.texture);
+    }
+    m_warm = {};
+}
+
+bool IblBaker::warmUpStep() {
     // llvmpipe compiles a shader's machine code at its first dispatch, for the formats and
     // sampler states bound then (a mip-mapped source differs from a single level): a whole bake
     // of a tiny mip-mapped environment (and a DFG dispatch with nothing to write) pays that
-    // once, instead of charging it to the first slice of each kind of job.
+    // once, instead of charging it to the first slice of each kind of job. It is itself sliced,
+    // one frame at a time: each frame runs tiny warm-up slices until one of them took longer
+    // than kWarmUpFrameMs (a machine-code compile), so a frame pays for about one program.
+    constexpr double kWarmUpFrameMs = 4.0;
     const auto t0 = std::chrono::steady_clock::now();
-    m_warmedUp = true;
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    {
-        Image img(8, 4, 3);
-        std::fill(img.pixels.begin(), img.pixels.end(), 1.0f);
-        GpuEnvironment source = uploadEquirect(img, "warm-up");
+    if (!m_warm.jobsDone) {
+        // The real bake's state, set aside while the warm-up's runs through the same code.
         const Bake savedPending = m_pending;
         const std::deque<Job> savedJobs = m_jobs;
         const GLuint savedSource = m_source;
@@ -189,20 +228,37 @@ void IblBaker::warmUp() {
         const double savedTotal = m_unitsTotal, savedDone = m_unitsDone;
         const IblBakeOptions savedOptions = m_options;
         const IblBakeStats savedStats = m_stats;
-        m_pending = {};
-        m_jobs.clear();
+        const Bake savedReady = m_ready;
         m_options.faceSize = 16;
         m_options.samples = 4;
-        const Bake savedReady = m_ready;
         m_ready = {};
-        request(source);
+        if (!m_warm.started) {
+            Image img(8, 4, 3);
+            std::fill(img.pixels.begin(), img.pixels.end(), 1.0f);
+            m_warm.source = uploadEquirect(img, "warm-up");
+            m_warm.started = true;
+            m_pending = {};
+            m_jobs.clear();
+            request(m_warm.source);
+        } else {
+            m_pending = m_warm.bake;
+            m_jobs = m_warm.jobs;
+            m_source = m_warm.sourceTexture;
+            m_sourceWidth = m_warm.sourceWidth;
+        }
         while (!m_jobs.empty()) {
             Job& job = m_jobs.front();
-            runSlice(job);
+            const double ms = runSlice(job);
             if (job.row >= job.size)
                 m_jobs.pop_front();
+            if (ms > kWarmUpFrameMs)
+                break;
         }
-        release(m_pending);
+        m_warm.bake = m_pending;
+        m_warm.jobs = m_jobs;
+        m_warm.sourceTexture = m_source;
+        m_warm.sourceWidth = m_sourceWidth;
+        m_warm.jobsDone = m_jobs.empty();
         m_ready = savedReady;
         m_pending = savedPending;
         m_jobs = savedJobs;
@@ -212,20 +268,27 @@ void IblBaker::warmUp() {
         m_unitsDone = savedDone;
         m_options = savedOptions;
         m_stats = savedStats;
-        glDeleteTextures(1, &source.texture);
+    } else {
+        // Last warm-up frame: the DFG program (its own frame: another compile).
+        GLint previousProgram = 0;
+        glGetIntegerv(GL_CURRENT_PROGRAM, &previousProgram);
+        glUseProgram(m_dfgProgram);
+        glProgramUniform1i(m_dfgProgram, 0, 0); // uSize 0: every invocation returns at once
+        glBindImageTexture(0, m_dfgLut, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+        glDispatchCompute(1, 1, 1);
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glUseProgram(GLuint(previousProgram));
+        glFinish();
+        abandonWarmUp();
+        std::fill(std::begin(m_msPerUnit), std::end(m_msPerUnit), 0.0);
+        m_warmedUp = true;
     }
-    GLint previousProgram = 0;
-    glGetIntegerv(GL_CURRENT_PROGRAM, &previousProgram);
-    glUseProgram(m_dfgProgram);
-    glProgramUniform1i(m_dfgProgram, 0, 0); // uSize 0: every invocation returns at once
-    glBindImageTexture(0, m_dfgLut, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-    glDispatchCompute(1, 1, 1);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glUseProgram(GLuint(previousProgram));
-    glFinish();
-    std::fill(std::begin(m_msPerUnit), std::end(m_msPerUnit), 0.0);
-    m_warmUpMs =
+    const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    m_warmUpMs += ms;
+    ++m_warmUpFrames;
+    m_worstWarmUpFrameMs = std::max(m_worstWarmUpFrameMs, ms);
+    return m_warmedUp;
 }
 
 void IblBaker::request(const GpuEnvironment& env) {
@@ -392,8 +455,15 @@ bool IblBaker::step(double budgetMs) {
         return true;
     glFinish(); // what the host queued is not the bake's time
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    if (!m_warmedUp && budgetMs < 1e8)
-        warmUp(); // sliced baking only: finish() (headless) has no frame to keep short
+    if (!m_warmedUp && budgetMs < 1e8) {
+        // Sliced baking only (finish(), headless, has no frame to keep short): a frame that
+        // warms up does nothing else.
+        warmUpStep();
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindTextureUnit(0, 0);
+        return false;
+    }
     GLint previousProgram = 0;
     glGetIntegerv(GL_CURRENT_PROGRAM, &previousProgram);
     double spent = 0.0;

@@ -79,10 +79,19 @@ public:
     unsigned sheenLut() const { return m_sheenLut; }
 
     const IblBakeStats& stats() const { return m_stats; }
-    /// Time the first sliced step() spent on a tiny bake that makes llvmpipe compile the
-    /// shaders' machine code (once per baker; otherwise charged to the first slice of each kind
-    /// of job). Not a slice: it is shader compilation, and is counted in that frame's time.
+    /// Time the first sliced step()s spent on a tiny bake that makes llvmpipe compile the
+    /// shaders' machine code (once per baker and per reload; otherwise charged to the first slice
+    /// of each kind of job). Not a slice: it is shader compilation, itself spread over frames
+    /// (about one program's compile per frame; a warm-up frame runs no bake slice).
     double warmUpMs() const { return m_warmUpMs; }
+    /// Frames (step() calls) the warm-up took, and the longest of them (wall clock, ms).
+    int warmUpFrames() const { return m_warmUpFrames; }
+    double worstWarmUpFrameMs() const { return m_worstWarmUpFrameMs; }
+
+    /// Recompiles the compute programs from disk (the editor's shader reload); a program that
+    /// fails keeps its last good build, and the warm-up runs again. False + every failure's
+    /// message (file:line); @p compiled counts the programs rebuilt.
+    bool reload(std::string* error, int* compiled = nullptr);
     void resetStats() { m_stats = {}; }
 
     /// @name Read-backs for tests
@@ -115,7 +124,9 @@ private:
     };
 
     void release(Bake& bake);
-    void warmUp();
+    /// One frame of the sliced warm-up; true once it is complete.
+    bool warmUpStep();
+    void abandonWarmUp();
     double runSlice(Job& job);
     void completeDfg();
     double jobUnits(const Job& job) const { return double(job.size) * job.size * job.samples; }
@@ -133,7 +144,19 @@ private:
     double m_msPerUnit[5] = {}; ///< measured cost per JobKind; 0 until its first slice
     IblBakeStats m_stats;
     double m_warmUpMs = 0;
+    int m_warmUpFrames = 0;
+    double m_worstWarmUpFrameMs = 0;
     bool m_warmedUp = false;
+    /// The warm-up's own tiny bake, carried from frame to frame.
+    struct WarmUp {
+        bool started = false, jobsDone = false;
+        GpuEnvironment source;
+        Bake bake;
+        std::deque<Job> jobs;
+        unsigned sourceTexture = 0;
+        int sourceWidth = 0;
+    };
+    WarmUp m_warm;
 };
 
 } // namespace velvet::render

@@ -3,10 +3,12 @@
 /// Render-private: the point, spot and area lights of a scene, drawn on top of the full-screen
 /// lighting pass (which does directional lights, ambient and the environment) by one of three
 /// paths that give the same image (tests/render/test_render_lights.cpp):
-///  - Volumes: the seeds' light volumes, a proxy sphere per light, back faces depth-tested against
-///    the G-buffer and added by blending, so only pixels in front of a light's far side pay;
-///  - Tiled: a compute pass culls lights into 16x16 tiles by the tile's depth bounds and shades
-///    each pixel with its tile's list (Olsson & Assarsson 2011);
+///  - Volumes: the seeds' light volumes, a proxy per light (a sphere; a cone for spot lights of
+///    outer angle up to kConeProxyMaxOuterDeg), back faces depth-tested against the G-buffer and
+///    added by blending, so only pixels in front of a light's far side pay;
+///  - Tiled: a compute pass culls lights into small screen tiles by the tile's view-space box and a
+///    per-tile depth bitmask (Harada et al. 2012 "Forward+"; Harada 2012's 2.5D culling) and
+///    shades each pixel with its tile's list (Olsson & Assarsson 2011);
 ///  - Brute: one full-screen loop over every light, for comparison.
 /// Light data lives in an SSBO (any number of lights; scenes hold 4,096 and more).
 
@@ -22,6 +24,10 @@ namespace velvet::render {
 /// Lights Auto sends down the brute-force path (one pass, nothing to cull); above, tiled.
 inline constexpr int kAutoBruteMaxLights = 8;
 
+/// Spot lights with a wider outer cone are drawn by the sphere proxy in the volumes path (a cone
+/// of half-angle above ~63 degrees encloses more than the sphere).
+inline constexpr float kConeProxyMaxOuterDeg = 60.0f;
+
 /// The path Auto picks for @p localLightCount lights.
 LightPath resolveLightPath(LightPath requested, int localLightCount);
 
@@ -34,13 +40,18 @@ public:
 
     /// Compiles the three paths' programs and makes the proxy mesh. False + message (file:line).
     bool initialize(std::string* error);
-    /// Programs compiled by initialize().
+    /// Programs compiled by initialize() and reload().
     int compileCount() const { return m_compileCount; }
+    /// Recompiles the three paths' programs from disk; a program that fails keeps its last good
+    /// build. False + every failure's message (file:line).
+    bool reload(std::string* error);
 
     /// Packs the point, spot and area lights of @p lights into the light buffer (directional and
     /// ambient lights stay with the full-screen pass).
     void upload(const std::vector<Light>& lights);
     int lightCount() const { return m_count; }
+    /// Spot lights drawn by the cone proxy in the volumes path (packed after the others).
+    int coneLightCount() const { return m_count - m_coneFirst; }
 
     /// Adds the lights to @p hdrTexture (RGBA16F, bound in @p hdrFbo). Expects the frame UBO,
     /// the material table and the G-buffer textures bound, and the G-buffer of @p gbufferFbo
@@ -50,13 +61,17 @@ public:
 
 private:
     void release();
+    bool buildPrograms(std::string* error);
     ShaderProgram m_volumeProgram, m_bruteProgram;
-    unsigned m_tiledProgram = 0;
+    ComputeProgram m_tiledProgram;
     unsigned m_lightSsbo = 0;
     size_t m_ssboBytes = 0;
     int m_count = 0;
+    int m_coneFirst = 0; ///< lights [m_coneFirst, m_count) use the cone proxy
     unsigned m_proxyVao = 0, m_proxyVbo = 0, m_proxyIbo = 0;
-    int m_proxyIndexCount = 0;
+    int m_proxyIndexCount = 0; ///< the sphere's indices, first in m_proxyIbo
+    int m_coneIndexCount = 0;  ///< the cone's, after them
+    int m_coneBaseVertex = 0;  ///< the cone's first vertex in m_proxyVbo
     unsigned m_volumeFbo = 0, m_volumeFboColor = 0, m_volumeFboDepth = 0;
     int m_compileCount = 0;
 };

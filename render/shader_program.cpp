@@ -217,4 +217,40 @@ bool ShaderProgram::build(const std::string& vertexFile, const std::string& frag
     return true;
 }
 
+ComputeProgram::~ComputeProgram() {
+    release();
+}
+
+void ComputeProgram::release() {
+    if (m_program)
+        glDeleteProgram(m_program);
+    m_program = 0;
+}
+
+bool ComputeProgram::build(const std::string& file, const std::vector<std::string>& defines,
+                           const GeneratedSources& generated, std::string* error) {
+    GLuint cs = 0;
+    if (!compileStage(GL_COMPUTE_SHADER, file, defines, generated, cs, error))
+        return false;
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, cs);
+    glLinkProgram(program);
+    glDeleteShader(cs);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        glGetProgramInfoLog(program, len, nullptr, log.data());
+        if (error)
+            *error = "shader link error (" + file + "):\n" + log.c_str();
+        glDeleteProgram(program);
+        return false;
+    }
+    release();
+    m_program = program;
+    return true;
+}
+
 } // namespace velvet::render

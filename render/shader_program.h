@@ -68,4 +68,24 @@ private:
     unsigned m_program = 0;
 };
 
+/// A linked compute program. Like ShaderProgram, a failed build keeps the last good program, so
+/// Renderer::reloadShaders() can rebuild it from disk without losing it on an error.
+class ComputeProgram {
+public:
+    ComputeProgram() = default;
+    ~ComputeProgram();
+    ComputeProgram(const ComputeProgram&) = delete;
+    ComputeProgram& operator=(const ComputeProgram&) = delete;
+
+    /// Compiles and links resources/shaders/@p file; false + message (file:line and the driver
+    /// log) on failure, the previous program kept.
+    bool build(const std::string& file, const std::vector<std::string>& defines,
+               const GeneratedSources& generated, std::string* error);
+    unsigned id() const { return m_program; }
+    void release();
+
+private:
+    unsigned m_program = 0;
+};
+
 } // namespace velvet::render

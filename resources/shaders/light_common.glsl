@@ -108,10 +108,17 @@ bool loadShadingPoint(ivec2 pixel, out ShadingPoint p) {
     return true;
 }
 
-// Whether the light's influence sphere contains the point (what every path culls by).
+// Whether the light reaches the point (what every path culls by, and what the lights-per-pixel
+// view counts): inside its influence sphere and, for a spot light, inside its outer cone (where
+// spotConeAttenuation() is non-zero; the volumes path's cone proxy covers exactly that region).
 bool lightReaches(GpuLight L, vec3 posWorld) {
     vec3 d = L.positionRange.xyz - posWorld;
-    return dot(d, d) < L.positionRange.w * L.positionRange.w;
+    float d2 = dot(d, d);
+    if (d2 >= L.positionRange.w * L.positionRange.w)
+        return false;
+    if (int(L.directionType.w) == LIGHT_SPOT)
+        return dot(L.directionType.xyz, -d) > L.params.x * sqrt(d2);
+    return true;
 }
 
 // One light's contribution to the pixel for debug view `view`: radiance for the final image and

@@ -1,9 +1,12 @@
 #version 450 core
 // Tiled light culling and shading in one compute pass (Andersson 2009, "Parallel Graphics in
-// Frostbite"; Olsson & Assarsson 2011, "Tiled Shading"): each 16x16 work group finds its tile's
-// depth bounds, culls the lights against the tile's view-space box in batches of LIGHT_BATCH
-// (any number of lights, bounded shared memory), then each invocation shades its pixel with the
-// batch's list and adds the sum to the HDR image.
+// Frostbite"; Olsson & Assarsson 2011, "Tiled Shading"): each TILE_SIZE^2 work group finds its
+// tile's depth bounds and a 32-bin depth bitmask of the pixels it holds (Harada, McKee & Yang 2012,
+// "Forward+"; Harada 2012, "A 2.5D Culling for Forward+"), culls the lights against the tile's
+// view-space box and that mask in batches of LIGHT_BATCH (any number of lights, bounded shared
+// memory), then each invocation shades its pixel with the batch's list and adds the sum to the
+// HDR image. The mask drops lights that fall in the depth gaps of a tile (silhouettes), where a
+// min/max range alone keeps everything between the front and the back surface.
 #include "light_common.glsl"
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
@@ -11,12 +14,21 @@ layout(binding = BINDING_LIGHT_HDR_IMAGE, rgba16f) uniform image2D uHdrImage;
 
 shared uint sMinDepth;
 shared uint sMaxDepth;
+shared uint sDepthMask;
 shared uint sCount;
 shared uint sList[LIGHT_BATCH];
 
 vec3 viewFromNdc(vec2 ndcXY, float depth) {
     vec4 p = frame.invProjMatrix * vec4(ndcXY, depth * 2.0 - 1.0, 1.0);
     return p.xyz / p.w;
+}
+
+// The bits of the depth bins [zLo, zHi] covers, bins of width 1/scale from zNear (view distance).
+uint depthBits(float zLo, float zHi, float zNear, float scale) {
+    int b0 = clamp(int((zLo - zNear) * scale), 0, 31);
+    int b1 = clamp(int((zHi - zNear) * scale), 0, 31);
+    uint upTo = b1 >= 31 ? 0xffffffffu : (1u << uint(b1 + 1)) - 1u;
+    return upTo & ~((1u << uint(b0)) - 1u);
 }
 
 void main() {
@@ -27,13 +39,15 @@ void main() {
     if (local == 0u) {
         sMinDepth = floatBitsToUint(1.0);
         sMaxDepth = 0u;
+        sDepthMask = 0u;
     }
     barrier();
     ShadingPoint p;
     bool shaded = inside && loadShadingPoint(pixel, p);
+    float depth = shaded ? texelFetch(gDepthTex, pixel, 0).r : 1.0;
     if (shaded) {
         // Non-negative floats order like their bit patterns.
-        uint bits = floatBitsToUint(texelFetch(gDepthTex, pixel, 0).r);
+        uint bits = floatBitsToUint(depth);
         atomicMin(sMinDepth, bits);
         atomicMax(sMaxDepth, bits);
     }
@@ -52,6 +66,16 @@ void main() {
         boxMin = min(boxMin, c);
         boxMax = max(boxMax, c);
     }
+    // Depth bins between the tile's nearest and farthest view distance (-z).
+    float zNear = -boxMax.z, zFar = -boxMin.z;
+    float binScale = 32.0 / max(zFar - zNear, 1e-6);
+    if (shaded) {
+        vec2 ndcXY = (vec2(pixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+        float z = -viewFromNdc(ndcXY, depth).z;
+        atomicOr(sDepthMask, depthBits(z, z, zNear, binScale));
+    }
+    barrier();
+    uint tileMask = sDepthMask;
 
     int view = frame.modes.y;
     vec3 sum = vec3(0.0);
@@ -62,9 +86,10 @@ void main() {
         int batch = min(LIGHT_BATCH, uLightCount - base);
         for (int i = int(local); i < batch; i += TILE_SIZE * TILE_SIZE) {
             GpuLight L = lights[base + i];
+            float r = L.positionRange.w;
             vec3 c = (frame.viewMatrix * vec4(L.positionRange.xyz, 1.0)).xyz;
             vec3 d = c - clamp(c, boxMin, boxMax); // sphere vs box (Arvo 1990)
-            if (dot(d, d) < L.positionRange.w * L.positionRange.w)
+            if (dot(d, d) < r * r && (depthBits(-c.z - r, -c.z + r, zNear, binScale) & tileMask) != 0u)
                 sList[atomicAdd(sCount, 1u)] = uint(base + i);
         }
         barrier();

@@ -1,12 +1,11 @@
 #pragma once
 // Shared helpers of the render tests: one headless context per test process, scenes built in code.
 
-#include <QtTest>
-
 #include "core/document_io.h"
 #include "core/scene.h"
 #include "render/headless_context.h"
 
+#include <QtTest>
 #include <memory>
 #include <string>
 

@@ -215,7 +215,8 @@ private slots:
         QVERIFY2(r.initialize(&error), error.c_str());
         r.setColorManagement(shippedConfig());
         r.setScene(test::shippedDefaultScene());
-        r.finishEnvironment(); // a finished IBL bake, so frames differ only by the display transform
+        r.finishEnvironment(); // a finished IBL bake, so frames differ only by the display
+                               // transform
         render::OffscreenTarget target;
         QVERIFY2(target.resize(kSize, kSize, &error), error.c_str());
         render::FrameSettings fs;

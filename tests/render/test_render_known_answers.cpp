@@ -95,7 +95,8 @@ private slots:
             }
         qInfo("furnace: %d sphere pixels, worst |value - 0.5| = %.5f at %s", count, worst,
               qPrintable(where));
-        QVERIFY(count > 128 * 128 * 3 / 10); // the default camera frames the sphere at ~39 % of the image
+        QVERIFY(count >
+                128 * 128 * 3 / 10); // the default camera frames the sphere at ~39 % of the image
         QVERIFY2(worst <= 0.005f, qPrintable(QString("worst deviation %1").arg(worst)));
     }
 

@@ -310,6 +310,49 @@ private slots:
         QVERIFY(sum > 0.0);
     }
 
+    // Spot lights: the volumes path draws them with a cone proxy (narrow cones) or the sphere
+    // (wide ones); it still gives the tiled path's image and exactly its lights-per-pixel counts
+    // (a spot reaches only pixels inside its outer cone).
+    void spotConeProxyMatchesTiled() {
+        Scene scene;
+        scene.environment.hdri.clear();
+        scene.environment.color = glm::vec3(0.05f);
+        scene.lights = lightGrid(64, 1.6f);
+        for (size_t i = 0; i < scene.lights.size(); ++i) {
+            Light& l = scene.lights[i];
+            l.type = LightType::Spot;
+            l.direction = glm::normalize(-l.position + glm::vec3(0.2f * float(i % 3) - 0.2f));
+            l.outerConeDeg = i % 4 == 3 ? 75.0f : 12.0f + 3.0f * float(i % 10); // 75: sphere proxy
+            l.innerConeDeg = 0.6f * l.outerConeDeg;
+            l.intensity = 0.6f;
+        }
+        const int size = 128;
+        const Frame tiled =
+            renderFrame(scene, size, render::DebugView::Final, render::LightPath::Tiled);
+        const Frame volumes =
+            renderFrame(scene, size, render::DebugView::Final, render::LightPath::Volumes);
+        float worst = 0.0f;
+        const double f = differingFraction(tiled.display, volumes.display, &worst);
+        qInfo("spots, volumes (cone proxies) vs tiled: %.3f %% differ (worst %.0f/255)", 100.0 * f,
+              worst);
+        QVERIFY(f <= 0.001);
+        const Frame none = [&] {
+            Scene s = scene;
+            s.lights.clear();
+            return renderFrame(s, size);
+        }();
+        QVERIFY(differingFraction(none.display, tiled.display) > 0.05);
+        const auto view = render::DebugView::LightsPerPixel;
+        const Frame ct = renderFrame(scene, size, view, render::LightPath::Tiled);
+        const Frame cv = renderFrame(scene, size, view, render::LightPath::Volumes);
+        const Frame cb = renderFrame(scene, size, view, render::LightPath::Brute);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                QCOMPARE(cv.linear.rgba(x, y).x, ct.linear.rgba(x, y).x);
+                QCOMPARE(cb.linear.rgba(x, y).x, ct.linear.rgba(x, y).x);
+            }
+    }
+
     // The heat map counts exactly the lights whose radius contains the pixel's position: 0
     // outside every radius (pixels within 1 mm of a sphere's edge are left out).
     void heatMapCountsLightsReachingThePixel() {

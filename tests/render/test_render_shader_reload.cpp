@@ -1,0 +1,130 @@
+// Renderer::reloadShaders() (the editor's T) recompiles every program from disk: G-buffer,
+// lighting, tone map, the three light paths, the IBL bake's compute programs and the cached OCIO
+// display program. The test runs on a copy of resources/shaders (VELVET_RESOURCES, set before the
+// renderer exists), breaks each file in turn: reload fails naming file:line, frames still render
+// with the last good programs on every light path and through OCIO; mended, reload succeeds.
+#include "core/resources.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
+#include "render_test_util.h"
+
+#include <QtTest>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+using namespace velvet;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string readText(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+void writeText(const fs::path& p, const std::string& text) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out << text;
+}
+
+} // namespace
+
+class TestRenderShaderReload : public QObject {
+    Q_OBJECT
+
+    std::unique_ptr<QTemporaryDir> m_dir;
+    fs::path m_shaders;
+
+    bool renderAllPaths(render::Renderer& renderer, render::OffscreenTarget& target,
+                        std::string* error) {
+        render::FrameSettings frame;
+        frame.width = frame.height = 48;
+        for (auto path :
+             {render::LightPath::Tiled, render::LightPath::Volumes, render::LightPath::Brute}) {
+            frame.lightPath = path;
+            if (!renderer.render(frame, target.framebuffer(), error))
+                return false;
+        }
+        frame.displayView = "ACES"; // the OCIO display program
+        return renderer.render(frame, target.framebuffer(), error);
+    }
+
+private slots:
+    void initTestCase() {
+        std::string error;
+        QVERIFY2(test::headlessContext(&error), error.c_str());
+        // A resources root whose shaders are a copy (the rest links to the real files).
+        m_dir = std::make_unique<QTemporaryDir>();
+        QVERIFY(m_dir->isValid());
+        const fs::path root = m_dir->path().toStdString();
+        const fs::path real = fs::path(VELVET_SOURCE_DIR) / "resources";
+        for (const auto& entry : fs::directory_iterator(real)) {
+            const fs::path name = entry.path().filename();
+            if (name == "shaders")
+                fs::copy(entry.path(), root / name, fs::copy_options::recursive);
+            else
+                fs::create_directory_symlink(entry.path(), root / name);
+        }
+        m_shaders = root / "shaders";
+        QVERIFY(qputenv("VELVET_RESOURCES", QByteArray::fromStdString(root.string())));
+        QCOMPARE(resources::path("shaders"), m_shaders);
+    }
+
+    void reloadBreaksAndMendsEveryProgram_data() {
+        QTest::addColumn<QString>("file");
+        for (const char* f :
+             {"gbuffer.frag", "lighting.frag", "post_tonemap.frag", "light_tiled.comp",
+              "light_volume.vert", "light_volume.frag", "light_brute.frag",
+              "ibl_equirect_to_cube.comp", "ibl_downsample.comp", "ibl_prefilter.comp",
+              "ibl_dfg.comp", "post_display.frag", "light_common.glsl"})
+            QTest::newRow(f) << QString(f);
+    }
+
+    void reloadBreaksAndMendsEveryProgram() {
+        QFETCH(QString, file);
+        std::string error;
+        render::Renderer renderer;
+        QVERIFY2(renderer.initialize(&error), error.c_str());
+        Scene scene;
+        Light spot;
+        spot.type = LightType::Spot;
+        spot.position = {0.0f, 0.0f, 2.0f};
+        spot.direction = {0.0f, 0.0f, -1.0f};
+        spot.range = 4.0f;
+        spot.outerConeDeg = 30.0f;
+        scene.lights = {spot};
+        renderer.setScene(scene);
+        render::OffscreenTarget target;
+        QVERIFY2(target.resize(48, 48, &error), error.c_str());
+        QVERIFY2(renderAllPaths(renderer, target, &error), error.c_str());
+
+        const fs::path path = m_shaders / file.toStdString();
+        const std::string good = readText(path);
+        QVERIFY(!good.empty());
+        const int badLine = int(std::count(good.begin(), good.end(), '\n')) + 1;
+        writeText(path, good + "this is not GLSL;\n");
+        const int before = renderer.shaderCompileCount();
+        const bool ok = renderer.reloadShaders(&error);
+        writeText(path, good); // mend first, so a failing check leaves the copy whole
+        QVERIFY(!ok);
+        const std::string where = file.toStdString() + ":" + std::to_string(badLine);
+        QVERIFY2(
+            error.find(where) != std::string::npos,
+            qPrintable(QString("expected %1 in: %2")
+                           .arg(QString::fromStdString(where), QString::fromStdString(error))));
+        // The last good programs keep drawing, on every path and through OCIO.
+        QVERIFY2(renderAllPaths(renderer, target, &error), error.c_str());
+
+        QVERIFY2(renderer.reloadShaders(&error), error.c_str());
+        QVERIFY(renderer.shaderCompileCount() > before);
+        QVERIFY2(renderAllPaths(renderer, target, &error), error.c_str());
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRenderShaderReload)
+#include "test_render_shader_reload.moc"
