@@ -154,6 +154,31 @@ JsonValue tagsSchema() {
     return o;
 }
 
+/// The material graph (core/graph/graph_json.h). Only the shape is described here: node types,
+/// port names and link rules are checked by the reader, which names the JSON path of a problem.
+JsonValue graphSchema() {
+    JsonValue o = closedObject();
+    o.add("description", str("The node graph feeding the material's inputs (node editor)."));
+    JsonValue& p = o.add("properties", object());
+    JsonValue& nodes = p.add("nodes", object());
+    nodes.add("type", str("array"));
+    JsonValue& node = nodes.add("items", object());
+    node.add("type", str("object"));
+    node.add("required", strings(std::array<std::string_view, 2>{"id", "type"}));
+    JsonValue& np = node.add("properties", object());
+    np.add("id", object()).add("type", str("integer"));
+    np.add("type", object()).add("type", str("string"));
+    np.add("position", object()).add("type", str("array"));
+    np.add("inputs", object()).add("type", str("object"));
+    np.add("settings", object()).add("type", str("object"));
+    JsonValue& links = p.add("links", object());
+    links.add("type", str("array"));
+    JsonValue& link = links.add("items", object());
+    link.add("type", str("object"));
+    link.add("required", strings(std::array<std::string_view, 4>{"from", "output", "to", "input"}));
+    return o;
+}
+
 JsonValue materialV2Schema() {
     JsonValue o = closedObject();
     o.add("description", str("A material, version 2: parameters nested by their ids."));
@@ -171,6 +196,7 @@ JsonValue materialV2Schema() {
         ref.add("description", str(slot.tooltip));
         slots.add(std::string(slot.id), std::move(ref));
     }
+    p.add("graph", graphSchema());
     return o;
 }
 

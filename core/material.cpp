@@ -1,5 +1,7 @@
 #include "core/material.h"
 
+#include "core/graph/graph.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -186,6 +188,17 @@ void Material::setValue(ParamId id, glm::vec3 v) {
 
 void Material::resetValue(ParamId id) {
     m_values[index(id)] = paramMeta(id).defaultValue;
+}
+
+SharedGraph::SharedGraph(const graph::Graph& g)
+    : m_graph(std::make_shared<const graph::Graph>(g)) {}
+
+bool SharedGraph::operator==(const SharedGraph& other) const {
+    if (m_graph == other.m_graph)
+        return true;
+    if (!m_graph || !other.m_graph)
+        return false;
+    return *m_graph == *other.m_graph;
 }
 
 } // namespace velvet

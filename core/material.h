@@ -9,12 +9,39 @@
 
 #include <array>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace velvet {
+
+namespace graph {
+class Graph;
+}
+
+/// A material's node graph (core/graph/graph.h), shared and immutable: copying a Material copies
+/// a pointer, an edit makes a new graph. Compared by value (same nodes, values and links), so
+/// Material keeps a defaulted ==. Empty: the material has no graph.
+class SharedGraph {
+public:
+    SharedGraph() = default;
+    explicit SharedGraph(std::shared_ptr<const graph::Graph> g) : m_graph(std::move(g)) {}
+    /// Copies @p g (listeners are not copied).
+    explicit SharedGraph(const graph::Graph& g);
+
+    const graph::Graph* get() const { return m_graph.get(); }
+    const graph::Graph* operator->() const { return m_graph.get(); }
+    const graph::Graph& operator*() const { return *m_graph; }
+    explicit operator bool() const { return m_graph != nullptr; }
+    const std::shared_ptr<const graph::Graph>& pointer() const { return m_graph; }
+    /// Both empty, or both set and equal as graphs.
+    bool operator==(const SharedGraph& other) const;
+
+private:
+    std::shared_ptr<const graph::Graph> m_graph;
+};
 
 /// Every material parameter. The order is the order of panels, files and the GPU material table.
 enum class ParamId : int {
@@ -110,6 +137,10 @@ public:
     void setTexture(TextureSlot slot, TextureRef ref) {
         m_textures[slotIndex(slot)] = std::move(ref);
     }
+
+    /// The node graph feeding the material's inputs (none by default). Its material output's
+    /// connected inputs override the parameters in the G-buffer pass (graph_compiler.h).
+    SharedGraph graph;
 
     bool operator==(const Material&) const = default;
 

@@ -2,6 +2,7 @@
 
 #include "core/document_io.h"
 #include "core/document_paths.h"
+#include "core/graph/graph_json.h"
 
 #include <algorithm>
 #include <array>
@@ -137,6 +138,38 @@ void readTextures(JsonReader& r, const JsonValue& v, const std::string& path,
     }
 }
 
+/// The "graph" object (core/graph/graph_json.h). Texture nodes' files resolve against @p baseDir
+/// like texture slots do; a missing image is a warning (the node samples a fallback).
+void readGraph(JsonReader& r, const JsonValue& v, const std::string& path, const fs::path& baseDir,
+               Material& m) {
+    std::optional<graph::Graph> g = graph::graphFromJson(v, path, r);
+    if (!g)
+        return;
+    for (const auto& [id, node] : g->nodes()) {
+        const int file = node.type->settingIndex("file");
+        if (!node.type->samplesTexture || file < 0 || node.settings[size_t(file)].empty())
+            continue;
+        const std::string resolved = resolveDocumentPath(node.settings[size_t(file)], baseDir);
+        std::error_code ec;
+        if (!fs::exists(resolved, ec))
+            r.warning(jsonPathKey(path, "nodes"),
+                      "node " + std::to_string(id) + ": image not found: \"" + resolved + "\"");
+        g->setSetting(id, "file", resolved);
+    }
+    m.graph = SharedGraph(std::make_shared<const graph::Graph>(std::move(*g)));
+}
+
+/// The "graph" object with texture files relative to @p baseDir.
+JsonValue graphToJson(const graph::Graph& g, const fs::path& baseDir) {
+    graph::Graph copy = g;
+    for (const auto& [id, node] : g.nodes()) {
+        const int file = node.type->settingIndex("file");
+        if (node.type->samplesTexture && file >= 0 && !node.settings[size_t(file)].empty())
+            copy.setSetting(id, "file", relativeDocumentPath(node.settings[size_t(file)], baseDir));
+    }
+    return graph::graphToJson(copy);
+}
+
 void readNameAndTags(JsonReader& r, const JsonValue& v, const std::string& path,
                      MaterialPlacement placement, Material& m) {
     const JsonValue* name =
@@ -163,11 +196,14 @@ void readVersion2(JsonReader& r, const JsonValue& v, const std::string& path,
     std::vector<std::string_view> allowed(kHeaderKeys.begin(), kHeaderKeys.end());
     allowed.insert(allowed.end(), paramTree().keys.begin(), paramTree().keys.end());
     allowed.push_back("textures");
+    allowed.push_back("graph");
     r.expectObject(v, path, allowed);
     readNameAndTags(r, v, path, placement, m);
     readParamObject(r, v, path, paramTree(), m);
     if (const JsonValue* t = v.find("textures"))
         readTextures(r, *t, jsonPathKey(path, "textures"), baseDir, m);
+    if (const JsonValue* g = v.find("graph"))
+        readGraph(r, *g, jsonPathKey(path, "graph"), baseDir, m);
 }
 
 /// Version 1 is the seed documents' flat material. Their "specular" follows Disney's convention
@@ -330,6 +366,8 @@ JsonValue materialToJsonValue(const Material& m, const fs::path& baseDir,
     }
     if (!textures.members.empty())
         o.add("textures", std::move(textures));
+    if (m.graph)
+        o.add("graph", graphToJson(*m.graph, baseDir));
     return o;
 }
 

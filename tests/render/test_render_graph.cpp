@@ -1,0 +1,188 @@
+// The material graph in the G-buffer pass (render/renderer.h, "Material graph"): what each case
+// proves is stated on it. One renderer for the whole file, 64x64 renders of the Albedo and
+// Roughness debug views, which show the G-buffer's values unlit.
+#include "core/graph/graph.h"
+#include "core/image.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
+#include "render_test_util.h"
+
+#include <QTemporaryDir>
+#include <QtTest>
+#include <cmath>
+#include <filesystem>
+
+using namespace velvet;
+using namespace velvet::graph;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kSize = 64;
+
+glm::vec3 centre(const Image& img) {
+    glm::vec3 sum(0.0f);
+    for (int y = kSize / 2 - 3; y < kSize / 2 + 3; ++y)
+        for (int x = kSize / 2 - 3; x < kSize / 2 + 3; ++x)
+            sum += glm::vec3(img.rgba(x, y));
+    return sum / 36.0f;
+}
+
+bool samePixels(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
+}
+
+Connection link(const Graph& g, NodeId from, std::string_view output, NodeId to,
+                std::string_view input) {
+    return {from, PortIndex(g.node(from)->type->outputIndex(output)), to,
+            PortIndex(g.node(to)->type->inputIndex(input))};
+}
+
+/// constant.color (colour @p c) -> output.material baseColor; ids 1 and 2.
+Graph constantIntoBaseColor(glm::vec3 c) {
+    Graph g;
+    const NodeId k = g.addNode("constant.color").node;
+    const NodeId out = g.addNode(kOutputTypeId).node;
+    g.setInputValue(k, 0, glm::vec4(c, 0.0f));
+    if (!g.connect(link(g, k, "color", out, "baseColor")))
+        qFatal("connect failed");
+    return g;
+}
+
+Scene withGraph(const Graph& g, glm::vec3 baseColor = glm::vec3(1.0f, 0.0f, 0.0f)) {
+    Scene scene;
+    scene.material.setColor(ParamId::BaseColor, baseColor);
+    scene.material.graph = SharedGraph(g);
+    return scene;
+}
+
+} // namespace
+
+class TestRenderGraph : public QObject {
+    Q_OBJECT
+    QTemporaryDir m_dir;
+    std::unique_ptr<render::Renderer> m_renderer;
+    std::unique_ptr<render::OffscreenTarget> m_target;
+
+    Image render(const Scene* scene, render::DebugView view = render::DebugView::Albedo) {
+        if (scene) {
+            Problems problems;
+            m_renderer->setScene(*scene, &problems);
+            for (const Problem& p : problems.items)
+                qWarning("%s", p.toString().c_str());
+        }
+        render::FrameSettings fs;
+        fs.width = fs.height = kSize;
+        fs.view = view;
+        std::string error;
+        if (!m_renderer->render(fs, m_target->framebuffer(), &error))
+            qFatal("render failed: %s", error.c_str());
+        return m_renderer->readLinear();
+    }
+
+private slots:
+    void initTestCase() {
+        std::string error;
+        QVERIFY2(test::headlessContext(&error), error.c_str());
+        m_renderer = std::make_unique<render::Renderer>();
+        QVERIFY2(m_renderer->initialize(&error), error.c_str());
+        m_target = std::make_unique<render::OffscreenTarget>();
+        QVERIFY2(m_target->resize(kSize, kSize, &error), error.c_str());
+    }
+    void cleanupTestCase() {
+        m_target.reset();
+        m_renderer.reset();
+    }
+
+    // A constant colour into base colour gives exactly the image of a material whose base colour
+    // parameter is that colour (bit for bit), and not the red parameter it overrides.
+    void constantColourIsTheAlbedo() {
+        const glm::vec3 c(0.2f, 0.5f, 0.7f);
+        Scene reference;
+        reference.material.setColor(ParamId::BaseColor, c);
+        const Image expected = render(&reference);
+        const Scene graphScene = withGraph(constantIntoBaseColor(c));
+        const Image got = render(&graphScene);
+        QVERIFY(m_renderer->graphError().empty());
+        const glm::vec3 a = centre(got);
+        qInfo("albedo %.4f %.4f %.4f", a.x, a.y, a.z);
+        for (int k = 0; k < 3; ++k)
+            QVERIFY2(std::abs(a[k] - c[k]) < 0.01f, qPrintable(QString::number(a[k])));
+        QVERIFY(samePixels(got, expected));
+    }
+
+    // A value edit (ChangeKind::Value) uploads the value block: the pixels change to the new
+    // colour exactly, with no shader compiled.
+    void valueEditCompilesNothing() {
+        Graph g = constantIntoBaseColor(glm::vec3(0.2f, 0.5f, 0.7f));
+        Scene scene = withGraph(g);
+        const Image before = render(&scene);
+        const int compiles = m_renderer->shaderCompileCount();
+        QVERIFY(g.setInputValue(1, 0, glm::vec4(0.9f, 0.1f, 0.3f, 0.0f)).ok);
+        scene.material.graph = SharedGraph(g);
+        const Image after = render(&scene);
+        QCOMPARE(m_renderer->shaderCompileCount(), compiles);
+        QVERIFY(!samePixels(before, after));
+        Scene reference;
+        reference.material.setColor(ParamId::BaseColor, glm::vec3(0.9f, 0.1f, 0.3f));
+        QVERIFY(samePixels(after, render(&reference)));
+    }
+
+    // A structural edit (a new link) is built at the next render(), once; the first frame after
+    // it already shows the new graph (roughness from a constant) and the old program drew until
+    // then.
+    void structuralEditCompilesOnce() {
+        Graph g = constantIntoBaseColor(glm::vec3(0.2f, 0.5f, 0.7f));
+        Scene scene = withGraph(g);
+        scene.material.setScalar(ParamId::Roughness, 0.9f);
+        render(&scene);
+        const int compiles = m_renderer->shaderCompileCount();
+        const NodeId value = g.addNode("constant.float").node;
+        QVERIFY(g.setInputValue(value, 0, glm::vec4(0.25f)).ok);
+        QVERIFY(g.connect(link(g, value, "value", 2, "roughness")).ok);
+        scene.material.graph = SharedGraph(g);
+        m_renderer->setScene(scene);
+        QVERIFY(m_renderer->graphPending());
+        QCOMPARE(m_renderer->shaderCompileCount(), compiles); // nothing built in setScene
+        const glm::vec3 r = centre(render(nullptr, render::DebugView::Roughness));
+        QVERIFY(!m_renderer->graphPending());
+        QCOMPARE(m_renderer->shaderCompileCount(), compiles + 1);
+        QVERIFY2(std::abs(r.x - 0.25f) < 0.01f, qPrintable(QString::number(r.x)));
+        render(nullptr);
+        QCOMPARE(m_renderer->shaderCompileCount(), compiles + 1);
+    }
+
+    // A texture node is loaded through the texture cache and bound at its unit: a flat Raw
+    // 128/255 image into base colour is an albedo of 0.502; changing its file rebinds (no
+    // compile).
+    void textureNodeIsSampled() {
+        Image grey(4, 4, 4);
+        Image white(4, 4, 4);
+        for (size_t i = 0; i < grey.pixels.size(); ++i) {
+            grey.pixels[i] = (i % 4 == 3) ? 1.0f : 128.0f / 255.0f;
+            white.pixels[i] = 1.0f;
+        }
+        const fs::path dir = m_dir.path().toStdString();
+        std::string error;
+        QVERIFY2(writeImage(dir / "grey.png", grey, PixelFormat::UInt8, &error), error.c_str());
+        QVERIFY2(writeImage(dir / "white.png", white, PixelFormat::UInt8, &error), error.c_str());
+        Graph g;
+        const NodeId tex = g.addNode("texture.image").node;
+        const NodeId out = g.addNode(kOutputTypeId).node;
+        QVERIFY(g.setSetting(tex, "file", (dir / "grey.png").string()).ok);
+        QVERIFY(g.setSetting(tex, "colorSpace", "Raw").ok);
+        QVERIFY(g.connect(link(g, tex, "color", out, "baseColor")).ok);
+        const Scene greyScene = withGraph(g);
+        const glm::vec3 a = centre(render(&greyScene));
+        QVERIFY2(std::abs(a.x - 128.0f / 255.0f) < 0.01f, qPrintable(QString::number(a.x)));
+        const int compiles = m_renderer->shaderCompileCount();
+        QVERIFY(g.setSetting(tex, "file", (dir / "white.png").string()).ok);
+        const Scene whiteScene = withGraph(g);
+        const glm::vec3 b = centre(render(&whiteScene));
+        QVERIFY2(std::abs(b.x - 1.0f) < 0.01f, qPrintable(QString::number(b.x)));
+        QCOMPARE(m_renderer->shaderCompileCount(), compiles);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRenderGraph)
+#include "test_render_graph.moc"
