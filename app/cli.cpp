@@ -94,13 +94,15 @@ const std::array<Subcommand, 5> kSubcommands{{
     {"render", "render a scene or material preset to an image, headless", runRender},
     {"validate", "check presets and scenes, printing every problem", runValidate},
     {"info", "version, headless OpenGL and dependency versions", runInfo},
-    {"schema", "print the JSON Schema of material presets or scenes", runSchema},
+    {"schema", "print the JSON Schema of material presets, scenes or post chains", runSchema},
     {"bench", "measure renderer variants side by side (medians, ratios; --json)", runBench},
 }};
-/// Run by Velvet itself, left out of --help: `import-mesh IN OUT` is the child process of the
-/// crash-isolated mesh import (core/mesh_import.h).
-const std::array<Subcommand, 1> kHiddenSubcommands{{
+/// Left out of --help: `import-mesh IN OUT` is the child process of the crash-isolated mesh
+/// import (core/mesh_import.h); `post-catalogue` prints the effect table of
+/// docs/post-effects.md.
+const std::array<Subcommand, 2> kHiddenSubcommands{{
     {"import-mesh", "import a mesh file into a mesh cache (internal)", runImportMesh},
+    {"post-catalogue", "print the post-effect catalogue as Markdown (docs)", runPostCatalogue},
 }};
 } // namespace
 

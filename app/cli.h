@@ -52,5 +52,8 @@ int runSchema(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 /// Hidden: the child process of the crash-isolated mesh import (command_import_mesh.cpp).
 int runImportMesh(const std::vector<std::string>& args);
+/// Hidden: prints the post-effect catalogue as Markdown for docs/post-effects.md
+/// (command_schema.cpp).
+int runPostCatalogue(const std::vector<std::string>& args);
 
 } // namespace velvet::cli

@@ -3,8 +3,8 @@
 #include "app/cli.h"
 #include "render/gbuffer_layout.h"
 #include "render/headless_context.h"
-#include "render/post_bench.h"
 #include "render/offscreen.h"
+#include "render/post_bench.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -174,6 +174,7 @@ int runBench(const std::vector<std::string>& argv) {
     }
     std::vector<std::pair<std::string, double>> figures;
     auto put = [&](const std::string& key, double v) { figures.emplace_back(key, v); };
+    std::vector<std::pair<std::string, std::string>> notes; ///< string-valued keys
     int code = Ok;
     {
         Bench b;
@@ -277,12 +278,54 @@ int runBench(const std::vector<std::string>& argv) {
                     c = '_';
             put(key, ms);
         }
+
+        // Responsiveness (issue 5): 100 value edits through Renderer::setScene compile no shader;
+        // an edit reaches a finished frame (setScene + render + the frame's last timer query)
+        // in param_edit_to_frame_ms (median), or at half resolution (the editor's interactive
+        // render scale while a slider is dragged) in param_edit_to_frame_half_ms.
+        {
+            b.scene.lights.clear();
+            b.renderer.setScene(b.scene);
+            b.renderer.finishEnvironment();
+            render::FrameTimings ft;
+            if (!b.frame(b.settings(), ft, &error))
+                return failed("rendering failed");
+            const int compilesBefore = b.renderer.shaderCompileCount();
+            std::vector<double> full, half;
+            for (int i = 0; i < 100; ++i) {
+                render::FrameSettings fs = b.settings();
+                const bool reduced = i % 2 == 1;
+                fs.renderScale = reduced ? 0.5f : 1.0f;
+                Scene edited = b.scene;
+                edited.material.setValue(ParamId::Roughness,
+                                         glm::vec3(0.1f + 0.8f * float(i % 10) / 9.0f));
+                const auto start = std::chrono::steady_clock::now();
+                b.renderer.setScene(edited);
+                if (!b.frame(fs, ft, &error))
+                    return failed("rendering failed");
+                const double ms = std::chrono::duration<double, std::milli>(
+                                      std::chrono::steady_clock::now() - start)
+                                      .count();
+                (reduced ? half : full).push_back(ms);
+            }
+            put("param_edit_recompiles", b.renderer.shaderCompileCount() - compilesBefore);
+            put("param_edit_to_frame_ms", median(full));
+            put("param_edit_to_frame_half_ms", median(half));
+            put("param_edit_half_speedup", median(full) / std::max(1e-6, median(half)));
+            // What the editor window adds per frame needs a display: tests/ui/bench_viewport
+            // measures it under xvfb-run (BENCHMARKS.md, "Responsiveness").
+            put("viewport_overhead_ms", NAN);
+            notes.emplace_back("viewport_overhead_note",
+                               "needs a display: run tests/bench_viewport under xvfb-run");
+        }
     }
 
     if (json) {
         std::cout << "{\"gl_renderer\": \"" << context->renderer() << "\"";
         for (const auto& [k, v] : figures)
             std::cout << ", \"" << k << "\": " << jsonNumber(v);
+        for (const auto& [k, v] : notes)
+            std::cout << ", \"" << k << "\": \"" << v << "\"";
         std::cout << "}\n";
     } else {
         std::cout << "velvet bench on " << context->renderer() << "\n\n";

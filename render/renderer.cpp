@@ -2,7 +2,9 @@
 
 #include "core/brdf.h"
 #include "core/color_management.h"
+#include "core/graph/graph_compiler.h"
 #include "core/mesh_import.h"
+#include "core/texture_cache.h"
 #include "render/camera.h"
 #include "render/display_transform.h"
 #include "render/environment_map.h"
@@ -114,6 +116,25 @@ Image readFramebuffer(GLuint fbo, int width, int height) {
     return img;
 }
 
+/// The material graph's texture units: above the material slots (binding::kMaterialTexFirst +
+/// TextureSlot), so the G-buffer pass never rebinds a unit another pass relies on.
+/// The material graph's value block (VelvetGraphValues): UBO 0 is the frame, 3 the IBL block,
+/// 7 the post-effect frame.
+constexpr int kGraphValuesUbo = 2;
+constexpr int kGraphTexFirst = binding::kMaterialTexFirst + kTextureSlotCount;
+/// The generated include gbuffer.frag reads (graph_compiler.h's interface).
+constexpr const char* kGraphInclude = "material_graph.glsl";
+
+/// Compiles @p material's graph (an empty graph when it has none: a velvetGraph that changes
+/// nothing), with the renderer's binding points.
+graph::CompiledGraph compileMaterialGraph(const Material& material) {
+    graph::CompileOptions options;
+    options.valuesBinding = kGraphValuesUbo;
+    options.firstSamplerUnit = kGraphTexFirst;
+    static const graph::Graph empty;
+    return graph::compileGraph(material.graph ? *material.graph : empty, options);
+}
+
 /// Views the point, spot and area lights contribute to (debug_views.glsl, isLightView).
 bool isLightView(DebugView view) {
     return view == DebugView::Final || view == DebugView::LightsPerPixel ||
@@ -125,6 +146,26 @@ bool isLightView(DebugView view) {
 struct Renderer::Impl {
     bool initialized = false;
     int compileCount = 0;
+
+    /// The material graph compiled into the G-buffer program (render/renderer.h, "Material
+    /// graph"): the interface of the linked program, and a structural edit waiting for the next
+    /// frame (the old program draws until the new one links).
+    struct GraphTexture {
+        GLuint texture = 0;
+        std::uint64_t generation = 0;
+        int width = 0, height = 0;
+    };
+    struct GraphState {
+        graph::CompiledGraph linked;  ///< what gbufferProgram was built from
+        graph::CompiledGraph pending; ///< a new structure to build at the next render()
+        bool hasPending = false;
+        std::string error; ///< the last graph that failed to compile or link ("" when fine)
+        GLuint ubo = 0;
+        size_t uboSlots = 0;
+        std::vector<GraphTexture> textures; ///< one per linked.samplers entry
+        GLuint fallback = 0;                ///< 1x1 white for a texture node without an image
+        int uploads = 0;
+    } graph;
 
     ShaderProgram gbufferProgram, lightingProgram, tonemapProgram;
     GBuffer gbuffer;
@@ -140,6 +181,8 @@ struct Renderer::Impl {
     const MeshEntry* mesh = nullptr;
     TextureSet textures;
     MaterialTable materials;
+    GpuMaterial packedA{}; ///< the scene's material as last packed (material id 0)
+    ColorTarget scaled;    ///< FrameSettings::renderScale < 1: the reduced display-encoded frame
     EnvironmentCache environments;
     GLuint frameUbo = 0;
     GLuint emptyVao = 0;
@@ -181,6 +224,165 @@ struct Renderer::Impl {
             glDeleteQueries(4, queries);
         if (lightsQuery)
             glDeleteQueries(1, &lightsQuery);
+        releaseGraph();
+    }
+
+    void releaseGraph() {
+        if (graph.ubo)
+            glDeleteBuffers(1, &graph.ubo);
+        graph.ubo = 0;
+        graph.uboSlots = 0;
+        for (GraphTexture& t : graph.textures)
+            if (t.texture)
+                glDeleteTextures(1, &t.texture);
+        graph.textures.clear();
+        if (graph.fallback)
+            glDeleteTextures(1, &graph.fallback);
+        graph.fallback = 0;
+    }
+
+    GeneratedSources graphSources() const { return {{kGraphInclude, graph.linked.glsl}}; }
+
+    /// Uploads the value block of the linked graph (a value edit: no shader is touched).
+    void uploadGraphValues() {
+        const std::vector<glm::vec4>& values = graph.linked.values;
+        const size_t slots = std::max<size_t>(values.size(), 1);
+        if (!graph.ubo || graph.uboSlots < slots) {
+            if (graph.ubo)
+                glDeleteBuffers(1, &graph.ubo);
+            glCreateBuffers(1, &graph.ubo);
+            glNamedBufferStorage(graph.ubo, GLsizeiptr(slots * sizeof(glm::vec4)), nullptr,
+                                 GL_DYNAMIC_STORAGE_BIT);
+            graph.uboSlots = slots;
+        }
+        if (!values.empty())
+            glNamedBufferSubData(graph.ubo, 0, GLsizeiptr(values.size() * sizeof(glm::vec4)),
+                                 values.data());
+    }
+
+    /// Loads (through the texture slots' cache) and uploads each texture node's image when its
+    /// file, colour space or contents changed. Cheap when nothing did: one cache lookup each.
+    void refreshGraphTextures(Problems* problems) {
+        const auto& samplers = graph.linked.samplers;
+        if (graph.textures.size() > samplers.size()) {
+            for (size_t i = samplers.size(); i < graph.textures.size(); ++i)
+                if (graph.textures[i].texture)
+                    glDeleteTextures(1, &graph.textures[i].texture);
+        }
+        graph.textures.resize(samplers.size());
+        for (size_t i = 0; i < samplers.size(); ++i) {
+            GraphTexture& t = graph.textures[i];
+            if (samplers[i].file.empty()) {
+                t.generation = 0;
+                continue;
+            }
+            const Texture tex = textures.sharedCache().get(samplers[i].file, TextureUsage::Color,
+                                                           samplers[i].colorSpace);
+            if (problems)
+                for (Problem p : tex.problems) {
+                    if (p.path.empty())
+                        p.path = "graph.nodes (node " + std::to_string(samplers[i].node) + ")";
+                    problems->items.push_back(std::move(p));
+                }
+            if (!tex.image || tex.image->empty()) {
+                t.generation = 0;
+                continue;
+            }
+            if (t.texture && t.generation == tex.generation)
+                continue;
+            const Image& image = *tex.image;
+            std::vector<float> rgba(size_t(image.width) * image.height * 4);
+            for (int y = 0; y < image.height; ++y)
+                for (int x = 0; x < image.width; ++x) {
+                    const glm::vec4 c = image.rgba(x, y);
+                    float* o = rgba.data() + (size_t(y) * image.width + x) * 4;
+                    o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
+                }
+            if (!t.texture || t.width != image.width || t.height != image.height) {
+                if (t.texture)
+                    glDeleteTextures(1, &t.texture);
+                glCreateTextures(GL_TEXTURE_2D, 1, &t.texture);
+                int levels = 1;
+                for (int side = std::max(image.width, image.height); side > 1; side /= 2)
+                    ++levels;
+                glTextureStorage2D(t.texture, levels, GL_RGBA16F, image.width, image.height);
+                glTextureParameteri(t.texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+                glTextureParameteri(t.texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+                glTextureParameteri(t.texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
+                glTextureParameteri(t.texture, GL_TEXTURE_WRAP_T, GL_REPEAT);
+                t.width = image.width;
+                t.height = image.height;
+            }
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+            glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+            glTextureSubImage2D(t.texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
+                                rgba.data());
+            glGenerateTextureMipmap(t.texture);
+            t.generation = tex.generation;
+            ++graph.uploads;
+        }
+    }
+
+    void bindGraph() {
+        glBindBufferBase(GL_UNIFORM_BUFFER, kGraphValuesUbo, graph.ubo);
+        if (!graph.fallback) {
+            glCreateTextures(GL_TEXTURE_2D, 1, &graph.fallback);
+            glTextureStorage2D(graph.fallback, 1, GL_RGBA16F, 1, 1);
+            const float white[4] = {1, 1, 1, 1};
+            glTextureSubImage2D(graph.fallback, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
+        }
+        for (size_t i = 0; i < graph.linked.samplers.size(); ++i) {
+            const GraphTexture* t = i < graph.textures.size() ? &graph.textures[i] : nullptr;
+            glBindTextureUnit(GLuint(graph.linked.samplers[i].unit),
+                              t && t->texture && t->generation ? t->texture : graph.fallback);
+        }
+    }
+
+    void unbindGraph() {
+        for (const graph::SamplerBinding& s : graph.linked.samplers)
+            glBindTextureUnit(GLuint(s.unit), 0);
+    }
+
+    /// Takes the scene material's graph: a value or texture edit updates the block and the
+    /// bindings now; a structural edit (different shader text) is built at the next render().
+    void setGraph(const Material& material, Problems* problems) {
+        graph::CompiledGraph next = compileMaterialGraph(material);
+        if (!next.ok) {
+            graph.error = next.error;
+            graph.hasPending = false;
+            if (problems)
+                problems->error("", "graph", next.error + "; the previous graph is kept");
+            return;
+        }
+        if (next.glsl == graph.linked.glsl) {
+            graph.linked = std::move(next);
+            graph.hasPending = false;
+            uploadGraphValues();
+            refreshGraphTextures(problems);
+            return;
+        }
+        graph.pending = std::move(next);
+        graph.hasPending = true;
+    }
+
+    /// Builds the G-buffer program for a pending structure. A failure keeps the old program and
+    /// its graph interface (so the frame still draws) and is reported by graphError().
+    void buildPendingGraph() {
+        if (!graph.hasPending)
+            return;
+        graph.hasPending = false;
+        std::string message;
+        if (!gbufferProgram.build("gbuffer.vert", "gbuffer.frag", {},
+                                  {{kGraphInclude, graph.pending.glsl}}, &message)) {
+            graph.error = message;
+            return;
+        }
+        ++compileCount;
+        graph.error.clear();
+        graph.linked = std::move(graph.pending);
+        graph.pending = {};
+        uploadGraphValues();
+        refreshGraphTextures(nullptr);
     }
 
     /// Builds every program from disk. With @p keepGoing (shader reload) a failed program keeps
@@ -196,7 +398,9 @@ struct Renderer::Impl {
         std::string errors;
         for (auto& p : programs) {
             std::string message;
-            if (!p.program.build(p.vs, p.fs, {}, &message)) {
+            const GeneratedSources generated =
+                &p.program == &gbufferProgram ? graphSources() : GeneratedSources{};
+            if (!p.program.build(p.vs, p.fs, {}, generated, &message)) {
                 errors += (errors.empty() ? "" : "\n") + message;
                 if (!keepGoing)
                     break;
@@ -273,7 +477,15 @@ struct Renderer::Impl {
     void uploadMaterial() {
         GpuMaterial g = packMaterial(scene.material);
         textures.applyTo(g);
+        packedA = g;
         materials.upload({g});
+    }
+
+    /// A/B split: material id 1 is FrameSettings::splitMaterial with A's textures.
+    void uploadSplitMaterial(const Material& b) {
+        GpuMaterial g = packMaterial(b);
+        textures.applyTo(g);
+        materials.upload({packedA, g});
     }
 
     /// Runs scene.post on the lit HDR target (render/post_chain.h).
@@ -368,6 +580,11 @@ bool Renderer::initialize(std::string* error) {
         return fail(error, "OpenGL 4.5 core is needed; the current context is " +
                                std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))));
     takeGlErrors();
+    d.graph.linked = compileMaterialGraph(d.scene.material);
+    if (!d.graph.linked.ok) { // too many texture nodes: start without the graph
+        d.graph.error = d.graph.linked.error;
+        d.graph.linked = compileMaterialGraph(Material{});
+    }
     if (!d.buildPrograms(error))
         return false;
     glCreateBuffers(1, &d.frameUbo);
@@ -388,6 +605,8 @@ bool Renderer::initialize(std::string* error) {
     d.selectMesh(d.scene.mesh, nullptr);
     d.textures.setMaterial(d.scene.material, nullptr);
     d.uploadMaterial();
+    d.uploadGraphValues();
+    d.refreshGraphTextures(nullptr);
     if (const std::string e = takeGlErrors(); !e.empty())
         return fail(error, "OpenGL error while creating renderer resources: " + e);
     d.initialized = true;
@@ -400,7 +619,22 @@ bool Renderer::reloadShaders(std::string* error) {
     Impl& d = *m_impl;
     if (!d.initialized)
         return fail(error, "Renderer::reloadShaders called before initialize()");
-    return d.buildPrograms(error, /*keepGoing=*/true);
+    // Every program from disk; each failure keeps its last good program and adds its message.
+    std::string errors;
+    auto collect = [&](bool ok, const std::string& message) {
+        if (!ok)
+            errors += (errors.empty() ? "" : "\n") + message;
+    };
+    std::string message;
+    collect(d.buildPrograms(&message, /*keepGoing=*/true), message);
+    const int lightCompiles = d.lights.compileCount();
+    collect(d.lights.reload(&message), message);
+    d.compileCount += d.lights.compileCount() - lightCompiles;
+    collect(d.ibl.reload(&message, &d.compileCount), message);
+    collect(d.displayTransform.reload(&message), message);
+    if (!errors.empty())
+        return fail(error, errors);
+    return true;
 }
 
 void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
@@ -428,6 +662,8 @@ void Renderer::setScene(const Scene& scene, Problems* problems) {
     d.textures.setMaterial(scene.material, problems);
     // Numbers only: rewrite the material table (never a shader).
     d.uploadMaterial();
+    // The graph: values and textures now, a new structure at the next render().
+    d.setGraph(scene.material, problems);
     d.lights.upload(scene.lights);
     d.environment = &d.environments.get(scene.environment, problems);
     d.ibl.request(*d.environment);
@@ -440,11 +676,40 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     if (fs.width <= 0 || fs.height <= 0 || fs.width > 16384 || fs.height > 16384)
         return fail(error, "invalid frame size " + std::to_string(fs.width) + "x" +
                                std::to_string(fs.height));
+    if (fs.renderScale > 0.0f && fs.renderScale < 1.0f) {
+        // Reduced resolution: the whole frame at the smaller size into our own target, then
+        // stretched over the caller's (one linear blit).
+        const auto scaledStart = std::chrono::steady_clock::now();
+        FrameSettings inner = fs;
+        inner.renderScale = 1.0f;
+        inner.width = std::max(1, int(std::lround(float(fs.width) * fs.renderScale)));
+        inner.height = std::max(1, int(std::lround(float(fs.height) * fs.renderScale)));
+        if (!d.scaled.resize(inner.width, inner.height, GL_RGBA8, error) ||
+            !render(inner, d.scaled.framebuffer(), error))
+            return false;
+        glBlitNamedFramebuffer(d.scaled.framebuffer(), targetFbo, 0, 0, inner.width, inner.height,
+                               0, 0, fs.width, fs.height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
+        d.lastTarget = targetFbo;
+        d.lastWidth = fs.width;
+        d.lastHeight = fs.height;
+        d.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                            scaledStart)
+                      .count();
+        if (const std::string e = takeGlErrors(); !e.empty())
+            return fail(error, "OpenGL error while stretching a reduced frame: " + e);
+        return true;
+    }
     const auto cpuStart = std::chrono::steady_clock::now();
     takeGlErrors(); // errors left by whoever owns the context are not ours
     // A texture file changed on disk (edited in another program): re-upload, re-pack the record.
     if (d.textures.poll())
         d.uploadMaterial();
+    // A structural graph edit: build the new G-buffer program now, before anything is drawn, so
+    // the host's previous frame stays on screen until this one completes; a failure keeps the
+    // old program (graphError()).
+    d.buildPendingGraph();
+    d.refreshGraphTextures(nullptr); // files changed on disk (polled above) re-upload
     // An unknown display, view or look fails here, before anything is drawn.
     const bool ocioDisplay = fs.usesColorManagement() && fs.view == DebugView::Final;
     if (ocioDisplay && !d.selectDisplayTransform(fs, error))
@@ -456,9 +721,9 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     {
         const auto iblStart = std::chrono::steady_clock::now();
         d.ibl.step(kIblFrameBudgetMs);
-        d.timings.iblMs = std::chrono::duration<double, std::milli>(
-                              std::chrono::steady_clock::now() - iblStart)
-                              .count();
+        d.timings.iblMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - iblStart)
+                .count();
     }
     if (!d.gbuffer.resize(fs.width, fs.height, error) ||
         !d.hdr.resize(fs.width, fs.height, GL_RGBA16F, error))
@@ -473,6 +738,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     const FrameBlock block = d.frameBlock(fs);
     glNamedBufferSubData(d.frameUbo, 0, sizeof(FrameBlock), &block);
     glBindBufferBase(GL_UNIFORM_BUFFER, binding::kFrameUbo, d.frameUbo);
+    if (fs.splitMaterial)
+        d.uploadSplitMaterial(*fs.splitMaterial);
     d.materials.bind();
 
     // Known state: a host (Qt) may leave anything bound or enabled.
@@ -501,10 +768,26 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glUseProgram(d.gbufferProgram.id());
     glProgramUniform1i(d.gbufferProgram.id(), 0, 0); // uMaterialId: one material for now
     d.textures.bind(d.gbufferProgram.id());
+    d.bindGraph();
     if (d.mesh->doubleSided)
         glDisable(GL_CULL_FACE);
     d.mesh->gpu.draw();
+    if (fs.splitMaterial) {
+        // A/B split: the right part again, from a cleared G-buffer, with material B (id 1).
+        const int seam = std::clamp(
+            int(std::lround(std::clamp(fs.splitPosition, 0.0f, 1.0f) * fs.width)), 0, fs.width);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(seam, 0, fs.width - seam, fs.height);
+        for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
+            glClearBufferfv(GL_COLOR, i, zeros);
+        glClearBufferfv(GL_DEPTH, 0, &farDepth);
+        glProgramUniform1i(d.gbufferProgram.id(), 0, 1);
+        d.mesh->gpu.draw();
+        glProgramUniform1i(d.gbufferProgram.id(), 0, 0);
+        glDisable(GL_SCISSOR_TEST);
+    }
     d.textures.unbind();
+    d.unbindGraph();
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
 
     // 2. Lighting + background into the HDR target.
@@ -522,8 +805,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         const IblBlock iblBlock{
             glm::vec4(d.ibl.specularReady() ? 1.0f : 0.0f, float(std::max(levels - 1, 0)),
                       d.ibl.dfgReady() ? 1.0f : 0.0f, fs.specularMultiScatter ? 1.0f : 0.0f),
-            glm::vec4(kBlurredBackgroundRoughness * float(std::max(levels - 1, 0)), fs.time,
-                      0.0f, 0.0f)};
+            glm::vec4(kBlurredBackgroundRoughness * float(std::max(levels - 1, 0)), fs.time, 0.0f,
+                      0.0f)};
         glNamedBufferSubData(d.iblUbo, 0, sizeof(IblBlock), &iblBlock);
         glBindBufferBase(GL_UNIFORM_BUFFER, binding::kIblUbo, d.iblUbo);
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -570,9 +853,9 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glUseProgram(0);
     glBindVertexArray(0);
     glDepthMask(GL_TRUE);
-    for (GLuint unit : {0u, 1u, 2u, 3u, GLuint(binding::kEnvironmentTex),
-                        GLuint(binding::kSheenLutTex), GLuint(binding::kHdrTex),
-                        GLuint(binding::kIblSpecularTex), GLuint(binding::kIblDfgTex)})
+    for (GLuint unit :
+         {0u, 1u, 2u, 3u, GLuint(binding::kEnvironmentTex), GLuint(binding::kSheenLutTex),
+          GLuint(binding::kHdrTex), GLuint(binding::kIblSpecularTex), GLuint(binding::kIblDfgTex)})
         glBindTextureUnit(unit, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
 
@@ -598,6 +881,14 @@ Image Renderer::readDisplay() const {
     if (!d.initialized || d.lastWidth == 0)
         return {};
     return readFramebuffer(d.lastTarget, d.lastWidth, d.lastHeight);
+}
+
+const std::string& Renderer::graphError() const {
+    return m_impl->graph.error;
+}
+
+bool Renderer::graphPending() const {
+    return m_impl->graph.hasPending;
 }
 
 int Renderer::shaderCompileCount() const {
@@ -642,7 +933,12 @@ void Renderer::finishEnvironment() {
 
 Renderer::EnvironmentBakeStats Renderer::environmentBakeStats() const {
     const IblBakeStats& s = m_impl->ibl.stats();
-    return {s.slices, s.worstSliceMs, s.totalMs, m_impl->ibl.warmUpMs()};
+    return {s.slices,
+            s.worstSliceMs,
+            s.totalMs,
+            m_impl->ibl.warmUpMs(),
+            m_impl->ibl.warmUpFrames(),
+            m_impl->ibl.worstWarmUpFrameMs()};
 }
 
 } // namespace velvet::render

@@ -10,6 +10,7 @@
 
 #include <glm/mat4x4.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,8 @@ enum class DebugView {
     /// @name Appended with the lights (numbers are stable; resources/shaders/debug_views.glsl)
     /// G-buffer / material views write raw values: Specular colour x weight, Clearcoat (weight,
     /// roughness, 0), Sheen colour, Occlusion, Emissive colour x strength, MaterialId (the integer
-    /// id). LightsPerPixel: the number of point/spot/area lights whose radius contains the pixel
+    /// id). LightsPerPixel: the number of point/spot/area lights whose radius (and, for a spot,
+    /// outer cone) contains the pixel
     /// (the display image is a heat map, 0 black .. 32+ red). The lobe views show the direct light
     /// of every analytic light (not the environment) through one lobe: DiffuseOnly, SpecularOnly
     /// (base specular + sheen + clearcoat), BaseSpecular, SheenOnly, ClearcoatOnly alone.
@@ -102,6 +104,21 @@ struct FrameSettings {
     bool hasPreviousViewProj = false;
     glm::mat4 previousViewProj{1.0f};
     /// @}
+    /// @name A/B split (the editor's viewport toolbar)
+    /// Set: the same scene is drawn with the scene's material left of splitPosition (A) and this
+    /// material right of it (B) in one frame: one G-buffer with a second, scissored draw of the
+    /// mesh with material id 1, then one lighting and post pass over both halves. B shares A's
+    /// texture files (its texture slots are ignored); any parameter or BRDF term may differ.
+    /// Uploading B rewrites the material table only (never a shader).
+    /// @{
+    std::optional<Material> splitMaterial;
+    float splitPosition = 0.5f; ///< the seam, as a fraction of the width (0..1)
+    /// @}
+    /// Interactive reduced resolution: in (0, 1) the frame is rendered at width x height scaled
+    /// by this (at least 1 x 1) into an internal display-encoded target and stretched over the
+    /// target with linear filtering; 1 renders at full size. readLinear() then returns the
+    /// reduced image, readDisplay() the stretched one.
+    float renderScale = 1.0f;
 };
 
 /// GPU timings of the last frame (GL timer queries; 0 where unavailable). Logged, never asserted.
@@ -126,9 +143,10 @@ public:
     /// (a compile error names file:line).
     bool initialize(std::string* error);
 
-    /// Recompiles every shader program from disk (the editor's T key). A program that fails to
-    /// compile keeps its last good build, so rendering goes on; false + message (file:line and
-    /// the driver's log for each failure). The OCIO display programs are not rebuilt.
+    /// Recompiles every shader program from disk (the editor's T key): G-buffer, lighting, tone
+    /// map, the light paths, the IBL bake's compute programs and the cached OCIO display
+    /// programs. A program that fails to compile keeps its last good build, so rendering goes on;
+    /// false + message (file:line and the driver's log for each failure).
     bool reloadShaders(std::string* error);
 
     /// Takes the scene to draw. Cheap for value edits (material numbers go to a uniform buffer, no
@@ -154,6 +172,20 @@ public:
     /// The last frame's display-encoded colour as written to the target, RGBA in [0, 1].
     Image readDisplay() const;
 
+    /// @name Material graph (core/graph/graph_compiler.h)
+    /// The scene material's graph is compiled into the G-buffer program as the generated include
+    /// "material_graph.glsl". setScene() with only value or texture-file changes uploads the
+    /// value block and rebinds textures (no compile); a structural change is built at the start
+    /// of the next render(), before anything is drawn, so a host keeps showing its previous
+    /// frame until the new program links. A graph that fails to compile or link leaves the last
+    /// good program drawing.
+    /// @{
+    /// Why the last graph was not compiled, or "" when the drawn program matches the scene.
+    const std::string& graphError() const;
+    /// A structural graph change waits for the next render().
+    bool graphPending() const;
+    /// @}
+
     /// Number of shader programs compiled since construction (tests assert value edits add none;
     /// a new OCIO display/view/look adds one, exposure none).
     int shaderCompileCount() const;
@@ -178,6 +210,9 @@ public:
         int slices = 0;
         double worstSliceMs = 0, totalMs = 0;
         double warmUpMs = 0;
+        /// The warm-up is spread over frames (about one program's compile each).
+        int warmUpFrames = 0;
+        double worstWarmUpFrameMs = 0;
     };
     EnvironmentBakeStats environmentBakeStats() const;
     /// @}

@@ -65,6 +65,9 @@ public:
     int allocationCount() const { return m_allocations; }
     /// Uploads (first loads and reloads) since construction.
     int uploadCount() const { return m_uploads; }
+    /// The texture cache behind the slots (created on first use; needs a current context), shared
+    /// with the material graph's texture nodes so a file is decoded once for both.
+    TextureCache& sharedCache() { return cache(); }
 
 private:
     struct Slot;

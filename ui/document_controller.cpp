@@ -1,6 +1,7 @@
 #include "ui/document_controller.h"
 
 #include "core/document_io.h"
+#include "ui/commands/atlas_commands.h"
 #include "ui/commands/set_param_command.h"
 #include "ui/commands/set_scene_command.h"
 
@@ -76,6 +77,17 @@ void DocumentController::editMesh(const MeshRef& mesh) {
     m_undoStack->push(new SetMeshCommand(this, m_scene.mesh, mesh));
 }
 
+void DocumentController::editTexture(TextureSlot slot, const TextureRef& ref, const QString& text) {
+    if (m_scene.material.texture(slot) == ref)
+        return;
+    m_undoStack->push(new SetTextureCommand(this, slot, m_scene.material.texture(slot), ref, text));
+}
+
+void DocumentController::setTexture(TextureSlot slot, const TextureRef& ref) {
+    m_scene.material.setTexture(slot, ref);
+    emit sceneChanged();
+}
+
 void DocumentController::setEnvironment(const Environment& environment) {
     m_scene.environment = environment;
     emit sceneChanged();
@@ -83,6 +95,26 @@ void DocumentController::setEnvironment(const Environment& environment) {
 
 void DocumentController::setMesh(const MeshRef& mesh) {
     m_scene.mesh = mesh;
+    emit sceneChanged();
+}
+
+void DocumentController::setMaterialGraph(const SharedGraph& graph) {
+    m_scene.material.graph = graph;
+    emit sceneChanged();
+}
+
+void DocumentController::setPostChain(const PostChain& chain) {
+    m_scene.post = chain;
+    emit postChainChanged();
+    emit sceneChanged();
+}
+
+void DocumentController::setMaterial(const Material& material, const std::string& preset) {
+    m_scene.material = material;
+    m_scene.materialPreset = preset;
+    for (int i = 0; i < kParamCount; ++i)
+        emit paramChanged(static_cast<ParamId>(i));
+    emit materialReplaced();
     emit sceneChanged();
 }
 
@@ -157,8 +189,20 @@ void DocumentController::setDocument(Scene scene, const QString& filePath) {
     m_filePath = filePath;
     emit fileChanged(m_filePath);
     emit documentReplaced();
+    emit postChainChanged();
+    emit materialReplaced();
     emit sceneChanged();
     emit dirtyChanged(false);
+}
+
+} // namespace velvet::ui
+
+namespace velvet::ui {
+
+void DocumentController::setRecoveredDocument(Scene scene, const QString& filePath) {
+    setDocument(std::move(scene), filePath);
+    m_undoStack->resetClean(); // no clean state on the stack: dirty until saved
+    emit dirtyChanged(true);
 }
 
 } // namespace velvet::ui

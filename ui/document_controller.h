@@ -47,6 +47,8 @@ public:
     void editEnvironment(const Environment& environment, const QString& text, int mergeKey = 0);
     /// Replaces the preview mesh (one command). No-op edits push nothing.
     void editMesh(const MeshRef& mesh);
+    /// Fills a material texture slot (one command named @p text). No-op edits push nothing.
+    void editTexture(TextureSlot slot, const TextureRef& ref, const QString& text);
     /// @}
 
     /// @name Applied by undo commands (not undoable by themselves)
@@ -57,6 +59,16 @@ public:
     void setEnvironment(const Environment& environment);
     /// Sets the preview mesh and notifies (sceneChanged).
     void setMesh(const MeshRef& mesh);
+    /// Sets the material's node graph and notifies (sceneChanged only: the graph editor's model,
+    /// ui/graph/graph_model.h, is the one caller and already knows).
+    void setMaterialGraph(const SharedGraph& graph);
+    /// Sets a texture slot and notifies (sceneChanged).
+    void setTexture(TextureSlot slot, const TextureRef& ref);
+    /// Replaces the post chain and notifies (postChainChanged, sceneChanged).
+    void setPostChain(const PostChain& chain);
+    /// Replaces the whole material (a library preset) and where it came from; notifies
+    /// (paramChanged for every parameter, materialReplaced, sceneChanged).
+    void setMaterial(const Material& material, const std::string& preset);
     /// @}
 
     /// @name Whole documents (clear the undo stack; never half-applied)
@@ -72,6 +84,9 @@ public:
     bool saveAs(const QString& path, QString* error);
     /// Takes @p scene as a new, clean document (used by newDocument/openFile and tests).
     void setDocument(Scene scene, const QString& filePath);
+    /// Takes @p scene as the document of @p filePath with unsaved changes (crash recovery: the
+    /// undo stack is empty and the document is dirty until saved).
+    void setRecoveredDocument(Scene scene, const QString& filePath);
     /// @}
 
 signals:
@@ -79,6 +94,10 @@ signals:
     void sceneChanged();
     /// One material parameter changed (undo, redo or edit).
     void paramChanged(velvet::ParamId id);
+    /// The post chain changed (an effect added, removed, moved, toggled or edited; undo, redo).
+    void postChainChanged();
+    /// The whole material was replaced (a library preset applied, or its undo).
+    void materialReplaced();
     /// The whole document was replaced (new or open); views reset their view state.
     void documentReplaced();
     /// The file path or display name changed.

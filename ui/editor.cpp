@@ -1,5 +1,6 @@
 #include "ui/editor.h"
 
+#include "ui/autosave.h"
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
 #include "ui/screenshot.h"
@@ -79,6 +80,8 @@ int runEditor(int& argc, char** argv, const EditorOptions& options) {
         window.show();
         if (!openFile.isEmpty())
             window.openFile(openFile); // problems appear in a message box over the default scene
+        else
+            window.autosave()->offerRecovery(QString()); // an untitled document's unsaved work
         return QApplication::exec();
     }
     if (!openFile.isEmpty()) {

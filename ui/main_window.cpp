@@ -1,8 +1,14 @@
 #include "ui/main_window.h"
 
 #include "core/color_management.h"
+#include "core/document_io.h"
+#include "ui/atlas/atlas_panel.h"
+#include "ui/autosave.h"
 #include "ui/document_controller.h"
+#include "ui/graph/graph_panel.h"
+#include "ui/library/library_panel.h"
 #include "ui/log_panel.h"
+#include "ui/post_chain/post_chain_panel.h"
 #include "ui/properties/property_panel.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
@@ -16,6 +22,7 @@
 #include <QDropEvent>
 #include <QFileDialog>
 #include <QLabel>
+#include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
@@ -24,6 +31,7 @@
 #include <QStatusBar>
 #include <QTimer>
 #include <QToolBar>
+#include <QToolButton>
 #include <QUndoStack>
 #include <QUndoView>
 #include <cmath>
@@ -65,7 +73,8 @@ std::string documentPath(const QString& path) {
 
 MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     : QMainWindow(parent), m_controller(new DocumentController(this)),
-      m_viewport(new ViewportWidget(this)), m_saveLayout(restoreLayout) {
+      m_viewport(new ViewportWidget(this)), m_autosave(new Autosave(m_controller, this)),
+      m_saveLayout(restoreLayout) {
     setObjectName(QStringLiteral("mainWindow"));
     setAcceptDrops(true);
     setCentralWidget(m_viewport);
@@ -113,6 +122,7 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     });
     connect(m_viewport, &ViewportWidget::environmentRotationDragged, this,
             &MainWindow::rotateEnvironment);
+    connect(m_autosave, &Autosave::failed, m_log, &LogPanel::warning);
     connect(m_viewToolbar, &ViewportToolbar::viewStateChanged, this, &MainWindow::applyViewState);
     connect(m_viewToolbar, &ViewportToolbar::timingOverlayToggled, m_viewport,
             &ViewportWidget::setTimingOverlayVisible);
@@ -143,6 +153,14 @@ void MainWindow::createDocks() {
     properties->setMinimumWidth(320);
     addDockWidget(Qt::RightDockWidgetArea, properties);
 
+    m_atlas = new AtlasPanel(m_controller, this);
+    auto* atlas = new QDockWidget(tr("Atlas"), this);
+    atlas->setObjectName(QStringLiteral("atlasDock"));
+    atlas->setWidget(m_atlas);
+    addDockWidget(Qt::RightDockWidgetArea, atlas);
+    tabifyDockWidget(properties, atlas);
+    properties->raise();
+
     m_history = new QUndoView(m_controller->undoStack(), this);
     m_history->setObjectName(QStringLiteral("historyView"));
     m_history->setEmptyLabel(tr("<opened>"));
@@ -161,11 +179,66 @@ void MainWindow::createDocks() {
     setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
     addDockWidget(Qt::BottomDockWidgetArea, log);
     resizeDocks({log}, {120}, Qt::Vertical);
+
+    // Post chain and Library: tabs beside Properties; their errors go to the Log.
+    m_postChain = new PostChainPanel(m_controller, this);
+    auto* postChain = new QDockWidget(tr("Post chain"), this);
+    postChain->setObjectName(QStringLiteral("postChainDock"));
+    postChain->setWidget(m_postChain);
+    addDockWidget(Qt::RightDockWidgetArea, postChain);
+    tabifyDockWidget(properties, postChain);
+    m_library = new LibraryPanel(m_controller, this);
+    auto* library = new QDockWidget(tr("Library"), this);
+    library->setObjectName(QStringLiteral("libraryDock"));
+    library->setWidget(m_library);
+    addDockWidget(Qt::RightDockWidgetArea, library);
+    tabifyDockWidget(properties, library);
+    properties->raise();
+    connect(m_postChain, &PostChainPanel::problemsReported, m_log, &LogPanel::error);
+    connect(m_library, &LibraryPanel::problemsReported, m_log, &LogPanel::warning);
+
+    // Material graph: under the viewport beside the Log; refused edits go to the status bar
+    // and the Log.
+    auto* graphPanel = new GraphPanel(m_controller, this);
+    auto* graphDock = new QDockWidget(tr("Material graph"), this);
+    graphDock->setObjectName(QStringLiteral("graphDock"));
+    graphDock->setWidget(graphPanel);
+    addDockWidget(Qt::BottomDockWidgetArea, graphDock, Qt::Horizontal);
+    connect(graphPanel, &GraphPanel::message, this, [this](const QString& text) {
+        statusBar()->showMessage(text, 10000);
+        m_log->warning(text);
+    });
 }
 
 void MainWindow::createToolbars() {
     m_viewToolbar = new ViewportToolbar(m_colorManagement, this);
     addToolBar(Qt::TopToolBarArea, m_viewToolbar);
+
+    // A/B split: view state beside the debug view and overlay toggles.
+    m_abAction = new QAction(tr("A/B"), this);
+    m_abAction->setObjectName(QStringLiteral("abSplitAction"));
+    m_abAction->setCheckable(true);
+    m_abAction->setToolTip(tr("A/B split: the current material (left) beside a snapshot taken "
+                              "now or a preset (right)"));
+    connect(m_abAction, &QAction::toggled, this, [this](bool on) { setAbSplit(on); });
+    auto* abMenu = new QMenu(this);
+    abMenu->addAction(tr("B = snapshot of the current material"), this, [this] {
+        setAbSplit(false);
+        setAbSplit(true);
+    });
+    abMenu->addAction(tr("B from preset…"), this, [this] {
+        const QString path = QFileDialog::getOpenFileName(this, tr("Material preset for B"),
+                                                          QString(), fileFilter());
+        if (!path.isEmpty())
+            setAbSplitPreset(path);
+    });
+    auto* abButton = new QToolButton(this);
+    abButton->setObjectName(QStringLiteral("abSplitButton"));
+    abButton->setDefaultAction(m_abAction);
+    abButton->setMenu(abMenu);
+    abButton->setPopupMode(QToolButton::MenuButtonPopup);
+    m_viewToolbar->addSeparator();
+    m_viewToolbar->addWidget(abButton);
     addToolBarBreak(Qt::TopToolBarArea);
     m_sceneToolbar = new SceneToolbar(m_controller, this);
     addToolBar(Qt::TopToolBarArea, m_sceneToolbar);
@@ -175,6 +248,28 @@ void MainWindow::applyViewState() {
     m_viewport->setFrameSettings(m_viewToolbar->frameSettings());
     m_viewport->setTimingOverlayVisible(m_viewToolbar->timingOverlay());
     m_properties->setPickerColorSpace(m_viewToolbar->pickerColorSpace());
+}
+
+void MainWindow::setAbSplit(bool on, std::optional<Material> b) {
+    if (on && !b)
+        b = m_controller->material(); // the snapshot B
+    m_viewport->setSplitMaterial(on ? std::move(b) : std::nullopt);
+    const QSignalBlocker block(m_abAction);
+    m_abAction->setChecked(on);
+    if (on)
+        statusBar()->showMessage(tr("A/B split: left the current material, right B"), 4000);
+}
+
+bool MainWindow::setAbSplitPreset(const QString& path) {
+    Problems problems;
+    std::optional<Material> material = loadMaterialFile(path.toStdString(), problems);
+    if (!material || problems.hasErrors()) {
+        m_log->error(tr("Could not read the preset %1 for B").arg(path));
+        return false;
+    }
+    setAbSplit(true, std::move(material));
+    m_log->info(tr("A/B split: B is %1").arg(path));
+    return true;
 }
 
 void MainWindow::rotateEnvironment(float deltaDeg, int gestureKey) {
@@ -382,6 +477,9 @@ bool MainWindow::openFile(const QString& path) {
     QStringList problems;
     if (m_controller->openFile(path, &problems)) {
         addRecentFile(path);
+        // A crash (or kill) left unsaved changes of this file behind: offer them.
+        if (m_autosave->offerRecovery(m_controller->filePath()))
+            m_log->info(tr("Recovered unsaved changes of %1 from the autosave").arg(path));
         return true;
     }
     m_log->error(tr("Could not open %1:\n%2").arg(path, problems.join(QLatin1Char('\n'))));
@@ -416,8 +514,10 @@ bool MainWindow::saveDocument() {
     if (m_controller->filePath().isEmpty())
         return saveDocumentAs();
     QString error;
-    if (m_controller->save(&error))
+    if (m_controller->save(&error)) {
+        m_autosave->discard();
         return true;
+    }
     m_log->error(tr("Save failed: %1").arg(error));
     QMessageBox::warning(this, tr("Save failed"), error);
     return false;
@@ -434,6 +534,7 @@ bool MainWindow::saveDocumentAs() {
     settings.setValue(kLastDirKey, QFileInfo(path).absolutePath());
     QString error;
     if (m_controller->saveAs(path, &error)) {
+        m_autosave->discard();
         addRecentFile(path);
         return true;
     }
@@ -465,6 +566,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         settings.setValue(kStateKey, saveState(kLayoutVersion));
         m_viewToolbar->saveSettings();
     }
+    m_autosave->discard(); // saved or discarded by the artist: nothing to recover
     event->accept();
 }
 

@@ -5,10 +5,14 @@
 /// recent files, drag and drop of scenes, presets, HDRIs and meshes, a status bar with the frame
 /// time and environment progress, and the dirty-document prompt on close.
 
+#include "core/material.h"
+
 #include <QMainWindow>
 #include <QStringList>
 #include <memory>
+#include <optional>
 
+class QAction;
 class QLabel;
 class QMenu;
 class QUndoView;
@@ -19,8 +23,12 @@ class ColorManagement;
 
 namespace velvet::ui {
 
+class AtlasPanel;
+class Autosave;
 class DocumentController;
+class LibraryPanel;
 class LogPanel;
+class PostChainPanel;
 class PropertyPanel;
 class SceneToolbar;
 class ViewportToolbar;
@@ -35,7 +43,7 @@ public:
     ~MainWindow() override;
 
     /// Bump when docks or toolbars are added or renamed (QMainWindow::saveState's version).
-    static constexpr int kLayoutVersion = 2;
+    static constexpr int kLayoutVersion = 3;
     /// At most this many entries in File > Open Recent.
     static constexpr int kMaxRecentFiles = 8;
 
@@ -43,8 +51,14 @@ public:
     ViewportWidget* viewport() const { return m_viewport; }
     PropertyPanel* propertyPanel() const { return m_properties; }
     LogPanel* logPanel() const { return m_log; }
+    PostChainPanel* postChainPanel() const { return m_postChain; }
+    LibraryPanel* libraryPanel() const { return m_library; }
     ViewportToolbar* viewportToolbar() const { return m_viewToolbar; }
     SceneToolbar* sceneToolbar() const { return m_sceneToolbar; }
+    AtlasPanel* atlasPanel() const { return m_atlas; }
+    Autosave* autosave() const { return m_autosave; }
+    /// The toolbar's A/B split toggle.
+    QAction* abSplitAction() const { return m_abAction; }
 
     /// Opens @p path, showing problems in a message box and the Log. False when it could not be
     /// opened. Successful opens go to the recent files.
@@ -68,6 +82,11 @@ public slots:
     bool reloadShaders();
     /// R: reads the document's file again (asks first when there are unsaved changes).
     bool reloadScene();
+    /// A/B split on: B is a snapshot of the current material (or @p b when given); off: one
+    /// material. View state only.
+    void setAbSplit(bool on, std::optional<Material> b = std::nullopt);
+    /// Loads a material preset as B and turns the split on. False when it could not be read.
+    bool setAbSplitPreset(const QString& path);
 
 protected:
     void closeEvent(QCloseEvent* event) override;
@@ -92,8 +111,13 @@ private:
     PropertyPanel* m_properties = nullptr;
     QUndoView* m_history = nullptr;
     LogPanel* m_log = nullptr;
+    PostChainPanel* m_postChain = nullptr;
+    LibraryPanel* m_library = nullptr;
     ViewportToolbar* m_viewToolbar = nullptr;
     SceneToolbar* m_sceneToolbar = nullptr;
+    AtlasPanel* m_atlas = nullptr;
+    Autosave* m_autosave = nullptr;
+    QAction* m_abAction = nullptr;
     QMenu* m_recentMenu = nullptr;
     QLabel* m_frameLabel = nullptr;
     QLabel* m_progressLabel = nullptr;

@@ -62,12 +62,21 @@ glm::vec3 orbitOffset(const Camera& c) {
 } // namespace
 
 ViewportWidget::ViewportWidget(QWidget* parent)
-    : QOpenGLWidget(parent), m_flyTimer(new QTimer(this)), m_overlay(new QLabel(this)) {
+    : QOpenGLWidget(parent), m_flyTimer(new QTimer(this)), m_overlay(new QLabel(this)),
+      m_refineTimer(new QTimer(this)) {
     setObjectName(QStringLiteral("viewport"));
     setMinimumSize(64, 64);
     setFocusPolicy(Qt::StrongFocus);
     m_flyTimer->setInterval(kFlyTickMs);
     connect(m_flyTimer, &QTimer::timeout, this, &ViewportWidget::flyStep);
+    m_refineTimer->setSingleShot(true);
+    m_refineTimer->setInterval(kRefineDelayMs);
+    connect(m_refineTimer, &QTimer::timeout, this, [this] {
+        // Idle: draw once more at full size.
+        m_interacting = false;
+        if (m_lastRenderScale < 1.0f)
+            update();
+    });
 
     // A plain widget over the GL surface: Qt composes it, ui/ draws nothing with GL.
     m_overlay->setObjectName(QStringLiteral("timingOverlay"));
@@ -105,6 +114,39 @@ void ViewportWidget::releaseRenderer() {
 void ViewportWidget::setScene(const Scene& scene) {
     m_scene = scene;
     m_sceneDirty = true;
+    noteInteraction();
+    update();
+}
+
+void ViewportWidget::noteInteraction() {
+    // The second change within the refine delay is a drag: reduce until it pauses.
+    const bool streaming =
+        m_lastInteraction.isValid() && m_lastInteraction.elapsed() < kRefineDelayMs;
+    m_lastInteraction.start();
+    if (!m_reducedEnabled)
+        return;
+    if (streaming)
+        m_interacting = true;
+    m_refineTimer->start();
+}
+
+void ViewportWidget::setSplitMaterial(std::optional<Material> b) {
+    m_splitMaterial = std::move(b);
+    update();
+}
+
+void ViewportWidget::setSplitPosition(float fraction) {
+    m_splitPosition = std::clamp(fraction, 0.0f, 1.0f);
+    update();
+}
+
+void ViewportWidget::setReducedResolution(bool enabled, float scale) {
+    m_reducedEnabled = enabled;
+    m_reducedScale = std::clamp(scale, 0.1f, 1.0f);
+    if (!enabled) {
+        m_interacting = false;
+        m_refineTimer->stop();
+    }
     update();
 }
 
@@ -173,6 +215,7 @@ double ViewportWidget::environmentProgress() const {
 void ViewportWidget::setViewCamera(const Camera& camera) {
     m_orbit = camera;
     m_sceneDirty = true;
+    noteInteraction();
     update();
 }
 
@@ -258,6 +301,9 @@ void ViewportWidget::paintGL() {
     const qreal dpr = devicePixelRatioF();
     settings.width = std::max(1, static_cast<int>(std::lround(width() * dpr)));
     settings.height = std::max(1, static_cast<int>(std::lround(height() * dpr)));
+    settings.splitMaterial = m_splitMaterial;
+    settings.splitPosition = m_splitPosition;
+    settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
 
     QElapsedTimer timer;
     timer.start();
@@ -269,6 +315,7 @@ void ViewportWidget::paintGL() {
         return;
     }
     ++m_frameCount;
+    m_lastRenderScale = settings.renderScale;
     updateOverlay();
     emit frameCompleted(static_cast<double>(timer.nsecsElapsed()) / 1.0e6);
 }

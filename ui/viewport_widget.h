@@ -50,6 +50,27 @@ public:
     const render::FrameSettings& frameSettings() const { return m_settings; }
     /// The OCIO config the display transform uses (shared with the toolbar and pickers).
     void setColorManagement(std::shared_ptr<const ColorManagement> colorManagement);
+    /// @name A/B split
+    /// Set: the right part of the viewport (from splitPosition, a fraction of the width) shows
+    /// material @p b, the left the document's material (render::FrameSettings::splitMaterial).
+    /// Unset: one material over the whole viewport. View state, never in the document.
+    /// @{
+    void setSplitMaterial(std::optional<Material> b);
+    const std::optional<Material>& splitMaterial() const { return m_splitMaterial; }
+    void setSplitPosition(float fraction);
+    /// @}
+    /// @name Reduced resolution while editing
+    /// A scene or camera change that comes within kRefineDelayMs of the previous one (a slider
+    /// or orbit drag) renders at reducedScale() of the size; kRefineDelayMs after the last change
+    /// the viewport draws once more at full size. A single edit draws at full size at once.
+    /// @{
+    static constexpr int kRefineDelayMs = 150;
+    void setReducedResolution(bool enabled, float scale = 0.5f);
+    bool reducedResolutionEnabled() const { return m_reducedEnabled; }
+    float reducedScale() const { return m_reducedScale; }
+    /// The render scale of the last frame drawn (1 at full size).
+    float lastRenderScale() const { return m_lastRenderScale; }
+    /// @}
     /// Shows the last frame's per-pass GPU timings in a label over the viewport.
     void setTimingOverlayVisible(bool visible);
     bool isTimingOverlayVisible() const;
@@ -107,6 +128,8 @@ private:
     void updateOverlay();
     void releaseRenderer();
     void fail(const QString& message);
+    /// A scene or view change: decides whether the next frame is reduced (see kRefineDelayMs).
+    void noteInteraction();
     void paintError();
 
     std::unique_ptr<render::Renderer> m_renderer;
@@ -124,6 +147,14 @@ private:
     QTimer* m_flyTimer;
     QElapsedTimer m_flyClock;
     QLabel* m_overlay;
+    std::optional<Material> m_splitMaterial;
+    float m_splitPosition = 0.5f;
+    bool m_reducedEnabled = true;
+    float m_reducedScale = 0.5f;
+    bool m_interacting = false; ///< the next frame is reduced
+    float m_lastRenderScale = 1.0f;
+    QElapsedTimer m_lastInteraction;
+    QTimer* m_refineTimer;
 };
 
 } // namespace velvet::ui

@@ -256,7 +256,7 @@ private slots:
     }
 
     void schemaMatchesShippedFile() {
-        for (const QString kind : {"material", "scene"}) {
+        for (const QString kind : {"material", "scene", "post-chain"}) {
             Result r = runVelvet({"schema", kind});
             QCOMPARE(r.exitCode, 0);
             QFile shipped(source("resources/schemas/" + kind + ".schema.json"));

@@ -367,8 +367,27 @@ void TestUiViewport::droppedExrSetsHdri() {
     QVERIFY(!refused.isAccepted());
 }
 
+/// One line per dock: object name, area, hidden, floating and the docks tabbed with it.
+static QStringList describeDocks(const QMainWindow& window) {
+    QStringList lines;
+    for (QDockWidget* dock : window.findChildren<QDockWidget*>()) {
+        QStringList tabbed;
+        for (QDockWidget* other : window.tabifiedDockWidgets(dock))
+            tabbed << other->objectName();
+        tabbed.sort();
+        lines << QStringLiteral("%1 area=%2 hidden=%3 floating=%4 tabs=%5")
+                     .arg(dock->objectName())
+                     .arg(int(window.dockWidgetArea(dock)))
+                     .arg(dock->isHidden())
+                     .arg(dock->isFloating())
+                     .arg(tabbed.join(QLatin1Char(',')));
+    }
+    lines.sort();
+    return lines;
+}
+
 void TestUiViewport::dockLayoutRestores() {
-    QByteArray saved;
+    QStringList saved;
     {
         MainWindow first(/*restoreLayout=*/true);
         first.resize(800, 600);
@@ -377,7 +396,7 @@ void TestUiViewport::dockLayoutRestores() {
         QVERIFY(log && history);
         first.addDockWidget(Qt::LeftDockWidgetArea, log); // the artist moved the Log
         history->hide();                                  // and closed History
-        saved = first.saveState(MainWindow::kLayoutVersion);
+        saved = describeDocks(first);
         QVERIFY(first.close()); // saves the layout to QSettings
     }
     MainWindow second(/*restoreLayout=*/true);
@@ -386,7 +405,9 @@ void TestUiViewport::dockLayoutRestores() {
     auto* history = second.findChild<QDockWidget*>(QStringLiteral("historyDock"));
     QCOMPARE(second.dockWidgetArea(log), Qt::LeftDockWidgetArea);
     QVERIFY(history->isHidden());
-    QCOMPARE(second.saveState(MainWindow::kLayoutVersion), saved);
+    // Every dock comes back in its area, visibility and tab group. (Raw saveState() bytes also
+    // hold splitter sizes, which differ between a laid-out and a never-shown window.)
+    QCOMPARE(describeDocks(second), saved);
     QVERIFY(second.close());
 }
 

@@ -4,13 +4,11 @@
 /// ParamMeta. Editors only report what the artist did; the panel turns that into undo commands
 /// and pushes document values back with setValue (which never re-emits edited()).
 
-#include <memory>
+#include "core/material.h"
 
 #include <QWidget>
-
 #include <glm/vec3.hpp>
-
-#include "core/material.h"
+#include <memory>
 
 class QToolButton;
 

@@ -1,0 +1,65 @@
+#pragma once
+/// @file autosave.h
+/// Autosave and crash recovery (DESIGN.md, "Data safety"). While the document is dirty it is
+/// written every interval (60 s by default) to QStandardPaths::AppDataLocation/autosave/,
+/// atomically (core saveSceneFile: temp file + rename). The window removes the autosave after a
+/// save and a clean close; replacing the document (new, open) removes the old one's. At start-up
+/// and when a file is opened, an autosave newer than the file (or one of an untitled document) is
+/// offered for recovery; the recovered document is dirty until saved.
+
+#include <QDateTime>
+#include <QObject>
+#include <QString>
+#include <functional>
+
+class QTimer;
+
+namespace velvet::ui {
+
+class DocumentController;
+
+class Autosave : public QObject {
+    Q_OBJECT
+public:
+    static constexpr int kDefaultIntervalMs = 60000;
+
+    explicit Autosave(DocumentController* controller, QObject* parent = nullptr);
+
+    void setInterval(int ms);
+    int interval() const;
+    /// The folder autosaves go to (created on the first write).
+    static QString directory();
+    /// The autosave file of the document at @p filePath (empty: the untitled document).
+    static QString autosavePathFor(const QString& filePath);
+    /// The autosave that may be recovered for @p filePath: it exists and, for a file, is newer
+    /// than the file (or the file is gone). Empty when there is none.
+    static QString recoverableFor(const QString& filePath);
+
+    /// Writes the document's autosave now when it is dirty. False + @p error when the write
+    /// failed; true when written or when there was nothing to write.
+    bool saveNow(QString* error = nullptr);
+    /// Removes the current document's autosave (after a save, or a clean close).
+    void discard();
+    /// Loads @p autosaveFile as the document of @p filePath with unsaved changes (the autosave
+    /// stays until the document is saved). False + @p error when it could not be read.
+    bool recover(const QString& autosaveFile, const QString& filePath, QString* error);
+    /// Offers the recoverable autosave of @p filePath through the prompt (a message box by
+    /// default) and recovers it when accepted, removes it when declined. True when recovered.
+    bool offerRecovery(const QString& filePath);
+    /// Replaces the question asked before recovering (tests answer without a dialog). The
+    /// function gets the autosave's path and time and returns true to recover.
+    void setPrompt(std::function<bool(const QString&, const QDateTime&)> prompt);
+
+signals:
+    /// An autosave was written to @p path.
+    void saved(const QString& path);
+    void failed(const QString& message);
+
+private:
+    DocumentController* m_controller;
+    QTimer* m_timer;
+    QString m_lastPath; ///< the autosave the current document last wrote
+    std::function<bool(const QString&, const QDateTime&)> m_prompt;
+};
+
+} // namespace velvet::ui

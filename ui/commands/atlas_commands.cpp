@@ -1,0 +1,63 @@
+#include "ui/commands/atlas_commands.h"
+
+#include "ui/document_controller.h"
+
+namespace velvet::ui {
+
+ReplaceAtlasCommand::ReplaceAtlasCommand(AtlasModel* model, AtlasKind kind, AtlasDocument oldValue,
+                                         AtlasDocument newValue, const QString& text,
+                                         QUndoCommand* parent)
+    : QUndoCommand(text, parent), m_model(model), m_kind(kind), m_old(std::move(oldValue)),
+      m_new(std::move(newValue)) {}
+
+void ReplaceAtlasCommand::undo() {
+    m_model->setAtlas(m_kind, m_old);
+}
+
+void ReplaceAtlasCommand::redo() {
+    m_model->setAtlas(m_kind, m_new);
+}
+
+SetAtlasRegionCommand::SetAtlasRegionCommand(AtlasModel* model, AtlasKind kind, int index,
+                                             AtlasRegion oldValue, AtlasRegion newValue,
+                                             int mergeKey, QUndoCommand* parent)
+    : QUndoCommand(parent), m_model(model), m_kind(kind), m_index(index), m_old(oldValue),
+      m_new(newValue), m_mergeKey(mergeKey) {
+    const bool moved = oldValue.width == newValue.width && oldValue.height == newValue.height;
+    setText(moved ? QObject::tr("Move %1 region").arg(AtlasModel::kindLabel(kind))
+                  : QObject::tr("Resize %1 region").arg(AtlasModel::kindLabel(kind)));
+}
+
+void SetAtlasRegionCommand::undo() {
+    m_model->setRegion(m_kind, m_index, m_old);
+}
+
+void SetAtlasRegionCommand::redo() {
+    m_model->setRegion(m_kind, m_index, m_new);
+}
+
+bool SetAtlasRegionCommand::mergeWith(const QUndoCommand* other) {
+    const auto* o = static_cast<const SetAtlasRegionCommand*>(other);
+    if (m_mergeKey == 0 || o->m_mergeKey != m_mergeKey || o->m_kind != m_kind ||
+        o->m_index != m_index)
+        return false;
+    m_new = o->m_new;
+    setObsolete(m_new == m_old);
+    return true;
+}
+
+SetTextureCommand::SetTextureCommand(DocumentController* controller, TextureSlot slot,
+                                     TextureRef oldValue, TextureRef newValue, const QString& text,
+                                     QUndoCommand* parent)
+    : QUndoCommand(text, parent), m_controller(controller), m_slot(slot),
+      m_old(std::move(oldValue)), m_new(std::move(newValue)) {}
+
+void SetTextureCommand::undo() {
+    m_controller->setTexture(m_slot, m_old);
+}
+
+void SetTextureCommand::redo() {
+    m_controller->setTexture(m_slot, m_new);
+}
+
+} // namespace velvet::ui

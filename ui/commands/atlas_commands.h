@@ -1,0 +1,66 @@
+#pragma once
+/// @file atlas_commands.h
+/// Undoable atlas edits (ui/atlas/atlas_model.h) and texture slot assignment.
+
+#include "core/texture_ref.h"
+#include "ui/atlas/atlas_model.h"
+
+#include <QUndoCommand>
+
+namespace velvet::ui {
+
+class DocumentController;
+
+/// Replaces a whole atlas (add images, repack).
+class ReplaceAtlasCommand : public QUndoCommand {
+public:
+    ReplaceAtlasCommand(AtlasModel* model, AtlasKind kind, AtlasDocument oldValue,
+                        AtlasDocument newValue, const QString& text,
+                        QUndoCommand* parent = nullptr);
+    void undo() override;
+    void redo() override;
+
+private:
+    AtlasModel* m_model;
+    AtlasKind m_kind;
+    AtlasDocument m_old;
+    AtlasDocument m_new;
+};
+
+/// Moves or resizes one region. Commands on the same atlas and region with the same non-zero
+/// merge key (one drag) merge; a drag back to where it started makes the command obsolete.
+class SetAtlasRegionCommand : public QUndoCommand {
+public:
+    static constexpr int kId = 0x5f0;
+    SetAtlasRegionCommand(AtlasModel* model, AtlasKind kind, int index, AtlasRegion oldValue,
+                          AtlasRegion newValue, int mergeKey, QUndoCommand* parent = nullptr);
+    void undo() override;
+    void redo() override;
+    int id() const override { return kId; }
+    bool mergeWith(const QUndoCommand* other) override;
+
+private:
+    AtlasModel* m_model;
+    AtlasKind m_kind;
+    int m_index;
+    AtlasRegion m_old;
+    AtlasRegion m_new;
+    int m_mergeKey;
+};
+
+/// Sets one texture slot of the material (e.g. an atlas region as base colour).
+class SetTextureCommand : public QUndoCommand {
+public:
+    SetTextureCommand(DocumentController* controller, TextureSlot slot, TextureRef oldValue,
+                      TextureRef newValue, const QString& text, QUndoCommand* parent = nullptr);
+    void undo() override;
+    void redo() override;
+
+private:
+    DocumentController* m_controller;
+    TextureSlot m_slot;
+    TextureRef m_old;
+    TextureRef m_new;
+};
+
+} // namespace velvet::ui
