@@ -21,27 +21,60 @@ float saturate(float x) {
 
 } // namespace
 
+float sinSquared(glm::vec3 n, glm::vec3 h) {
+    const glm::vec3 c = glm::cross(n, h);
+    return std::min(glm::dot(c, c), 1.0f);
+}
+
+float logOneMinus(float x) {
+    if (x < 0.1f) // -sum x^k / k, truncated after x^7 / 7 (relative error < x^7 / 8 < 2e-8)
+        return -x *
+               (1.0f + x * (1.0f / 2.0f +
+                            x * (1.0f / 3.0f +
+                                 x * (1.0f / 4.0f +
+                                      x * (1.0f / 5.0f + x * (1.0f / 6.0f + x * (1.0f / 7.0f)))))));
+    return std::log(std::max(1.0f - x, 1e-30f));
+}
+
+namespace {
+float sinSquaredFromCos(float c) {
+    return std::max((1.0f - c) * (1.0f + c), 0.0f);
+}
+} // namespace
+
 // Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces" (GGX /
-// Trowbridge-Reitz)
+// Trowbridge-Reitz), in Filament's form: the denominator (n.h)^2 (alpha^2 - 1) + 1 is rewritten
+// as (n.h alpha)^2 + sin^2 so that it keeps its precision near the peak.
+float distributionGGX(float NdotH, float sin2H, float alpha) {
+    const float a = NdotH * alpha;
+    const float k = alpha / (a * a + sin2H);
+    return k * k / kPi;
+}
 float distributionGGX(float NdotH, float alpha) {
-    const float a2 = alpha * alpha;
-    const float f = NdotH * NdotH * (a2 - 1.0f) + 1.0f;
-    return a2 / (kPi * f * f);
+    return distributionGGX(NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 // Beckmann & Spizzichino 1963, "The Scattering of Electromagnetic Waves from Rough Surfaces"
-// (alpha = roughness^2, the slope RMS; normalised as in Walter et al. 2007 eq. 25)
-float distributionBeckmann(float NdotH, float alpha) {
+// (alpha = roughness^2, the slope RMS; normalised as in Walter et al. 2007 eq. 25);
+// (c^2 - 1) / (alpha^2 c^2) = -sin^2 / (alpha^2 c^2).
+float distributionBeckmann(float NdotH, float sin2H, float alpha) {
     const float a2 = alpha * alpha;
     const float c2 = std::max(NdotH * NdotH, 1e-8f);
-    return std::exp((c2 - 1.0f) / (a2 * c2)) / (kPi * a2 * c2 * c2);
+    return std::exp(-sin2H / (a2 * c2)) / (kPi * a2 * c2 * c2);
+}
+float distributionBeckmann(float NdotH, float alpha) {
+    return distributionBeckmann(NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 // Blinn 1977, "Models of Light Reflection for Computer Synthesized Pictures" (exponent
-// n = 2 / alpha^2 - 2 as Walter et al. 2007, normalisation (n + 2) / 2pi)
-float distributionBlinnPhong(float NdotH, float alpha) {
+// n = 2 / alpha^2 - 2 as Walter et al. 2007, normalisation (n + 2) / 2pi); (n.h)^n =
+// exp(n / 2 ln(1 - sin^2)): n reaches 5e5 at kMinRoughness, where pow() of n.h has no digits left.
+float distributionBlinnPhong(float /*NdotH*/, float sin2H, float alpha) {
     const float n = std::max(2.0f / (alpha * alpha) - 2.0f, 0.0f);
-    return (n + 2.0f) / (2.0f * kPi) * std::pow(std::max(NdotH, 1e-6f), n);
+    return (n + 2.0f) / (2.0f * kPi) * std::exp(0.5f * n * logOneMinus(sin2H));
+}
+float distributionBlinnPhong(float NdotH, float alpha) {
+    return distributionBlinnPhong(NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 // Smith 1967 with GGX G1, separable form of glTF 2.0 Appendix B: V = G / (4 |n.l| |n.v|)
@@ -133,11 +166,13 @@ glm::vec3 diffuseBurley(glm::vec3 diffuseColor, float roughness, float NdotL, fl
 }
 
 // Estevez & Kulla 2017, "Production Friendly Microfacet Sheen BRDF" (Charlie D)
-float distributionCharlie(float NdotH, float sheenRoughness) {
+float distributionCharlie(float /*NdotH*/, float sin2H, float sheenRoughness) {
     const float alpha = std::max(sheenRoughness, kMinSheenRoughness);
     const float invR = 1.0f / (alpha * alpha);
-    const float sin2h = std::max(1.0f - NdotH * NdotH, 0.0f);
-    return (2.0f + invR) * std::pow(sin2h, invR * 0.5f) / (2.0f * kPi);
+    return (2.0f + invR) * std::pow(std::max(sin2H, 0.0f), invR * 0.5f) / (2.0f * kPi);
+}
+float distributionCharlie(float NdotH, float sheenRoughness) {
+    return distributionCharlie(NdotH, sinSquaredFromCos(NdotH), sheenRoughness);
 }
 
 namespace {
@@ -252,16 +287,19 @@ float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, SheenModel model
 
 // ---- Dispatch (mirrors common_brdf.glsl) ----
 
-float distribution(Distribution which, float NdotH, float alpha) {
+float distribution(Distribution which, float NdotH, float sin2H, float alpha) {
     switch (which) {
     case Distribution::Beckmann:
-        return distributionBeckmann(NdotH, alpha);
+        return distributionBeckmann(NdotH, sin2H, alpha);
     case Distribution::BlinnPhong:
-        return distributionBlinnPhong(NdotH, alpha);
+        return distributionBlinnPhong(NdotH, sin2H, alpha);
     case Distribution::GGX:
         break;
     }
-    return distributionGGX(NdotH, alpha);
+    return distributionGGX(NdotH, sin2H, alpha);
+}
+float distribution(Distribution which, float NdotH, float alpha) {
+    return distribution(which, NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 float visibility(Visibility which, float NdotL, float NdotV, float NdotH, float VdotH,
@@ -364,11 +402,12 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
     const float NdotV = std::max(glm::dot(n, v), 1e-4f);
     const glm::vec3 h = glm::normalize(l + v);
     const float NdotH = saturate(glm::dot(n, h));
+    const float sin2H = sinSquared(n, h);
     const float VdotH = saturate(glm::dot(v, h));
 
     const float rough = std::max(s.roughness, kMinRoughness);
     const float alpha = rough * rough;
-    const float specular = distribution(s.distribution, NdotH, alpha) *
+    const float specular = distribution(s.distribution, NdotH, sin2H, alpha) *
                            visibility(s.visibility, NdotL, NdotV, NdotH, VdotH, alpha);
 
     // glTF 2.0 Appendix B + KHR_materials_specular: fresnel_mix for the dielectric,
@@ -384,7 +423,7 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
     // KHR_materials_sheen: sheen on top, base scaled by the albedo of the sheen lobe drawn (one
     // table per sheen model; see sheenDirectionalAlbedo()).
     if (max3(s.sheenColor) > 0.0f) {
-        const float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
+        const float sheen = distributionCharlie(NdotH, sin2H, s.sheenRoughness) *
                             visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness);
         const float scaling =
             std::min(1.0f - max3(s.sheenColor) *
@@ -399,7 +438,7 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
     if (s.clearcoat > 0.0f) {
         const float cr = std::max(s.clearcoatRoughness, kMinRoughness);
         const float ca = cr * cr;
-        const float coat = fresnelSchlick(0.04f, 1.0f, VdotH) * distributionGGX(NdotH, ca) *
+        const float coat = fresnelSchlick(0.04f, 1.0f, VdotH) * distributionGGX(NdotH, sin2H, ca) *
                            visibilitySmithGGXSeparable(NdotL, NdotV, ca);
         const float fc = fresnelSchlick(0.04f, 1.0f, NdotV);
         f = f * (1.0f - s.clearcoat * fc) + s.clearcoat * coat;

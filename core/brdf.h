@@ -22,13 +22,32 @@ inline constexpr float kMinRoughness = 0.045f;
 /// Smallest sheen roughness used in shading (Charlie D degenerates at 0).
 inline constexpr float kMinSheenRoughness = 0.07f;
 
+/// sin^2 of the angle between unit vectors @p n and @p h as |n x h|^2. Near the lobe peak
+/// (n.h -> 1) 1 - (n.h)^2 cancels catastrophically in float: one ulp of n.h (6e-8) is 1.2e-7 of
+/// sin^2, 3 % of alpha^2 at kMinRoughness, and D amplifies it. The cross product keeps the
+/// relative accuracy of small angles, so the GPU and the twin agree to ~1e-4 at every roughness
+/// (Filament's D_GGX does the same).
+float sinSquared(glm::vec3 n, glm::vec3 h);
+/// ln(1 - x) for x in [0, 1]: a series below 0.1 (where the GPU's log of 1 - x would lose
+/// the 2^-21 absolute accuracy GLSL allows), log() above; used by Blinn-Phong's huge exponents.
+float logOneMinus(float x);
+
 /// @name Normal distributions D(h) (normalised: integral of D(h) (n.h) over the hemisphere = 1)
+/// Shading passes both n.h and sin2H = sinSquared(n, h); every D is written in terms of sin2H
+/// where it matters (near the peak). The two-argument overloads derive sin2H = (1 - n.h)(1 + n.h)
+/// and are for an exact n.h (quadrature nodes, tests), not for shading.
 /// @{
-/// Walter et al. 2007, GGX / Trowbridge-Reitz (default).
+/// Walter et al. 2007, GGX / Trowbridge-Reitz (default), written as Filament's D_GGX:
+/// alpha^2 / (pi ((n.h alpha)^2 + sin^2)^2).
+float distributionGGX(float NdotH, float sin2H, float alpha);
 float distributionGGX(float NdotH, float alpha);
-/// Beckmann & Spizzichino 1963, alpha = roughness^2 as the slope RMS.
+/// Beckmann & Spizzichino 1963, alpha = roughness^2 as the slope RMS: exp(-tan^2 / alpha^2) with
+/// tan^2 = sin^2 / cos^2.
+float distributionBeckmann(float NdotH, float sin2H, float alpha);
 float distributionBeckmann(float NdotH, float alpha);
-/// Blinn 1977, exponent n = 2 / alpha^2 - 2, normalised by (n + 2) / 2pi.
+/// Blinn 1977, exponent n = 2 / alpha^2 - 2, normalised by (n + 2) / 2pi; (n.h)^n evaluated as
+/// exp(n/2 ln(1 - sin^2)).
+float distributionBlinnPhong(float NdotH, float sin2H, float alpha);
 float distributionBlinnPhong(float NdotH, float alpha);
 /// @}
 
@@ -73,7 +92,9 @@ glm::vec3 diffuseBurley(glm::vec3 diffuseColor, float roughness, float NdotL, fl
 
 /// @name Sheen (Charlie D with three visibility terms)
 /// @{
-/// Estevez & Kulla 2017 Charlie D; alpha = max(sheenRoughness, kMinSheenRoughness)^2.
+/// Estevez & Kulla 2017 Charlie D; alpha = max(sheenRoughness, kMinSheenRoughness)^2;
+/// (sin^2)^(1 / 2 alpha^2) with sin2H = sinSquared(n, h) (two-argument overload: exact n.h).
+float distributionCharlie(float NdotH, float sin2H, float sheenRoughness);
 float distributionCharlie(float NdotH, float sheenRoughness);
 /// Conty & Kulla 2017 fitted visibility (default).
 float visibilitySheenContyKulla(float NdotL, float NdotV, float sheenRoughness);
@@ -86,6 +107,7 @@ float visibilityNeubelt(float NdotL, float NdotV);
 
 /// @name Dispatch on the per-material term choices (mirrors the GLSL dispatch functions)
 /// @{
+float distribution(Distribution which, float NdotH, float sin2H, float alpha);
 float distribution(Distribution which, float NdotH, float alpha);
 float visibility(Visibility which, float NdotL, float NdotV, float NdotH, float VdotH, float alpha);
 /// Dielectric Fresnel with f90 = 1. ExactDielectric keeps KHR_materials_specular's coloured F0 by

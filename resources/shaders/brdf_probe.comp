@@ -55,15 +55,16 @@ void main() {
     float NdotV = max(dot(n, v), 1e-4);
     vec3 h = normalize(l + v);
     float NdotH = saturate(dot(n, h));
+    float sin2H = sinSquared(n, h);
     float VdotH = saturate(dot(v, h));
     float rough = max(s.roughness, MIN_ROUGHNESS);
     float alpha = rough * rough;
 
     ProbeResult r;
     r.full = vec4(shadeDirectional(s, n, v, l), 0.0);
-    r.dvs = vec4(distribution(s.terms.x, NdotH, alpha),
+    r.dvs = vec4(distribution(s.terms.x, NdotH, sin2H, alpha),
                  visibility(s.terms.y, NdotL, NdotV, NdotH, VdotH, alpha),
-                 distributionCharlie(NdotH, s.sheenRoughness),
+                 distributionCharlie(NdotH, sin2H, s.sheenRoughness),
                  visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness));
     r.fresnel = vec4(fresnelDielectric(s.terms.z, dielectricF0(s), s.ior, VdotH), 0.0);
     r.diffuse = vec4(diffuse(s.terms.w, s.baseColor, rough, NdotL, NdotV, VdotH), 0.0);

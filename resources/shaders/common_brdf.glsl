@@ -42,26 +42,61 @@ layout(binding = BINDING_SHEEN_LUT_TEX) uniform sampler2D uSheenLut;
 
 // ---- Implementations ----
 
+// sin^2 of the angle between unit n and h as |n x h|^2 (twin: velvet::brdf::sinSquared). Near
+// the lobe peak 1 - (n.h)^2 cancels: one ulp of n.h is 3 % of alpha^2 at MIN_ROUGHNESS.
+float sinSquared(vec3 n, vec3 h) {
+    vec3 c = cross(n, h);
+    return min(dot(c, c), 1.0);
+}
+
+// ln(1 - x), x in [0, 1]: a series below 0.1 (GLSL's log() is only 2^-21 accurate in absolute
+// terms near 1, which Blinn-Phong's exponents of up to 5e5 would amplify), log() above.
+float logOneMinus(float x) {
+    if (x < 0.1)
+        return -x * (1.0 + x * (1.0 / 2.0 + x * (1.0 / 3.0 + x * (1.0 / 4.0 +
+               x * (1.0 / 5.0 + x * (1.0 / 6.0 + x * (1.0 / 7.0)))))));
+    return log(max(1.0 - x, 1e-30));
+}
+
+float sinSquaredFromCos(float c) {
+    return max((1.0 - c) * (1.0 + c), 0.0);
+}
+
+// Every D takes n.h and sin2H = sinSquared(n, h); the (n.h, alpha) overloads derive sin2H from
+// an exact cosine and are not for shading.
+
 // Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces" (GGX / Trowbridge-Reitz)
+// in Filament's form: (n.h)^2 (alpha^2 - 1) + 1 = (n.h alpha)^2 + sin^2.
+float distributionGGX(float NdotH, float sin2H, float alpha) {
+    float a = NdotH * alpha;
+    float k = alpha / (a * a + sin2H);
+    return k * k / PI;
+}
 float distributionGGX(float NdotH, float alpha) {
-    float a2 = alpha * alpha;
-    float f = NdotH * NdotH * (a2 - 1.0) + 1.0;
-    return a2 / (PI * f * f);
+    return distributionGGX(NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 // Beckmann & Spizzichino 1963, "The Scattering of Electromagnetic Waves from Rough Surfaces"
-// (alpha = roughness^2, the slope RMS; normalised as in Walter et al. 2007 eq. 25)
-float distributionBeckmann(float NdotH, float alpha) {
+// (alpha = roughness^2, the slope RMS; normalised as in Walter et al. 2007 eq. 25);
+// (c^2 - 1) / (alpha^2 c^2) = -sin^2 / (alpha^2 c^2).
+float distributionBeckmann(float NdotH, float sin2H, float alpha) {
     float a2 = alpha * alpha;
     float c2 = max(NdotH * NdotH, 1e-8);
-    return exp((c2 - 1.0) / (a2 * c2)) / (PI * a2 * c2 * c2);
+    return exp(-sin2H / (a2 * c2)) / (PI * a2 * c2 * c2);
+}
+float distributionBeckmann(float NdotH, float alpha) {
+    return distributionBeckmann(NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 // Blinn 1977, "Models of Light Reflection for Computer Synthesized Pictures" (exponent
-// n = 2 / alpha^2 - 2 as Walter et al. 2007, normalisation (n + 2) / 2pi)
-float distributionBlinnPhong(float NdotH, float alpha) {
+// n = 2 / alpha^2 - 2 as Walter et al. 2007, normalisation (n + 2) / 2pi);
+// (n.h)^n = exp(n / 2 ln(1 - sin^2)).
+float distributionBlinnPhong(float NdotH, float sin2H, float alpha) {
     float n = max(2.0 / (alpha * alpha) - 2.0, 0.0);
-    return (n + 2.0) / (2.0 * PI) * pow(max(NdotH, 1e-6), n);
+    return (n + 2.0) / (2.0 * PI) * exp(0.5 * n * logOneMinus(sin2H));
+}
+float distributionBlinnPhong(float NdotH, float alpha) {
+    return distributionBlinnPhong(NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 // Smith 1967 with GGX G1, separable form of glTF 2.0 Appendix B: V = G / (4 |n.l| |n.v|)
@@ -152,11 +187,13 @@ vec3 diffuseBurley(vec3 diffuseColor, float roughness, float NdotL, float NdotV,
 }
 
 // Estevez & Kulla 2017, "Production Friendly Microfacet Sheen BRDF" (Charlie D)
-float distributionCharlie(float NdotH, float sheenRoughness) {
+float distributionCharlie(float NdotH, float sin2H, float sheenRoughness) {
     float alpha = max(sheenRoughness, MIN_SHEEN_ROUGHNESS);
     float invR = 1.0 / (alpha * alpha);
-    float sin2h = max(1.0 - NdotH * NdotH, 0.0);
-    return (2.0 + invR) * pow(sin2h, invR * 0.5) / (2.0 * PI);
+    return (2.0 + invR) * pow(max(sin2H, 0.0), invR * 0.5) / (2.0 * PI);
+}
+float distributionCharlie(float NdotH, float sheenRoughness) {
+    return distributionCharlie(NdotH, sinSquaredFromCos(NdotH), sheenRoughness);
 }
 
 float sheenLambdaHelper(float x, float alphaG) {
@@ -218,13 +255,16 @@ float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, int model) {
 // with F0 = 0.04); the choices apply to the base lobes and the sheen. Only direct lights use them:
 // the ambient/IBL path keeps the default model's split-sum approximation.
 
-// Normal distribution D(h), alpha = roughness^2.
-float distribution(int which, float NdotH, float alpha) {
+// Normal distribution D(h), alpha = roughness^2, sin2H = sinSquared(n, h).
+float distribution(int which, float NdotH, float sin2H, float alpha) {
     if (which == DISTRIBUTION_BECKMANN)
-        return distributionBeckmann(NdotH, alpha);
+        return distributionBeckmann(NdotH, sin2H, alpha);
     if (which == DISTRIBUTION_BLINN_PHONG)
-        return distributionBlinnPhong(NdotH, alpha);
-    return distributionGGX(NdotH, alpha);
+        return distributionBlinnPhong(NdotH, sin2H, alpha);
+    return distributionGGX(NdotH, sin2H, alpha);
+}
+float distribution(int which, float NdotH, float alpha) {
+    return distribution(which, NdotH, sinSquaredFromCos(NdotH), alpha);
 }
 
 // Visibility V = G / (4 n.l n.v), for every choice.
@@ -312,11 +352,12 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
     float NdotV = max(dot(n, v), 1e-4);
     vec3 h = normalize(l + v);
     float NdotH = saturate(dot(n, h));
+    float sin2H = sinSquared(n, h);
     float VdotH = saturate(dot(v, h));
 
     float rough = max(s.roughness, MIN_ROUGHNESS);
     float alpha = rough * rough;
-    float specular = distribution(s.terms.x, NdotH, alpha) *
+    float specular = distribution(s.terms.x, NdotH, sin2H, alpha) *
                      visibility(s.terms.y, NdotL, NdotV, NdotH, VdotH, alpha);
 
     vec3 fDielectric =
@@ -330,7 +371,7 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
     if (max3(s.sheenColor) > 0.0) {
         // The albedo scaling uses the table of the sheen model drawn; see
         // velvet::brdf::sheenDirectionalAlbedo().
-        float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
+        float sheen = distributionCharlie(NdotH, sin2H, s.sheenRoughness) *
                       visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness);
         float scaling =
             min(1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel),
@@ -341,7 +382,7 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
     if (s.clearcoat > 0.0) {
         float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
         float ca = cr * cr;
-        float coat = fresnelSchlick(0.04, 1.0, VdotH) * distributionGGX(NdotH, ca) *
+        float coat = fresnelSchlick(0.04, 1.0, VdotH) * distributionGGX(NdotH, sin2H, ca) *
                      visibilitySmithGGXSeparable(NdotL, NdotV, ca);
         float fc = fresnelSchlick(0.04, 1.0, NdotV);
         f = f * (1.0 - s.clearcoat * fc) + s.clearcoat * coat;

@@ -45,7 +45,7 @@ Lobes shadeLobes(Surface s, vec3 n, vec3 v, vec3 lDiffuse, vec3 lSpecular, float
             scaling = min(1.0 - max3(s.sheenColor) * sheenAlbedoV,
                           1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotLd, s.sheenRoughness, s.sheenModel));
             float NdotH = saturate(dot(n, h));
-            float sheen = distributionCharlie(NdotH, s.sheenRoughness) *
+            float sheen = distributionCharlie(NdotH, sinSquared(n, h), s.sheenRoughness) *
                           visibilitySheen(s.sheenModel, NdotLd, NdotV, s.sheenRoughness);
             o.sheen = s.sheenColor * sheen * coatAttenuation * NdotLd;
         }
@@ -57,8 +57,9 @@ Lobes shadeLobes(Surface s, vec3 n, vec3 v, vec3 lDiffuse, vec3 lSpecular, float
     if (NdotL > 0.0) {
         vec3 h = normalize(lSpecular + v);
         float NdotH = saturate(dot(n, h));
+        float sin2H = sinSquared(n, h);
         float VdotH = saturate(dot(v, h));
-        float specular = distribution(s.terms.x, NdotH, alpha) *
+        float specular = distribution(s.terms.x, NdotH, sin2H, alpha) *
                          visibility(s.terms.y, NdotL, NdotV, NdotH, VdotH, alpha) *
                          areaSpecularNormalization(alpha, widen);
         vec3 fDielectric =
@@ -72,7 +73,7 @@ Lobes shadeLobes(Surface s, vec3 n, vec3 v, vec3 lDiffuse, vec3 lSpecular, float
         if (s.clearcoat > 0.0) {
             float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
             float ca = cr * cr;
-            float coat = fresnelSchlick(0.04, 1.0, VdotH) * distributionGGX(NdotH, ca) *
+            float coat = fresnelSchlick(0.04, 1.0, VdotH) * distributionGGX(NdotH, sin2H, ca) *
                          visibilitySmithGGXSeparable(NdotL, NdotV, ca) *
                          areaSpecularNormalization(ca, widen);
             o.clearcoat = vec3(s.clearcoat * coat * NdotL);
