@@ -68,7 +68,13 @@ struct PostChainRenderer::Impl {
     PostTargetPool pool;
     PostContext ctx;
     std::map<std::string, std::unique_ptr<PostEffect>> effects;
-    std::map<std::string, std::unique_ptr<ShaderProgram>> fusedPrograms;
+    /// A fused pass's program and the effect classes its source was generated from (owned by
+    /// `effects`), so a reload can regenerate the same source.
+    struct FusedProgram {
+        std::unique_ptr<ShaderProgram> program;
+        std::vector<const FusableEffect*> effects;
+    };
+    std::map<std::string, FusedProgram> fusedPrograms;
     int compiles = 0;
     GLuint ubo = 0, vao = 0, sampler = 0;
     std::vector<PostTarget> held; ///< targets owned by the last run until endFrame()
@@ -153,13 +159,40 @@ struct PostChainRenderer::Impl {
     ShaderProgram* fused(const Step& step, std::string* error) {
         const std::string key = step.name();
         if (auto it = fusedPrograms.find(key); it != fusedPrograms.end())
-            return it->second.get();
+            return it->second.program.get();
         auto program = std::make_unique<ShaderProgram>();
         if (!buildPostProgram(*program, "post_fused.frag",
                               {{"post_fused.frag", fusedPassSource(step.fusedEffects)}}, error,
                               &compiles))
             return nullptr;
-        return (fusedPrograms[key] = std::move(program)).get();
+        FusedProgram& f = fusedPrograms[key];
+        f.program = std::move(program);
+        f.effects = step.fusedEffects;
+        return f.program.get();
+    }
+
+    /// Rebuilds every effect and fused program built so far; failures keep their last good
+    /// program and add their message.
+    bool reload(std::string* error) {
+        std::string errors;
+        const auto collect = [&](bool ok, const std::string& message) {
+            if (!ok)
+                errors += (errors.empty() ? "" : "\n") + message;
+        };
+        for (auto& [type, e] : effects) {
+            std::string message;
+            collect(e->build(ctx, &message), message);
+        }
+        for (auto& [key, f] : fusedPrograms) {
+            std::string message;
+            collect(buildPostProgram(*f.program, "post_fused.frag",
+                                     {{"post_fused.frag", fusedPassSource(f.effects)}}, &message,
+                                     &compiles),
+                    message);
+        }
+        if (!errors.empty() && error)
+            *error = errors;
+        return errors.empty();
     }
 
     bool runStep(const Step& step, const PostRunInputs& in, const PostTarget& input,
@@ -335,6 +368,10 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
     result.displayEncoded = hasToneMap && !steps.empty();
     result.hdrTexture = result.displayEncoded ? 0 : current.texture;
     return true;
+}
+
+bool PostChainRenderer::reload(std::string* error) {
+    return m_impl->reload(error);
 }
 
 void PostChainRenderer::endFrame() {

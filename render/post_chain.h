@@ -84,6 +84,12 @@ public:
     /// Hands the run's targets back to the pool and trims targets unused for a while.
     void endFrame();
 
+    /// Recompiles from disk every program built so far (each effect's, the fused passes'): the
+    /// renderer's shader reload (the editor's T). A program that fails to compile keeps its last
+    /// good build, so the chain goes on drawing; false + every message (file:line and the driver
+    /// log), joined by newlines. Programs not built yet are compiled on first use as before.
+    bool reload(std::string* error);
+
     /// Test entry point: uploads @p input, runs @p chain and reads back RGBA float (row 0 at the
     /// top): display-encoded when the chain tone maps, scene-linear otherwise. Saves and restores
     /// the framebuffer binding and viewport.

@@ -193,8 +193,14 @@ void FusableEffect::upload(unsigned program, const EffectInstance& effect, int b
     setEffectParams(program, meta(), effect, base);
 }
 
-bool FusableEffect::build(PostContext& /*ctx*/, std::string* /*error*/) {
-    return true; // the chain compiles fused passes; run() compiles the effect alone when used
+bool FusableEffect::build(PostContext& ctx, std::string* error) {
+    // The chain compiles fused passes; run() compiles the effect alone when used. A reload
+    // rebuilds that program only if it exists (the last good one stays on failure).
+    if (!m_program.id())
+        return true;
+    return buildPostProgram(m_program, "post_fused.frag",
+                            {{"post_fused.frag", fusedPassSource({this})}}, error,
+                            ctx.compileCount);
 }
 
 void FusableEffect::run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,

@@ -134,7 +134,9 @@ public:
     /// the chain then keeps one pooled target per such effect across frames.
     virtual bool readsPreviousFrame(const EffectInstance& /*effect*/) const { return false; }
 
-    /// Compiles the programs; called once, before the first run.
+    /// Compiles the programs: once before the first run, and again from disk by
+    /// PostChainRenderer::reload() (the editor's T). A program that fails keeps its last good
+    /// build (ShaderProgram::build), so the effect still draws; false + message (file:line).
     virtual bool build(PostContext& ctx, std::string* error) = 0;
     virtual void run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,
                      const PostTarget& output) = 0;
@@ -190,7 +192,8 @@ public:
     /// Uploads @p effect's parameters at uParams[base …] of @p program.
     virtual void upload(unsigned program, const EffectInstance& effect, int base) const;
 
-    /// Compiles nothing: the chain compiles the fused passes (fusedPassSource).
+    /// The chain compiles the fused passes (fusedPassSource); this compiles nothing the first
+    /// time and, on a reload, rebuilds the effect-alone program if run() built it.
     bool build(PostContext& ctx, std::string* error) override;
     /// The effect alone, as a fused pass of one (compiled on first use).
     void run(PostContext& ctx, const EffectInstance& effect, const PostTarget& input,

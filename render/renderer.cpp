@@ -632,6 +632,7 @@ bool Renderer::reloadShaders(std::string* error) {
     d.compileCount += d.lights.compileCount() - lightCompiles;
     collect(d.ibl.reload(&message, &d.compileCount), message);
     collect(d.displayTransform.reload(&message), message);
+    collect(d.post.reload(&message), message); // counted by shaderCompileCount() through post
     if (!errors.empty())
         return fail(error, errors);
     return true;

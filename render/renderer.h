@@ -144,8 +144,9 @@ public:
     bool initialize(std::string* error);
 
     /// Recompiles every shader program from disk (the editor's T key): G-buffer, lighting, tone
-    /// map, the light paths, the IBL bake's compute programs and the cached OCIO display
-    /// programs. A program that fails to compile keeps its last good build, so rendering goes on;
+    /// map, the light paths, the IBL bake's compute programs, the cached OCIO display programs
+    /// and the post chain's programs built so far (each effect's and each fused pass's). A
+    /// program that fails to compile keeps its last good build, so rendering goes on;
     /// false + message (file:line and the driver's log for each failure).
     bool reloadShaders(std::string* error);
 

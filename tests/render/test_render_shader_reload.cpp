@@ -3,8 +3,12 @@
 // display program. The test runs on a copy of resources/shaders (VELVET_RESOURCES, set before the
 // renderer exists), breaks each file in turn: reload fails naming file:line, frames still render
 // with the last good programs on every light path and through OCIO; mended, reload succeeds.
+// The post chain's programs (one-pass, multi-pass and fused effects) reload the same way, and
+// the frame drawn with a broken post shader is the frame drawn before (the last good programs).
+#include "core/post_effects.h"
 #include "core/resources.h"
 #include "render/offscreen.h"
+#include "render/post_chain.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
 
@@ -123,6 +127,63 @@ private slots:
         QVERIFY2(renderer.reloadShaders(&error), error.c_str());
         QVERIFY(renderer.shaderCompileCount() > before);
         QVERIFY2(renderAllPaths(renderer, target, &error), error.c_str());
+    }
+
+    // The post chain's programs are built on first use; T recompiles them too. Pixelate is one
+    // pass, bloom four programs of one file, vignette and tone map one fused pass.
+    void reloadBreaksAndMendsPostChainPrograms_data() {
+        QTest::addColumn<QString>("file");
+        for (const char* f : {"post_pixelate.frag", "post_bloom.frag", "post_vignette.frag",
+                              "post_tonemap_curve.frag", "post_common.glsl"})
+            QTest::newRow(f) << QString(f);
+    }
+
+    void reloadBreaksAndMendsPostChainPrograms() {
+        QFETCH(QString, file);
+        std::string error;
+        render::Renderer renderer;
+        QVERIFY2(renderer.initialize(&error), error.c_str());
+        Scene scene;
+        scene.post.effects = {makeEffect("bloom"), makeEffect("pixelate"), makeEffect("tonemap"),
+                              makeEffect("vignette")};
+        renderer.setScene(scene);
+        render::OffscreenTarget target;
+        QVERIFY2(target.resize(48, 48, &error), error.c_str());
+        render::FrameSettings frame;
+        frame.width = frame.height = 48;
+        QVERIFY2(renderer.render(frame, target.framebuffer(), &error), error.c_str());
+        const Image before = renderer.readDisplay();
+        const int postCompiles = renderer.postChain().compileCount();
+        QVERIFY(postCompiles >= 3);
+
+        const fs::path path = m_shaders / file.toStdString();
+        const std::string good = readText(path);
+        QVERIFY(!good.empty());
+        const int badLine = int(std::count(good.begin(), good.end(), '\n')) + 1;
+        writeText(path, good + "this is not GLSL;\n");
+        const bool ok = renderer.reloadShaders(&error);
+        writeText(path, good);
+        QVERIFY(!ok);
+        const std::string where = file.toStdString() + ":" + std::to_string(badLine);
+        QVERIFY2(
+            error.find(where) != std::string::npos,
+            qPrintable(QString("expected %1 in: %2")
+                           .arg(QString::fromStdString(where), QString::fromStdString(error))));
+        // The reload did rebuild the post programs the broken file is not part of (every post
+        // program includes post_common.glsl), and the frame still renders, identical to the one
+        // before: the last good programs drew it.
+        if (file != "post_common.glsl")
+            QVERIFY(renderer.postChain().compileCount() > postCompiles);
+        QVERIFY2(renderer.render(frame, target.framebuffer(), &error), error.c_str());
+        const Image after = renderer.readDisplay();
+        QCOMPARE(after.pixels.size(), before.pixels.size());
+        QVERIFY(after.pixels == before.pixels);
+
+        const int mended = renderer.postChain().compileCount();
+        QVERIFY2(renderer.reloadShaders(&error), error.c_str());
+        QVERIFY(renderer.postChain().compileCount() > mended);
+        QVERIFY2(renderer.render(frame, target.framebuffer(), &error), error.c_str());
+        QVERIFY(renderer.readDisplay().pixels == before.pixels);
     }
 };
 
