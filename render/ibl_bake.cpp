@@ -350,6 +350,11 @@ double IblBaker::runSlice(Job& job) {
         const double perRow = msPerUnit * double(job.size) * job.samples;
         rows = int(m_options.sliceTargetMs / std::max(perRow, 1e-9)) / group * group;
     }
+    // The hard cap on work per slice, whole row groups (but at least one).
+    const double unitsPerRow = double(job.size) * job.samples;
+    const int cappedRows =
+        int(m_options.maxSliceUnits / std::max(unitsPerRow, 1.0)) / group * group;
+    rows = std::min(rows, std::max(cappedRows, group));
     rows = std::clamp(rows, group, job.size - job.row);
     if (job.kind == JobKind::CopyLevel0)
         rows = job.size - job.row;
@@ -426,6 +431,8 @@ double IblBaker::runSlice(Job& job) {
     m_stats.slices++;
     m_stats.totalMs += ms;
     m_stats.worstSliceMs = std::max(m_stats.worstSliceMs, ms);
+    if (job.kind != JobKind::CopyLevel0) // a copy, not shader work
+        m_stats.worstSliceUnits = std::max(m_stats.worstSliceUnits, units);
     if (m_stats.sliceMs.size() < 4096)
         m_stats.sliceMs.push_back(ms);
     return ms;

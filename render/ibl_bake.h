@@ -35,13 +35,19 @@ struct IblBakeOptions {
     /// Target GPU time of one slice (measured with glFinish); the bake adapts the rows per slice
     /// to it from the cost it measured on the previous slices.
     double sliceTargetMs = 8.0;
+    /// Most work units (texels x samples per texel) one slice may do, whatever the cost model
+    /// says: a slice's time stays bounded by this much work even when the model's estimate is
+    /// off (its first slice, a machine that got busy). A slice still does at least one group of
+    /// rows; no job's row group exceeds this (a 256-texel face at 64 samples: 8 rows = 2^17).
+    double maxSliceUnits = 262144.0;
 };
 
 /// What the bake measured (reported by tests and the bench; never asserted as absolute times).
 struct IblBakeStats {
-    int slices = 0;          ///< slices run since the last resetStats()
-    double worstSliceMs = 0; ///< longest slice (dispatch + glFinish, wall clock)
-    double totalMs = 0;      ///< sum of the slices
+    int slices = 0;             ///< slices run since the last resetStats()
+    double worstSliceMs = 0;    ///< longest slice (dispatch + glFinish, wall clock)
+    double worstSliceUnits = 0; ///< most work units (texels x samples) one slice did
+    double totalMs = 0;         ///< sum of the slices
     std::vector<double> sliceMs;
 };
 

@@ -19,6 +19,8 @@ constexpr int kLightCountLocation = 7;
 constexpr int kProxyConeLocation = 8;    ///< light_volume.vert: 1 = cone proxy
 constexpr int kInstanceBaseLocation = 9; ///< light_volume.vert: first light of the draw
 constexpr int kHdrImageUnit = 0;
+constexpr int kTileSsboBinding = 3;       ///< the active-tile list and its indirect dispatch
+constexpr int kTileViewportLocation = 10; ///< light_tile_classify.comp: the frame's size
 constexpr int kTileSize = 8;      ///< 8x8 tiles: shorter lists than 16x16 (llvmpipe shades 8 lanes)
 constexpr int kLightBatch = 1024; ///< lights culled per round in the tiled pass (4 KiB shared)
 
@@ -31,6 +33,8 @@ std::string lightBindingsGlsl() {
       << "#define LOCATION_PROXY_CONE " << kProxyConeLocation << "\n"
       << "#define LOCATION_INSTANCE_BASE " << kInstanceBaseLocation << "\n"
       << "#define BINDING_LIGHT_HDR_IMAGE " << kHdrImageUnit << "\n"
+      << "#define BINDING_LIGHT_TILE_SSBO " << kTileSsboBinding << "\n"
+      << "#define LOCATION_TILE_VIEWPORT " << kTileViewportLocation << "\n"
       << "#define TILE_SIZE " << kTileSize << "\n"
       << "#define LIGHT_BATCH " << kLightBatch << "\n";
     return s.str();
@@ -126,8 +130,13 @@ LightPasses::~LightPasses() {
 
 void LightPasses::release() {
     m_tiledProgram.release();
+    m_classifyProgram.release();
     if (m_lightSsbo)
         glDeleteBuffers(1, &m_lightSsbo);
+    if (m_tileSsbo)
+        glDeleteBuffers(1, &m_tileSsbo);
+    m_tileSsbo = 0;
+    m_tileSsboTiles = 0;
     if (m_proxyVao)
         glDeleteVertexArrays(1, &m_proxyVao);
     const GLuint buffers[] = {m_proxyVbo, m_proxyIbo};
@@ -152,6 +161,7 @@ bool LightPasses::buildPrograms(std::string* error) {
     note(m_volumeProgram.build("light_volume.vert", "light_volume.frag", {}, generated, &e), e);
     note(m_bruteProgram.build("fullscreen.vert", "light_brute.frag", {}, generated, &e), e);
     note(m_tiledProgram.build("light_tiled.comp", {}, generated, &e), e);
+    note(m_classifyProgram.build("light_tile_classify.comp", {}, generated, &e), e);
     if (!errors.empty() && error)
         *error = errors;
     return errors.empty();
@@ -252,11 +262,34 @@ void LightPasses::draw(LightPath requested, int width, int height, unsigned gbuf
     if (path == LightPath::Tiled) {
         // The HDR image was just written by the full-screen pass through the framebuffer.
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        // 1. The tiles that hold mesh pixels, appended to a list that is also the indirect
+        // dispatch of step 2 (light_tile_classify.comp; background tiles cost nothing there).
+        const GLuint tilesX = GLuint((width + kTileSize - 1) / kTileSize);
+        const GLuint tilesY = GLuint((height + kTileSize - 1) / kTileSize);
+        const size_t tileCount = size_t(tilesX) * tilesY;
+        if (tileCount > m_tileSsboTiles) {
+            if (m_tileSsbo)
+                glDeleteBuffers(1, &m_tileSsbo);
+            glCreateBuffers(1, &m_tileSsbo);
+            glNamedBufferStorage(m_tileSsbo, GLsizeiptr((4 + tileCount) * sizeof(GLuint)), nullptr,
+                                 GL_DYNAMIC_STORAGE_BIT);
+            m_tileSsboTiles = tileCount;
+        }
+        const GLuint resetDispatch[4] = {0u, 1u, 1u, 0u};
+        glNamedBufferSubData(m_tileSsbo, 0, sizeof resetDispatch, resetDispatch);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTileSsboBinding, m_tileSsbo);
+        glUseProgram(m_classifyProgram.id());
+        glProgramUniform2i(m_classifyProgram.id(), kTileViewportLocation, width, height);
+        glDispatchCompute(tilesX, tilesY, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+        // 2. Per active tile: cull, then shade (light_tiled.comp).
         glUseProgram(m_tiledProgram.id());
         glProgramUniform1i(m_tiledProgram.id(), kLightCountLocation, m_count);
         glBindImageTexture(kHdrImageUnit, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-        glDispatchCompute(GLuint((width + kTileSize - 1) / kTileSize),
-                          GLuint((height + kTileSize - 1) / kTileSize), 1);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_tileSsbo);
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glBindImageTexture(kHdrImageUnit, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);

@@ -63,8 +63,10 @@ private:
     void release();
     bool buildPrograms(std::string* error);
     ShaderProgram m_volumeProgram, m_bruteProgram;
-    ComputeProgram m_tiledProgram;
+    ComputeProgram m_tiledProgram, m_classifyProgram;
     unsigned m_lightSsbo = 0;
+    unsigned m_tileSsbo = 0;    ///< indirect dispatch arguments, then the active tiles
+    size_t m_tileSsboTiles = 0; ///< tiles m_tileSsbo has room for
     size_t m_ssboBytes = 0;
     int m_count = 0;
     int m_coneFirst = 0; ///< lights [m_coneFirst, m_count) use the cone proxy

@@ -7,10 +7,16 @@
 // memory), then each invocation shades its pixel with the batch's list and adds the sum to the
 // HDR image. The mask drops lights that fall in the depth gaps of a tile (silhouettes), where a
 // min/max range alone keeps everything between the front and the back surface.
+// Dispatched indirectly over the tiles light_tile_classify.comp found to hold mesh pixels only.
 #include "light_common.glsl"
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 layout(binding = BINDING_LIGHT_HDR_IMAGE, rgba16f) uniform image2D uHdrImage;
+// The tiles with at least one mesh pixel (light_tile_classify.comp): one work group each.
+layout(std430, binding = BINDING_LIGHT_TILE_SSBO) readonly buffer TileList {
+    uvec4 dispatchArgs;
+    uint tiles[];
+};
 
 shared uint sMinDepth;
 shared uint sMaxDepth;
@@ -32,7 +38,9 @@ uint depthBits(float zLo, float zHi, float zNear, float scale) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    uint packedTile = tiles[gl_WorkGroupID.x];
+    uvec2 tile = uvec2(packedTile & 0xffffu, packedTile >> 16u);
+    ivec2 pixel = ivec2(tile * TILE_SIZE + gl_LocalInvocationID.xy);
     ivec2 size = ivec2(frame.viewport.xy);
     bool inside = pixel.x < size.x && pixel.y < size.y;
     uint local = gl_LocalInvocationIndex;
@@ -56,8 +64,8 @@ void main() {
         return; // the whole tile is background (uniform across the group)
 
     // The tile's view-space bounding box: its four corners at the nearest and farthest depth.
-    vec2 tileMin = vec2(gl_WorkGroupID.xy * TILE_SIZE) * frame.viewport.zw * 2.0 - 1.0;
-    vec2 tileMax = vec2((gl_WorkGroupID.xy + 1u) * TILE_SIZE) * frame.viewport.zw * 2.0 - 1.0;
+    vec2 tileMin = vec2(tile * TILE_SIZE) * frame.viewport.zw * 2.0 - 1.0;
+    vec2 tileMax = vec2((tile + 1u) * TILE_SIZE) * frame.viewport.zw * 2.0 - 1.0;
     float dMin = uintBitsToFloat(sMinDepth), dMax = uintBitsToFloat(sMaxDepth);
     vec3 boxMin = vec3(1e30), boxMax = vec3(-1e30);
     for (int i = 0; i < 8; ++i) {
@@ -89,7 +97,8 @@ void main() {
             float r = L.positionRange.w;
             vec3 c = (frame.viewMatrix * vec4(L.positionRange.xyz, 1.0)).xyz;
             vec3 d = c - clamp(c, boxMin, boxMax); // sphere vs box (Arvo 1990)
-            if (dot(d, d) < r * r && (depthBits(-c.z - r, -c.z + r, zNear, binScale) & tileMask) != 0u)
+            if (dot(d, d) < r * r &&
+                (depthBits(-c.z - r, -c.z + r, zNear, binScale) & tileMask) != 0u)
                 sList[atomicAdd(sCount, 1u)] = uint(base + i);
         }
         barrier();

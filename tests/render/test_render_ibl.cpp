@@ -13,6 +13,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -387,11 +388,9 @@ private slots:
         const render::Renderer::EnvironmentBakeStats s = renderer.environmentBakeStats();
         qInfo("llvmpipe shader warm-up: %.1f ms over %d frames, worst warm-up frame %.1f ms",
               s.warmUpMs, s.warmUpFrames, s.worstWarmUpFrameMs);
-        // The warm-up is itself sliced (about one program's machine-code compile per frame, the
-        // issue's 50 ms): more than one frame, none of them an order of magnitude over.
+        // The warm-up is itself sliced (about one program's machine-code compile per frame): more
+        // than one frame. Its times are logged, not asserted (DESIGN.md, "Measuring").
         QVERIFY(s.warmUpFrames > 1);
-        QVERIFY2(s.worstWarmUpFrameMs <= 10.0 * 50.0,
-                 qPrintable(QString("worst warm-up frame %1 ms").arg(s.worstWarmUpFrameMs)));
         const int slices = s.slices - before.slices;
         const double target8 = render::IblBakeOptions{}.sliceTargetMs;
         qInfo("studio.exr bake: %d frames, %d slices, %.1f ms in all, worst slice %.1f ms "
@@ -399,8 +398,55 @@ private slots:
               frames, slices, s.totalMs - before.totalMs, s.worstSliceMs, target8, worstFrameIbl);
         QVERIFY(frames > 1);
         QVERIFY(slices > 1);
-        QVERIFY2(s.worstSliceMs <= 5.0 * target8,
-                 qPrintable(QString("worst slice %1 ms").arg(s.worstSliceMs)));
+        // What bounds a slice's time is its work, asserted by sliceWorkIsBounded() below.
+    }
+
+    // Every slice of a full-size bake (studio.exr: 256-texel faces, 64 samples per texel) does at
+    // most IblBakeOptions::maxSliceUnits texel-samples, however the cost model estimates; the
+    // largest jobs are therefore split over several slices, and stepping with the renderer's
+    // per-frame budget makes many frames. Times (worst slice, worst frame) are logged only.
+    void sliceWorkIsBounded() {
+        render::EnvironmentCache cache;
+        Environment env;
+        env.hdri = resources::path("hdri/studio.exr").string();
+        const render::GpuEnvironment& gpu = cache.get(env, nullptr);
+        render::IblBaker baker;
+        std::string error;
+        QVERIFY2(baker.initialize(&error), error.c_str());
+        const render::IblBakeOptions options = baker.options();
+        baker.request(gpu);
+        int frames = 0, warmUpFrames = 0;
+        double worstFrameMs = 0.0;
+        while (frames < 20000) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const bool done = baker.step(12.0); // the renderer's per-frame budget
+            const double ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count();
+            ++frames;
+            if (baker.warmUpFrames() > warmUpFrames)
+                warmUpFrames = baker.warmUpFrames(); // a shader warm-up frame, logged apart
+            else
+                worstFrameMs = std::max(worstFrameMs, ms);
+            if (done)
+                break;
+        }
+        QVERIFY(baker.specularReady());
+        const render::IblBakeStats& s = baker.stats();
+        const long texelSamplesPerFace = long(baker.faceSize() / 2) * (baker.faceSize() / 2) *
+                                         options.samples; // prefiltered level 1, one face
+        qInfo("studio.exr, face %d: %d frames (%d warm-up, worst %.1f ms), %d slices, worst slice "
+              "%.0f units (cap %.0f; level 1 face %ld) in %.1f ms, worst bake frame %.1f ms",
+              baker.faceSize(), frames, warmUpFrames, baker.worstWarmUpFrameMs(), s.slices,
+              s.worstSliceUnits, options.maxSliceUnits, texelSamplesPerFace, s.worstSliceMs,
+              worstFrameMs);
+        QCOMPARE(baker.faceSize(), 256);
+        QVERIFY(s.worstSliceUnits > 0.0);
+        QVERIFY2(s.worstSliceUnits <= options.maxSliceUnits,
+                 qPrintable(QString("a slice did %1 units").arg(s.worstSliceUnits)));
+        // The largest job alone needs several slices at the cap.
+        QVERIFY(double(texelSamplesPerFace) > 2.0 * options.maxSliceUnits);
+        QVERIFY(s.slices > 6 * baker.specularLevels());
     }
 };
 
