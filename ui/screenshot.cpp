@@ -2,9 +2,11 @@
 
 #include "core/color_management.h"
 #include "core/image.h"
+#include "ui/viewport_widget.h"
 
 #include <QFileInfo>
 #include <QImage>
+#include <QPainter>
 #include <QPixmap>
 #include <QWidget>
 
@@ -22,14 +24,35 @@ Image toImage(const QImage& source) {
     return image;
 }
 
+QImage grabWithViewports(QWidget* widget) {
+    QImage image = widget->grab().toImage();
+    if (image.isNull())
+        return image;
+    // A viewport draws in a native GL window inside a window container, which QWidget::grab
+    // leaves out: paint each visible viewport's own frame where it sits.
+    QList<ViewportWidget*> viewports = widget->findChildren<ViewportWidget*>();
+    if (auto* self = qobject_cast<ViewportWidget*>(widget))
+        viewports.prepend(self);
+    QPainter painter(&image);
+    for (ViewportWidget* viewport : viewports) {
+        if (!viewport->isVisible())
+            continue;
+        const QImage frame = viewport->grabFramebuffer();
+        if (frame.isNull())
+            continue;
+        painter.drawImage(QRect(viewport->mapTo(widget, QPoint(0, 0)), viewport->size()), frame);
+    }
+    return image;
+}
+
 bool saveScreenshot(QWidget* widget, const QString& file, QString* error) {
-    const QPixmap pixmap = widget->grab();
-    if (pixmap.isNull()) {
+    const QImage grabbed = grabWithViewports(widget);
+    if (grabbed.isNull()) {
         if (error)
             *error = QStringLiteral("the window could not be grabbed");
         return false;
     }
-    Image image = toImage(pixmap.toImage());
+    Image image = toImage(grabbed);
     PixelFormat format = PixelFormat::UInt8;
     if (QFileInfo(file).suffix().compare(QLatin1String("exr"), Qt::CaseInsensitive) == 0) {
         // EXR holds scene-linear values by convention: undo the display encoding, keep alpha.

@@ -1,15 +1,19 @@
 #include "ui/viewport_widget.h"
 
 #include "core/color_management.h"
+#include "core/image.h"
 #include "render/camera.h"
+#include "render/offscreen.h"
 #include "ui/commands/set_scene_command.h"
 
+#include <QCoreApplication>
+#include <QDropEvent>
 #include <QKeyEvent>
-#include <QLabel>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QPainter>
 #include <QTimer>
+#include <QVBoxLayout>
 #include <QWheelEvent>
 #include <algorithm>
 #include <cmath>
@@ -61,12 +65,81 @@ glm::vec3 orbitOffset(const Camera& c) {
 
 } // namespace
 
+/// The native GL window. Everything it receives goes to its ViewportWidget; only what the
+/// widget leaves unhandled goes on to QOpenGLWindow.
+class ViewportWidget::Surface final : public QOpenGLWindow {
+public:
+    explicit Surface(ViewportWidget* owner)
+        : QOpenGLWindow(QOpenGLWindow::NoPartialUpdate), m_owner(owner) {}
+
+protected:
+    void initializeGL() override { m_owner->initializeGL(); }
+    void paintGL() override { m_owner->paintGL(); }
+    void mousePressEvent(QMouseEvent* event) override {
+        if (!m_owner->mousePress(event))
+            QOpenGLWindow::mousePressEvent(event);
+    }
+    void mouseMoveEvent(QMouseEvent* event) override {
+        if (!m_owner->mouseMove(event))
+            QOpenGLWindow::mouseMoveEvent(event);
+    }
+    void mouseReleaseEvent(QMouseEvent* event) override {
+        if (!m_owner->mouseRelease(event))
+            QOpenGLWindow::mouseReleaseEvent(event);
+    }
+    void wheelEvent(QWheelEvent* event) override {
+        if (!m_owner->wheel(event))
+            QOpenGLWindow::wheelEvent(event);
+    }
+    void keyPressEvent(QKeyEvent* event) override {
+        if (!m_owner->keyPress(event))
+            QOpenGLWindow::keyPressEvent(event);
+    }
+    void keyReleaseEvent(QKeyEvent* event) override {
+        if (!m_owner->keyRelease(event))
+            QOpenGLWindow::keyReleaseEvent(event);
+    }
+    void focusOutEvent(QFocusEvent* event) override {
+        m_owner->focusLost();
+        QOpenGLWindow::focusOutEvent(event);
+    }
+    bool event(QEvent* event) override {
+        switch (event->type()) {
+        case QEvent::DragEnter:
+        case QEvent::DragMove:
+        case QEvent::DragLeave:
+        case QEvent::Drop:
+            m_owner->forwardDrag(event);
+            return true;
+        case QEvent::UpdateRequest:
+            m_owner->m_updatePosted = false; // paints when the window is dirty (update())
+            return QOpenGLWindow::event(event);
+        default:
+            return QOpenGLWindow::event(event);
+        }
+    }
+
+private:
+    ViewportWidget* m_owner;
+};
+
 ViewportWidget::ViewportWidget(QWidget* parent)
-    : QOpenGLWidget(parent), m_flyTimer(new QTimer(this)), m_overlay(new QLabel(this)),
+    : QWidget(parent), m_surface(new Surface(this)),
+      m_container(QWidget::createWindowContainer(m_surface, this)), m_flyTimer(new QTimer(this)),
       m_refineTimer(new QTimer(this)) {
     setObjectName(QStringLiteral("viewport"));
+    m_surface->setObjectName(QStringLiteral("viewportWindow"));
+    m_container->setObjectName(QStringLiteral("viewportContainer"));
     setMinimumSize(64, 64);
+    // Focus given to the viewport (Tab, setFocus) activates the GL window, which then gets keys.
+    m_container->setFocusPolicy(Qt::StrongFocus);
     setFocusPolicy(Qt::StrongFocus);
+    setFocusProxy(m_container);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->setSpacing(0);
+    layout->addWidget(m_container);
+
     m_flyTimer->setInterval(kFlyTickMs);
     connect(m_flyTimer, &QTimer::timeout, this, &ViewportWidget::flyStep);
     m_refineTimer->setSingleShot(true);
@@ -75,17 +148,23 @@ ViewportWidget::ViewportWidget(QWidget* parent)
         // Idle: draw once more at full size.
         m_interacting = false;
         if (m_lastRenderScale < 1.0f)
-            update();
+            requestFrame();
     });
+}
 
-    // A plain widget over the GL surface: Qt composes it, ui/ draws nothing with GL.
-    m_overlay->setObjectName(QStringLiteral("timingOverlay"));
-    m_overlay->setAttribute(Qt::WA_TransparentForMouseEvents);
-    m_overlay->setStyleSheet(
-        QStringLiteral("QLabel { background: rgba(0, 0, 0, 150); color: #e0e0e0; padding: 4px; "
-                       "font-family: monospace; }"));
-    m_overlay->move(8, 8);
-    m_overlay->hide();
+QOpenGLWindow* ViewportWidget::glWindow() const {
+    return m_surface;
+}
+
+void ViewportWidget::requestFrame() {
+    m_surface->update(); // marks the window dirty and asks Qt for an update request
+    // Qt delivers that request from a timer of QT_QPA_UPDATE_IDLE_TIME (5 ms by default): 5 ms
+    // added to every frame, the whole of the viewport_overhead_ms budget. Post the request now;
+    // the timer's later one finds the window clean and paints nothing. One in flight at a time.
+    if (!m_updatePosted && m_surface->isExposed()) {
+        m_updatePosted = true;
+        QCoreApplication::postEvent(m_surface, new QEvent(QEvent::UpdateRequest));
+    }
 }
 
 QSurfaceFormat ViewportWidget::requiredFormat() {
@@ -100,22 +179,28 @@ QSurfaceFormat ViewportWidget::requiredFormat() {
 
 ViewportWidget::~ViewportWidget() {
     releaseRenderer();
+    // The GL window (and its context) goes now, while this object is whole: its signals and
+    // events reach the members above.
+    if (QOpenGLContext* context = m_surface->context())
+        disconnect(context, nullptr, this, nullptr);
+    delete m_container;
 }
 
 void ViewportWidget::releaseRenderer() {
     if (!m_renderer)
         return;
     // GL objects belong to our context: free them with it current (Krita's canvas does the same).
-    makeCurrent();
+    m_surface->makeCurrent();
+    m_grabTarget.reset();
     m_renderer.reset();
-    doneCurrent();
+    m_surface->doneCurrent();
 }
 
 void ViewportWidget::setScene(const Scene& scene) {
     m_scene = scene;
     m_sceneDirty = true;
     noteInteraction();
-    update();
+    requestFrame();
 }
 
 void ViewportWidget::noteInteraction() {
@@ -132,12 +217,12 @@ void ViewportWidget::noteInteraction() {
 
 void ViewportWidget::setSplitMaterial(std::optional<Material> b) {
     m_splitMaterial = std::move(b);
-    update();
+    requestFrame();
 }
 
 void ViewportWidget::setSplitPosition(float fraction) {
     m_splitPosition = std::clamp(fraction, 0.0f, 1.0f);
-    update();
+    requestFrame();
 }
 
 void ViewportWidget::setReducedResolution(bool enabled, float scale) {
@@ -147,38 +232,38 @@ void ViewportWidget::setReducedResolution(bool enabled, float scale) {
         m_interacting = false;
         m_refineTimer->stop();
     }
-    update();
+    requestFrame();
 }
 
 void ViewportWidget::resetView() {
     m_orbit.reset();
     m_sceneDirty = true;
-    update();
+    requestFrame();
 }
 
 void ViewportWidget::setFrameSettings(const render::FrameSettings& settings) {
     m_settings = settings;
-    update();
+    requestFrame();
 }
 
 void ViewportWidget::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
     m_colorManagement = std::move(colorManagement);
     if (m_renderer && m_colorManagement) {
-        makeCurrent();
+        m_surface->makeCurrent();
         m_renderer->setColorManagement(m_colorManagement);
-        doneCurrent();
-        update();
+        m_surface->doneCurrent();
+        requestFrame();
     }
 }
 
 void ViewportWidget::setTimingOverlayVisible(bool visible) {
-    m_overlay->setVisible(visible);
+    m_overlayVisible = visible;
     updateOverlay();
-    update();
+    requestFrame();
 }
 
 bool ViewportWidget::isTimingOverlayVisible() const {
-    return m_overlay->isVisible();
+    return m_overlayVisible;
 }
 
 void ViewportWidget::frameMesh() {
@@ -198,13 +283,13 @@ bool ViewportWidget::reloadShaders(QString* error) {
             *error = m_error.isEmpty() ? tr("No renderer to reload shaders into") : m_error;
         return false;
     }
-    makeCurrent();
+    m_surface->makeCurrent();
     std::string message;
     const bool ok = m_renderer->reloadShaders(&message);
-    doneCurrent();
+    m_surface->doneCurrent();
     if (!ok && error)
         *error = QString::fromStdString(message);
-    update();
+    requestFrame();
     return ok;
 }
 
@@ -216,32 +301,48 @@ void ViewportWidget::setViewCamera(const Camera& camera) {
     m_orbit = camera;
     m_sceneDirty = true;
     noteInteraction();
-    update();
+    requestFrame();
 }
 
 void ViewportWidget::updateOverlay() {
-    if (!m_overlay->isVisible())
+    if (!m_overlayVisible)
         return;
     if (!m_renderer) {
-        m_overlay->setText(tr("no renderer"));
-    } else {
-        // Called from paintGL (or with no frame yet): lastTimings reads GL queries, so only ask
-        // while our context is current.
-        const render::FrameTimings t = QOpenGLContext::currentContext() == context()
-                                           ? m_renderer->lastTimings()
-                                           : render::FrameTimings{};
-        if (t.totalMs <= 0.0) {
-            m_overlay->setText(tr("GPU timings unavailable"));
-        } else {
-            m_overlay->setText(tr("G-buffer  %1 ms\nLighting  %2 ms\nPost      %3 ms\n"
-                                  "Total     %4 ms")
-                                   .arg(t.gbufferMs, 6, 'f', 2)
-                                   .arg(t.lightingMs, 6, 'f', 2)
-                                   .arg(t.postMs, 6, 'f', 2)
-                                   .arg(t.totalMs, 6, 'f', 2));
-        }
+        m_overlayText = tr("no renderer");
+        return;
     }
-    m_overlay->adjustSize();
+    // Called while painting (or with no frame yet): lastTimings reads GL queries, so only ask
+    // while our context is current.
+    const render::FrameTimings t = QOpenGLContext::currentContext() == m_surface->context()
+                                       ? m_renderer->lastTimings()
+                                       : render::FrameTimings{};
+    if (t.totalMs <= 0.0) {
+        m_overlayText = tr("GPU timings unavailable");
+    } else {
+        m_overlayText = tr("G-buffer  %1 ms\nLighting  %2 ms\nPost      %3 ms\n"
+                           "Total     %4 ms")
+                            .arg(t.gbufferMs, 6, 'f', 2)
+                            .arg(t.lightingMs, 6, 'f', 2)
+                            .arg(t.postMs, 6, 'f', 2)
+                            .arg(t.totalMs, 6, 'f', 2);
+    }
+}
+
+void ViewportWidget::paintOverlay() {
+    // Child widgets cannot sit over a native GL window, so Qt's paint engine draws the box (the
+    // look of the former QLabel overlay); ui/ issues no GL itself.
+    if (!m_overlayVisible || m_overlayText.isEmpty())
+        return;
+    QPainter painter(m_surface);
+    QFont font(QStringLiteral("monospace"));
+    font.setStyleHint(QFont::Monospace);
+    painter.setFont(font);
+    const QRect text = painter.fontMetrics()
+                           .boundingRect(QRect(0, 0, 1000, 1000), Qt::AlignLeft, m_overlayText)
+                           .translated(12, 12);
+    painter.fillRect(text.adjusted(-4, -4, 4, 4), QColor(0, 0, 0, 150));
+    painter.setPen(QColor(0xe0, 0xe0, 0xe0));
+    painter.drawText(text, Qt::AlignLeft, m_overlayText);
 }
 
 Camera ViewportWidget::viewCamera() const {
@@ -249,13 +350,15 @@ Camera ViewportWidget::viewCamera() const {
 }
 
 void ViewportWidget::initializeGL() {
-    // The context may be recreated (the widget moved to another top-level window): start over.
+    // The context may be recreated (the window was destroyed and created again): start over.
+    m_grabTarget.reset();
     m_renderer.reset();
     m_error.clear();
-    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &ViewportWidget::releaseRenderer,
+    QOpenGLContext* context = m_surface->context();
+    connect(context, &QOpenGLContext::aboutToBeDestroyed, this, &ViewportWidget::releaseRenderer,
             Qt::UniqueConnection);
 
-    const QSurfaceFormat format = context()->format();
+    const QSurfaceFormat format = context->format();
     if (format.version() < qMakePair(4, 5) || format.profile() != QSurfaceFormat::CoreProfile) {
         fail(tr("OpenGL 4.5 core is needed; this context is %1.%2")
                  .arg(format.majorVersion())
@@ -274,8 +377,11 @@ void ViewportWidget::initializeGL() {
     m_sceneDirty = true;
 }
 
-void ViewportWidget::resizeGL(int, int) {
-    // Nothing to forward: the renderer sizes its targets from the FrameSettings of each frame.
+QSize ViewportWidget::frameSize() const {
+    // The renderer sizes its targets from the FrameSettings of each frame: nothing to resize.
+    const qreal dpr = m_surface->devicePixelRatio();
+    return {std::max(1, static_cast<int>(std::lround(m_surface->width() * dpr))),
+            std::max(1, static_cast<int>(std::lround(m_surface->height() * dpr)))};
 }
 
 void ViewportWidget::paintGL() {
@@ -283,6 +389,14 @@ void ViewportWidget::paintGL() {
         paintError();
         return;
     }
+    if (!drawFrame(m_surface->defaultFramebufferObject())) {
+        paintError();
+        return;
+    }
+    paintOverlay();
+}
+
+bool ViewportWidget::drawFrame(unsigned fbo) {
     if (m_sceneDirty) {
         Scene scene = m_scene;
         if (m_orbit)
@@ -298,9 +412,9 @@ void ViewportWidget::paintGL() {
         }
     }
     render::FrameSettings settings = m_settings;
-    const qreal dpr = devicePixelRatioF();
-    settings.width = std::max(1, static_cast<int>(std::lround(width() * dpr)));
-    settings.height = std::max(1, static_cast<int>(std::lround(height() * dpr)));
+    const QSize size = frameSize();
+    settings.width = size.width();
+    settings.height = size.height();
     settings.splitMaterial = m_splitMaterial;
     settings.splitPosition = m_splitPosition;
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
@@ -308,16 +422,49 @@ void ViewportWidget::paintGL() {
     QElapsedTimer timer;
     timer.start();
     std::string error;
-    if (!m_renderer->render(settings, defaultFramebufferObject(), &error)) {
-        m_renderer.reset(); // keep the widget alive; show what went wrong instead of drawing
+    if (!m_renderer->render(settings, fbo, &error)) {
+        m_grabTarget.reset();
+        m_renderer.reset(); // keep the viewport alive; show what went wrong instead of drawing
         fail(tr("Rendering failed: %1").arg(QString::fromStdString(error)));
-        paintError();
-        return;
+        return false;
     }
     ++m_frameCount;
     m_lastRenderScale = settings.renderScale;
     updateOverlay();
     emit frameCompleted(static_cast<double>(timer.nsecsElapsed()) / 1.0e6);
+    return true;
+}
+
+QImage ViewportWidget::grabFramebuffer() {
+    if (!m_renderer || !m_surface->context())
+        return {};
+    m_surface->makeCurrent();
+    QImage result;
+    std::string error;
+    if (!m_grabTarget)
+        m_grabTarget = std::make_unique<render::OffscreenTarget>();
+    const QSize size = frameSize();
+    if (!m_grabTarget->resize(size.width(), size.height(), &error)) {
+        qWarning("velvet: grabFramebuffer: %s", error.c_str());
+    } else if (drawFrame(m_grabTarget->framebuffer())) {
+        const Image frame = m_renderer->readDisplay(); // top row first, display-encoded RGBA
+        result = QImage(frame.width, frame.height, QImage::Format_RGB32);
+        for (int y = 0; y < frame.height; ++y) {
+            auto* line = reinterpret_cast<QRgb*>(result.scanLine(y));
+            for (int x = 0; x < frame.width; ++x) {
+                const float* p = frame.at(x, y);
+                const auto byte = [](float v) {
+                    return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+                };
+                line[x] = qRgb(byte(p[0]), byte(p[1]), byte(p[2]));
+            }
+        }
+        result.setDevicePixelRatio(m_surface->devicePixelRatio());
+    } else {
+        requestFrame(); // the window shows the error
+    }
+    m_surface->doneCurrent();
+    return result;
 }
 
 void ViewportWidget::fail(const QString& message) {
@@ -327,18 +474,81 @@ void ViewportWidget::fail(const QString& message) {
 }
 
 void ViewportWidget::paintError() {
-    // QPainter on a QOpenGLWidget: Qt's paint engine draws the message, ui/ issues no GL itself.
-    QPainter painter(this);
-    painter.fillRect(rect(), QColor(40, 40, 40));
+    // QPainter on the QOpenGLWindow: Qt's paint engine draws the message, ui/ issues no GL itself.
+    QPainter painter(m_surface);
+    const QRect rect(QPoint(0, 0), m_surface->size());
+    painter.fillRect(rect, QColor(40, 40, 40));
     painter.setPen(QColor(230, 120, 120));
-    painter.drawText(rect().adjusted(16, 16, -16, -16), Qt::AlignCenter | Qt::TextWordWrap,
+    painter.drawText(rect.adjusted(16, 16, -16, -16), Qt::AlignCenter | Qt::TextWordWrap,
                      m_error.isEmpty() ? tr("No renderer") : m_error);
 }
 
-void ViewportWidget::mousePressEvent(QMouseEvent* event) {
+void ViewportWidget::forwardDrag(QEvent* event) {
+    // What QWidgetWindow does for widgets: the nearest ancestor accepting drops gets the drag,
+    // enter, moves and drop, in its own coordinates.
+    if (event->type() == QEvent::DragEnter) {
+        m_dragTarget = nullptr;
+        for (QWidget* w = this; w; w = w->isWindow() ? nullptr : w->parentWidget())
+            if (w->acceptDrops() && w->isEnabled()) {
+                m_dragTarget = w;
+                break;
+            }
+    }
+    QWidget* target = m_dragTarget;
+    if (!target) {
+        event->ignore();
+        return;
+    }
+    if (event->type() == QEvent::DragLeave) {
+        QDragLeaveEvent leave;
+        QCoreApplication::sendEvent(target, &leave);
+        m_dragTarget = nullptr;
+        return;
+    }
+    auto* drop = static_cast<QDropEvent*>(event); // QDragEnterEvent and QDragMoveEvent derive
+    const QPoint pos = m_container->mapTo(target, drop->position().toPoint());
+    switch (event->type()) {
+    case QEvent::DragEnter: {
+        QDragEnterEvent enter(pos, drop->possibleActions(), drop->mimeData(), drop->buttons(),
+                              drop->modifiers());
+        enter.setAccepted(false);
+        QCoreApplication::sendEvent(target, &enter);
+        drop->setDropAction(enter.dropAction());
+        drop->setAccepted(enter.isAccepted());
+        if (!enter.isAccepted())
+            m_dragTarget = nullptr; // refused at the door: no moves, no drop
+        break;
+    }
+    case QEvent::DragMove: {
+        QDragMoveEvent move(pos, drop->possibleActions(), drop->mimeData(), drop->buttons(),
+                            drop->modifiers());
+        move.setDropAction(drop->dropAction());
+        move.setAccepted(drop->isAccepted());
+        QCoreApplication::sendEvent(target, &move);
+        drop->setDropAction(move.dropAction());
+        drop->setAccepted(move.isAccepted());
+        break;
+    }
+    case QEvent::Drop: {
+        QDropEvent dropped(QPointF(pos), drop->possibleActions(), drop->mimeData(), drop->buttons(),
+                           drop->modifiers());
+        dropped.setDropAction(drop->dropAction());
+        dropped.setAccepted(false);
+        QCoreApplication::sendEvent(target, &dropped);
+        drop->setDropAction(dropped.dropAction());
+        drop->setAccepted(dropped.isAccepted());
+        m_dragTarget = nullptr;
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+bool ViewportWidget::mousePress(QMouseEvent* event) {
     if (m_drag != Drag::None) {
         event->accept();
-        return;
+        return true;
     }
     switch (event->button()) {
     case Qt::LeftButton:
@@ -359,24 +569,23 @@ void ViewportWidget::mousePressEvent(QMouseEvent* event) {
         }
         break;
     default:
-        QOpenGLWidget::mousePressEvent(event);
-        return;
+        return false;
     }
     m_lastMouse = event->position().toPoint();
-    setFocus(Qt::MouseFocusReason);
+    m_surface->requestActivate(); // keys (fly mode) come to the GL window
     event->accept();
+    return true;
 }
 
-void ViewportWidget::mouseMoveEvent(QMouseEvent* event) {
-    if (m_drag == Drag::None) {
-        QOpenGLWidget::mouseMoveEvent(event);
-        return;
-    }
+bool ViewportWidget::mouseMove(QMouseEvent* event) {
+    if (m_drag == Drag::None)
+        return false;
     const QPoint pos = event->position().toPoint();
     const QPoint delta = pos - m_lastMouse;
     m_lastMouse = pos;
+    event->accept();
     if (delta.isNull())
-        return;
+        return true;
     Camera camera = viewCamera();
     switch (m_drag) {
     case Drag::Orbit:
@@ -393,7 +602,7 @@ void ViewportWidget::mouseMoveEvent(QMouseEvent* event) {
             camera.orthographic
                 ? camera.orthoHeight
                 : 2.0f * camera.distance * std::tan(glm::radians(camera.fovYDeg) * 0.5f);
-        const float metresPerPixel = visibleHeight / float(std::max(1, height()));
+        const float metresPerPixel = visibleHeight / float(std::max(1, m_surface->height()));
         camera.target += metresPerPixel * (-float(delta.x()) * right + float(delta.y()) * up);
         break;
     }
@@ -408,16 +617,15 @@ void ViewportWidget::mouseMoveEvent(QMouseEvent* event) {
     }
     case Drag::RotateEnvironment:
         emit environmentRotationDragged(float(delta.x()) * kEnvironmentDegPerPixel, m_gestureKey);
-        event->accept();
-        return;
+        return true;
     case Drag::None:
         break;
     }
     setViewCamera(camera);
-    event->accept();
+    return true;
 }
 
-void ViewportWidget::mouseReleaseEvent(QMouseEvent* event) {
+bool ViewportWidget::mouseRelease(QMouseEvent* event) {
     const bool ends = (m_drag == Drag::Orbit && event->button() == Qt::LeftButton) ||
                       (m_drag == Drag::Pan && event->button() == Qt::MiddleButton) ||
                       ((m_drag == Drag::Look || m_drag == Drag::RotateEnvironment) &&
@@ -426,12 +634,12 @@ void ViewportWidget::mouseReleaseEvent(QMouseEvent* event) {
         m_drag = Drag::None;
         m_flyTimer->stop();
         event->accept();
-        return;
+        return true;
     }
-    QOpenGLWidget::mouseReleaseEvent(event);
+    return false;
 }
 
-void ViewportWidget::keyPressEvent(QKeyEvent* event) {
+bool ViewportWidget::keyPress(QKeyEvent* event) {
     if (isFlyKey(event->key()) && !event->isAutoRepeat()) {
         m_flyKeys.insert(event->key());
         if (m_drag == Drag::Look && !m_flyTimer->isActive()) {
@@ -439,27 +647,26 @@ void ViewportWidget::keyPressEvent(QKeyEvent* event) {
             m_flyTimer->start();
         }
         event->accept();
-        return;
+        return true;
     }
-    QOpenGLWidget::keyPressEvent(event);
+    return false;
 }
 
-void ViewportWidget::keyReleaseEvent(QKeyEvent* event) {
+bool ViewportWidget::keyRelease(QKeyEvent* event) {
     if (isFlyKey(event->key()) && !event->isAutoRepeat()) {
         m_flyKeys.remove(event->key());
         if (m_flyKeys.isEmpty())
             m_flyTimer->stop();
         event->accept();
-        return;
+        return true;
     }
-    QOpenGLWidget::keyReleaseEvent(event);
+    return false;
 }
 
-void ViewportWidget::focusOutEvent(QFocusEvent* event) {
+void ViewportWidget::focusLost() {
     // Keys released elsewhere never reach us: stop flying rather than drift forever.
     m_flyKeys.clear();
     m_flyTimer->stop();
-    QOpenGLWidget::focusOutEvent(event);
 }
 
 void ViewportWidget::flyStep() {
@@ -492,16 +699,17 @@ void ViewportWidget::flyStep() {
     setViewCamera(camera);
 }
 
-void ViewportWidget::wheelEvent(QWheelEvent* event) {
+bool ViewportWidget::wheel(QWheelEvent* event) {
     const float notches = static_cast<float>(event->angleDelta().y()) / 120.0f;
     if (notches == 0.0f)
-        return;
+        return false;
     Camera camera = viewCamera();
     camera.distance =
         std::clamp(camera.distance * std::pow(kZoomPerNotch, notches), kMinDistance, kMaxDistance);
     camera.orthoHeight = std::max(0.05f, camera.orthoHeight * std::pow(kZoomPerNotch, notches));
     setViewCamera(camera);
     event->accept();
+    return true;
 }
 
 } // namespace velvet::ui

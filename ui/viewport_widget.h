@@ -1,44 +1,62 @@
 #pragma once
 /// @file viewport_widget.h
-/// The 3D viewport: a thin QOpenGLWidget that forwards initializeGL / resizeGL / paintGL to
-/// velvet::render::Renderer and holds no GL logic of its own (DESIGN.md, "Layers"). Setters store
-/// a value, mark it dirty and call update(); paintGL hands dirty state to the renderer.
+/// The 3D viewport: a thin QWidget hosting a QOpenGLWindow through QWidget::createWindowContainer
+/// (a QOpenGLWidget made Qt read back and compose every frame, ~30 ms on llvmpipe;
+/// BENCHMARKS.md, "Responsiveness"). The window forwards initializeGL / paintGL and its input
+/// events here; this class calls velvet::render::Renderer and holds no GL logic of its own
+/// (DESIGN.md, "Layers"). Setters store a value, mark it dirty and request a frame; the paint hands
+/// dirty state to the renderer.
 ///
 /// Navigation (view state, never in the document): left drag orbits, middle drag pans, the wheel
 /// zooms, right drag looks around (fly mode) while W A S D Q E move, F frames the mesh.
 /// Shift + right drag rotates the HDRI: that is a document edit, so the widget only reports it
 /// (environmentRotationDragged) and the window turns it into an undoable command.
+///
+/// The GL window is a native child window: drags and drops over it are forwarded to the nearest
+/// ancestor widget that accepts drops (the main window), with positions mapped; the main window's
+/// shortcuts (F, T, Ctrl+Z…) reach it through Qt's shortcut map while the GL window has focus;
+/// QWidget::grab does not capture it, so screenshots compose grabFramebuffer() themselves
+/// (ui/screenshot.h).
 
 #include "core/scene.h"
 #include "render/renderer.h"
 
 #include <QElapsedTimer>
-#include <QOpenGLWidget>
+#include <QImage>
+#include <QOpenGLWindow>
 #include <QPoint>
+#include <QPointer>
 #include <QSet>
 #include <QString>
 #include <QStringList>
 #include <QSurfaceFormat>
+#include <QWidget>
 #include <memory>
 #include <optional>
 
-class QLabel;
+class QKeyEvent;
+class QMouseEvent;
 class QTimer;
+class QWheelEvent;
 
 namespace velvet {
 class ColorManagement;
 }
 
+namespace velvet::render {
+class OffscreenTarget;
+}
+
 namespace velvet::ui {
 
-class ViewportWidget : public QOpenGLWidget {
+class ViewportWidget : public QWidget {
     Q_OBJECT
 public:
     explicit ViewportWidget(QWidget* parent = nullptr);
     /// The surface format the renderer needs (OpenGL 4.5 core, 24-bit depth). Set it with
     /// QSurfaceFormat::setDefaultFormat before the QApplication is created.
     static QSurfaceFormat requiredFormat();
-    /// Frees the renderer with the widget's context current.
+    /// Frees the renderer with the GL window's context current.
     ~ViewportWidget() override;
 
     /// The scene to draw (copied; cheap for value edits).
@@ -93,8 +111,20 @@ public:
     /// The renderer (null before initializeGL or after the context went away). For tests and
     /// benchmarks: shaderCompileCount, lastTimings.
     const render::Renderer* renderer() const { return m_renderer.get(); }
+    /// Renders a fresh frame at the viewport's size (off screen, with the GL window's context) and
+    /// returns it as the renderer wrote it (display-encoded, RGB32; no timing overlay). A null
+    /// image before the renderer exists. Counts as a frame (frameCompleted).
+    QImage grabFramebuffer();
+    /// The native window the viewport draws in (inside a window container): the target of mouse,
+    /// key and drop events, and its frameSwapped signal, for tests and benchmarks.
+    QOpenGLWindow* glWindow() const;
 
     QSize sizeHint() const override { return {800, 600}; }
+
+public slots:
+    /// Asks for a new frame (QWidget::update() would repaint only the container, not the GL
+    /// window).
+    void requestFrame();
 
 signals:
     /// A frame was drawn; @p cpuMs is the time spent in Renderer::render on the CPU side.
@@ -107,32 +137,45 @@ signals:
     /// carries the same @p gestureKey, so the edits merge into one undo command.
     void environmentRotationDragged(float deltaDeg, int gestureKey);
 
-protected:
-    void initializeGL() override;
-    void resizeGL(int w, int h) override;
-    void paintGL() override;
-
-    void mousePressEvent(QMouseEvent* event) override;
-    void mouseMoveEvent(QMouseEvent* event) override;
-    void mouseReleaseEvent(QMouseEvent* event) override;
-    void wheelEvent(QWheelEvent* event) override;
-    void keyPressEvent(QKeyEvent* event) override;
-    void keyReleaseEvent(QKeyEvent* event) override;
-    void focusOutEvent(QFocusEvent* event) override;
-
 private:
     enum class Drag { None, Orbit, Pan, Look, RotateEnvironment };
+    class Surface; ///< the QOpenGLWindow; forwards everything to the methods below
+
+    /// @name Called by the Surface (its context current for the GL ones)
+    /// @{
+    void initializeGL();
+    void paintGL();
+    bool mousePress(QMouseEvent* event);
+    bool mouseMove(QMouseEvent* event);
+    bool mouseRelease(QMouseEvent* event);
+    bool wheel(QWheelEvent* event);
+    bool keyPress(QKeyEvent* event);
+    bool keyRelease(QKeyEvent* event);
+    void focusLost();
+    /// DragEnter / DragMove / DragLeave / Drop over the GL window, sent on to the nearest
+    /// ancestor that accepts drops.
+    void forwardDrag(QEvent* event);
+    /// @}
+
+    /// Hands dirty state to the renderer and draws one frame into @p fbo; false when it failed.
+    bool drawFrame(unsigned fbo);
 
     void setViewCamera(const Camera& camera);
     void flyStep();
     void updateOverlay();
+    void paintOverlay();
     void releaseRenderer();
     void fail(const QString& message);
     /// A scene or view change: decides whether the next frame is reduced (see kRefineDelayMs).
     void noteInteraction();
     void paintError();
+    /// The frame size in device pixels.
+    QSize frameSize() const;
 
+    Surface* m_surface;   ///< owned by m_container
+    QWidget* m_container; ///< QWidget::createWindowContainer(m_surface)
     std::unique_ptr<render::Renderer> m_renderer;
+    std::unique_ptr<render::OffscreenTarget> m_grabTarget; ///< grabFramebuffer's, with m_renderer
     Scene m_scene;
     std::optional<Camera> m_orbit; ///< view state, never part of the document or the undo stack
     render::FrameSettings m_settings;
@@ -146,7 +189,10 @@ private:
     QSet<int> m_flyKeys; ///< W A S D Q E held while looking
     QTimer* m_flyTimer;
     QElapsedTimer m_flyClock;
-    QLabel* m_overlay;
+    bool m_overlayVisible = false;
+    QString m_overlayText;          ///< painted over the frame by Qt's paint engine
+    bool m_updatePosted = false;    ///< an UpdateRequest posted by requestFrame, not yet delivered
+    QPointer<QWidget> m_dragTarget; ///< the widget the current drag over the GL window went to
     std::optional<Material> m_splitMaterial;
     float m_splitPosition = 0.5f;
     bool m_reducedEnabled = true;

@@ -3,6 +3,10 @@
 // Shift + right drag, file drop) are undoable document edits; T with a broken shader keeps the
 // viewport drawing and logs file:line, and recovers once the file is fixed; the dock layout
 // restores; colour pickers round-trip through the OCIO view; recent files keep the newest 8.
+// The viewport draws in a QOpenGLWindow inside a window container, so mouse, keys and drops are
+// sent to that native window (QTest's QWindow overloads go through the window system path):
+// orbit, pan, zoom, fly keys, F, T and Ctrl+Z while it has focus, and a file dropped on it
+// reaches the main window; screenshots compose its frame (QWidget::grab leaves it out).
 #include "core/color_management.h"
 #include "core/resources.h"
 #include "render/renderer.h"
@@ -10,6 +14,7 @@
 #include "ui/document_controller.h"
 #include "ui/log_panel.h"
 #include "ui/main_window.h"
+#include "ui/screenshot.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
 
@@ -27,6 +32,7 @@
 #include <QToolBar>
 #include <QUndoStack>
 #include <QUrl>
+#include <QWindow>
 #include <cmath>
 #include <filesystem>
 #include <glm/geometric.hpp>
@@ -76,10 +82,16 @@ bool copyTree(const QString& from, const QString& to) {
     return !ec;
 }
 
-void sendMouse(QWidget* w, QEvent::Type type, QPoint pos, Qt::MouseButton button,
-               Qt::MouseButtons buttons, Qt::KeyboardModifiers modifiers) {
-    QMouseEvent event(type, QPointF(pos), w->mapToGlobal(QPointF(pos)), button, buttons, modifiers);
-    QCoreApplication::sendEvent(w, &event);
+/// A drag from @p from by @p steps moves of @p step with @p button, on the viewport's GL window.
+void drag(QWindow* w, Qt::MouseButton button, Qt::KeyboardModifiers modifiers, QPoint from,
+          QPoint step, int steps) {
+    QTest::mousePress(w, button, modifiers, from);
+    QPoint pos = from;
+    for (int i = 0; i < steps; ++i) {
+        pos += step;
+        QTest::mouseMove(w, pos);
+    }
+    QTest::mouseRelease(w, button, modifiers, pos);
 }
 
 } // namespace
@@ -98,14 +110,21 @@ private slots:
     void previewMeshIsUndoable();
     void shiftRightDragRotatesEnvironment();
     void frameMeshResetsTargetAndDistance();
+    void leftDragOrbitsAndFlyKeysMove();
     void brokenShaderKeepsDrawingAndLogs();
     void droppedExrSetsHdri();
+    void timingOverlayKeepsPicture();
+    void screenshotIncludesViewport();
     void dockLayoutRestores();
     void pickerRoundTripsThroughOcioView();
     void recentFilesKeepNewestEight();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
+    /// The native window the viewport draws in: where the window system sends its events.
+    QWindow* glWindow() { return m_window->viewport()->glWindow(); }
+    /// A click on the viewport, as an artist gives it keyboard focus; true once it has it.
+    bool focusViewport();
     template <class T>
     T* find(const QString& name) {
         T* w = m_window->findChild<T*>(name);
@@ -232,30 +251,19 @@ void TestUiViewport::shiftRightDragRotatesEnvironment() {
     ViewportWidget* viewport = m_window->viewport();
     const float before = m_doc->scene().environment.rotationDeg;
     const Camera camera = viewport->viewCamera();
-    QPoint pos = viewport->rect().center();
-    sendMouse(viewport, QEvent::MouseButtonPress, pos, Qt::RightButton, Qt::RightButton,
-              Qt::ShiftModifier);
-    for (int i = 0; i < 5; ++i) {
-        pos += QPoint(20, 0);
-        sendMouse(viewport, QEvent::MouseMove, pos, Qt::NoButton, Qt::RightButton,
-                  Qt::ShiftModifier);
-    }
-    sendMouse(viewport, QEvent::MouseButtonRelease, pos, Qt::RightButton, Qt::NoButton,
-              Qt::ShiftModifier);
+    const QPoint start = viewport->rect().center() - QPoint(50, 0);
+    drag(glWindow(), Qt::RightButton, Qt::ShiftModifier, start, QPoint(20, 0), 5);
     const float after = m_doc->scene().environment.rotationDeg;
     QVERIFY2(std::abs(after - before) > 10.0f, qPrintable(QString::number(after)));
     QCOMPARE(m_doc->undoStack()->count(), 1);  // five moves, one command
     QVERIFY(viewport->viewCamera() == camera); // the camera did not move
-    m_doc->undoStack()->undo();
+    // Ctrl+Z while the viewport has keyboard focus: the main window's shortcut still undoes.
+    QVERIFY(focusViewport());
+    QTest::keyClick(glWindow(), Qt::Key_Z, Qt::ControlModifier);
     QCOMPARE(m_doc->scene().environment.rotationDeg, before);
 
     // A plain right drag looks around (view state): no document edit.
-    sendMouse(viewport, QEvent::MouseButtonPress, pos, Qt::RightButton, Qt::RightButton,
-              Qt::NoModifier);
-    sendMouse(viewport, QEvent::MouseMove, pos + QPoint(30, 10), Qt::NoButton, Qt::RightButton,
-              Qt::NoModifier);
-    sendMouse(viewport, QEvent::MouseButtonRelease, pos + QPoint(30, 10), Qt::RightButton,
-              Qt::NoButton, Qt::NoModifier);
+    drag(glWindow(), Qt::RightButton, Qt::NoModifier, start, QPoint(30, 10), 1);
     QVERIFY(!m_doc->undoStack()->canUndo());
     QVERIFY(!(viewport->viewCamera() == camera));
 }
@@ -264,21 +272,54 @@ void TestUiViewport::frameMeshResetsTargetAndDistance() {
     ViewportWidget* viewport = m_window->viewport();
     // Middle drag pans: the target moves.
     const QPoint c = viewport->rect().center();
-    sendMouse(viewport, QEvent::MouseButtonPress, c, Qt::MiddleButton, Qt::MiddleButton,
-              Qt::NoModifier);
-    sendMouse(viewport, QEvent::MouseMove, c + QPoint(40, 25), Qt::NoButton, Qt::MiddleButton,
-              Qt::NoModifier);
-    sendMouse(viewport, QEvent::MouseButtonRelease, c + QPoint(40, 25), Qt::MiddleButton,
-              Qt::NoButton, Qt::NoModifier);
+    drag(glWindow(), Qt::MiddleButton, Qt::NoModifier, c, QPoint(40, 25), 1);
     QVERIFY(glm::length(viewport->viewCamera().target) > 0.01f);
-    QWheelEvent wheel(QPointF(c), viewport->mapToGlobal(QPointF(c)), QPoint(), QPoint(0, 240),
+    // The wheel zooms (QTest has no wheel for a QWindow: the event goes to it directly).
+    const float distance = viewport->viewCamera().distance;
+    QWheelEvent wheel(QPointF(c), glWindow()->mapToGlobal(QPointF(c)), QPoint(), QPoint(0, 240),
                       Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
-    QCoreApplication::sendEvent(viewport, &wheel);
-    QTest::keyClick(m_window.get(), Qt::Key_F);
+    QCoreApplication::sendEvent(glWindow(), &wheel);
+    QVERIFY(viewport->viewCamera().distance < distance);
+    // F, the main window's shortcut, pressed while the viewport has keyboard focus.
+    QVERIFY(focusViewport());
+    QTest::keyClick(glWindow(), Qt::Key_F);
     const Camera framed = viewport->viewCamera();
     QVERIFY(glm::length(framed.target) < 1e-6f);
     QCOMPARE(framed.distance, Camera{}.distance);
     QCOMPARE(m_doc->undoStack()->count(), 0);
+}
+
+bool TestUiViewport::focusViewport() {
+    QTest::mouseClick(glWindow(), Qt::LeftButton, Qt::NoModifier, QPoint(5, 5));
+    return QTest::qWaitFor([this] { return QGuiApplication::focusWindow() == glWindow(); }, 5000);
+}
+
+void TestUiViewport::leftDragOrbitsAndFlyKeysMove() {
+    ViewportWidget* viewport = m_window->viewport();
+    const Camera before = viewport->viewCamera();
+    const QPoint c = viewport->rect().center();
+    // Left drag orbits: yaw and pitch turn about the same target at the same distance.
+    drag(glWindow(), Qt::LeftButton, Qt::NoModifier, c, QPoint(10, 5), 4);
+    const Camera orbited = viewport->viewCamera();
+    QVERIFY(std::abs(orbited.yawDeg - before.yawDeg) > 5.0f);
+    QVERIFY(std::abs(orbited.pitchDeg - before.pitchDeg) > 2.0f);
+    QVERIFY(glm::length(orbited.target - before.target) < 1e-5f);
+    QCOMPARE(orbited.distance, before.distance);
+
+    // Right button held (look), W held: the camera flies forward, then stops with the key.
+    QVERIFY(focusViewport());
+    QTest::mousePress(glWindow(), Qt::RightButton, Qt::NoModifier, c);
+    QTest::keyPress(glWindow(), Qt::Key_W);
+    QTest::qWait(150);
+    QTest::keyRelease(glWindow(), Qt::Key_W);
+    const Camera flown = viewport->viewCamera();
+    QTest::qWait(50);
+    QVERIFY(viewport->viewCamera() == flown);
+    QTest::mouseRelease(glWindow(), Qt::RightButton, Qt::NoModifier, c);
+    QVERIFY2(glm::length(flown.target - orbited.target) > 0.05f,
+             qPrintable(QString::number(glm::length(flown.target - orbited.target))));
+    QCOMPARE(flown.yawDeg, orbited.yawDeg);
+    QCOMPARE(m_doc->undoStack()->count(), 0); // view state only
 }
 
 void TestUiViewport::brokenShaderKeepsDrawingAndLogs() {
@@ -328,7 +369,8 @@ void TestUiViewport::brokenShaderKeepsDrawingAndLogs() {
     QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
     f.write(good);
     f.close();
-    QTest::keyClick(m_window.get(), Qt::Key_T);
+    QVERIFY(focusViewport()); // T also works while the viewport has keyboard focus
+    QTest::keyClick(glWindow(), Qt::Key_T);
     QCOMPARE(log->entries().back().severity, LogPanel::Severity::Info);
     QVERIFY(viewport->renderer()->shaderCompileCount() > compiles);
     QVERIFY(maxDifference(before, centrePixel(viewportImage())) < 2.0);
@@ -340,14 +382,25 @@ void TestUiViewport::droppedExrSetsHdri() {
     QVERIFY(QFile::copy(QString::fromStdString(resources::path("hdri/studio.exr").string()), exr));
     const Environment before = m_doc->scene().environment;
 
+    // Dropped on the viewport: its GL window is a native window of its own, which forwards the
+    // drag to the main window.
     QMimeData mime;
     mime.setUrls({QUrl::fromLocalFile(exr)});
-    const QPointF pos = QPointF(m_window->rect().center());
+    const QPointF pos = QPointF(m_window->viewport()->rect().center());
     QDragEnterEvent enter(pos.toPoint(), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    QCoreApplication::sendEvent(m_window.get(), &enter);
+    enter.setAccepted(false);
+    QCoreApplication::sendEvent(glWindow(), &enter);
     QVERIFY(enter.isAccepted());
+    // As QGuiApplication sends it after an accepted enter.
+    QDragMoveEvent move(pos.toPoint() + QPoint(3, 3), Qt::CopyAction, &mime, Qt::LeftButton,
+                        Qt::NoModifier);
+    move.setDropAction(enter.dropAction());
+    move.setAccepted(enter.isAccepted());
+    QCoreApplication::sendEvent(glWindow(), &move);
+    QVERIFY(move.isAccepted());
     QDropEvent drop(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    QCoreApplication::sendEvent(m_window.get(), &drop);
+    drop.setAccepted(false);
+    QCoreApplication::sendEvent(glWindow(), &drop);
     QVERIFY(drop.isAccepted());
 
     QCOMPARE(QString::fromStdString(m_doc->scene().environment.hdri),
@@ -358,13 +411,60 @@ void TestUiViewport::droppedExrSetsHdri() {
     m_doc->undoStack()->undo();
     QVERIFY(m_doc->scene().environment == before);
 
-    // Not a file Velvet takes: refused at the door.
+    // Dropped on the window elsewhere: the main window's own handling.
+    const QPointF windowPos = QPointF(m_window->rect().center());
+    QDragEnterEvent enterWindow(windowPos.toPoint(), Qt::CopyAction, &mime, Qt::LeftButton,
+                                Qt::NoModifier);
+    QCoreApplication::sendEvent(m_window.get(), &enterWindow);
+    QVERIFY(enterWindow.isAccepted());
+
+    // Not a file Velvet takes: refused at the door, on the window and on the viewport.
     QMimeData text;
     text.setUrls({QUrl::fromLocalFile(dir.filePath(QStringLiteral("notes.txt")))});
     QDragEnterEvent refused(pos.toPoint(), Qt::CopyAction, &text, Qt::LeftButton, Qt::NoModifier);
     refused.setAccepted(false);
     QCoreApplication::sendEvent(m_window.get(), &refused);
     QVERIFY(!refused.isAccepted());
+    QDragEnterEvent refusedOnViewport(pos.toPoint(), Qt::CopyAction, &text, Qt::LeftButton,
+                                      Qt::NoModifier);
+    refusedOnViewport.setAccepted(false);
+    QCoreApplication::sendEvent(glWindow(), &refusedOnViewport);
+    QVERIFY(!refusedOnViewport.isAccepted());
+    QVERIFY(!m_doc->undoStack()->canUndo()); // only the undone HDRI edit, nothing new
+}
+
+void TestUiViewport::timingOverlayKeepsPicture() {
+    // The overlay is painted over the GL window by Qt's paint engine after the renderer's frame:
+    // the frames that follow still draw the same picture.
+    ViewportWidget* viewport = m_window->viewport();
+    const QVector<double> before = centrePixel(viewportImage());
+    viewport->setTimingOverlayVisible(true);
+    QVERIFY(viewport->isTimingOverlayVisible());
+    for (int i = 0; i < 3; ++i) {
+        QSignalSpy swapped(glWindow(), SIGNAL(frameSwapped()));
+        viewport->requestFrame();
+        QVERIFY(swapped.wait(kFrameTimeoutMs));
+    }
+    QVERIFY(viewport->errorMessage().isEmpty());
+    const QVector<double> during = centrePixel(viewportImage());
+    viewport->setTimingOverlayVisible(false);
+    QVERIFY2(maxDifference(before, during) < 2.0,
+             qPrintable(describe(before) + " vs " + describe(during)));
+}
+
+void TestUiViewport::screenshotIncludesViewport() {
+    // QWidget::grab leaves the native GL window out; the screenshot paints the viewport's frame
+    // where it sits.
+    ViewportWidget* viewport = m_window->viewport();
+    const QImage shot = grabWithViewports(m_window.get()).convertToFormat(QImage::Format_RGB32);
+    QCOMPARE(shot.size(), m_window->size() * m_window->devicePixelRatio());
+    const QImage frame = viewportImage();
+    const QPoint origin = viewport->mapTo(m_window.get(), QPoint(0, 0));
+    const QImage inShot = shot.copy(QRect(origin, viewport->size()));
+    const QVector<double> expected = centrePixel(frame), found = centrePixel(inShot);
+    QVERIFY2(maxDifference(expected, found) < 2.0,
+             qPrintable(describe(expected) + " vs " + describe(found)));
+    QVERIFY2(luma(found) > 5.0, qPrintable(describe(found))); // the lit sphere, not black
 }
 
 /// One line per dock: object name, area, hidden, floating and the docks tabbed with it.
