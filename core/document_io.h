@@ -18,7 +18,7 @@ namespace velvet {
 inline constexpr std::string_view kMaterialFormat = "velvet.material";
 inline constexpr std::string_view kSceneFormat = "velvet.scene";
 inline constexpr int kMaterialVersion = 2; ///< version 1: the seed documents' flat material
-inline constexpr int kSceneVersion = 1;
+inline constexpr int kSceneVersion = 2;    ///< version 1: no `atlases` key
 
 /// Files larger than this are refused before they are read.
 inline constexpr std::uintmax_t kMaxDocumentBytes = 16u * 1024u * 1024u;

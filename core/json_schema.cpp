@@ -330,6 +330,12 @@ JsonValue sceneSchema() {
     preset.add("type", str("string"));
     preset.add("description", str("The preset an inline material came from (informational)."));
     p.add("post", postSchema());
+    JsonValue& atlases = p.add("atlases", object());
+    atlases.add("type", str("string"));
+    atlases.add("minLength", JsonValue::makeNumber(1));
+    atlases.add("description", str("The scene's atlas document (velvet.atlas, "
+                                   "resources/schemas/atlas.schema.json), relative to the scene. "
+                                   "Version 2 and later."));
 
     JsonValue& defs = o.add("$defs", object());
     JsonValue& inlineMaterial = defs.add("inlineMaterial", object());

@@ -86,6 +86,9 @@ struct Scene {
     Material material;
     std::string materialPreset; ///< where `material` came from, if a preset file (informational)
     PostChain post;
+    /// The atlas document (core/atlas_document.h) the scene was authored with, absolute; empty:
+    /// none. Loaded and saved beside the scene by the editor (scene version 2).
+    std::string atlases;
     bool operator==(const Scene&) const = default;
 };
 

@@ -14,9 +14,9 @@ namespace velvet {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr std::array<std::string_view, 9> kSceneKeys{"format",   "version",        "camera",
-                                                     "lights",   "environment",    "mesh",
-                                                     "material", "materialPreset", "post"};
+constexpr std::array<std::string_view, 10> kSceneKeys{
+    "format", "version",  "camera",         "lights", "environment",
+    "mesh",   "material", "materialPreset", "post",   "atlases"};
 constexpr std::array<std::string_view, 1> kPostKeys{"effects"};
 
 template <class S>
@@ -239,9 +239,14 @@ Scene readSceneJson(JsonReader& r, const JsonValue& root, const fs::path& baseDi
         r.error("", "expected a scene object, got " + describeValue(root));
         return s;
     }
-    if (!readFormatAndVersion(r, root, "", kSceneFormat, kSceneVersion, true))
+    const std::optional<int> version =
+        readFormatAndVersion(r, root, "", kSceneFormat, kSceneVersion, true);
+    if (!version)
         return s;
-    r.expectObject(root, "", kSceneKeys);
+    // Version 1 migrates as it is: it only lacks the `atlases` key, which it may not have.
+    r.expectObject(root, "",
+                   *version >= 2 ? std::span<const std::string_view>(kSceneKeys)
+                                 : std::span<const std::string_view>(kSceneKeys).first(9));
     if (const JsonValue* v = root.find("camera")) {
         const size_t before = r.errorCount();
         readFields(r, *v, "camera", cameraFields(), baseDir, s.camera);
@@ -262,6 +267,14 @@ Scene readSceneJson(JsonReader& r, const JsonValue& root, const fs::path& baseDi
     readMaterialReference(r, root, baseDir, problems, s);
     if (const JsonValue* v = root.find("post"))
         readPost(r, *v, s.post);
+    if (const JsonValue* v = root.find("atlases"); v && *version >= 2)
+        if (auto x = r.string(*v, "atlases", false)) {
+            s.atlases = resolveDocumentPath(*x, baseDir);
+            std::error_code ec;
+            if (!fs::exists(s.atlases, ec))
+                r.warning("atlases", "file not found: \"" + s.atlases +
+                                         "\" (the scene opens without its atlases)");
+        }
     return s;
 }
 
@@ -282,6 +295,8 @@ JsonValue sceneToJsonValue(const Scene& s, const fs::path& baseDir) {
         o.add("materialPreset",
               JsonValue::makeString(relativeDocumentPath(s.materialPreset, baseDir)));
     o.add("post", postToJson(s.post));
+    if (!s.atlases.empty())
+        o.add("atlases", JsonValue::makeString(relativeDocumentPath(s.atlases, baseDir)));
     return o;
 }
 

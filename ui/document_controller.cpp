@@ -109,6 +109,11 @@ void DocumentController::setPostChain(const PostChain& chain) {
     emit sceneChanged();
 }
 
+void DocumentController::setAtlas(AtlasKind kind, AtlasDocument atlas) {
+    m_atlases[kind] = std::move(atlas);
+    emit atlasChanged(kind);
+}
+
 void DocumentController::setMaterial(const Material& material, const std::string& preset) {
     m_scene.material = material;
     m_scene.materialPreset = preset;
@@ -146,14 +151,23 @@ bool DocumentController::openFile(const QString& path, QStringList* problems) {
         scene = loadSceneFile(file, found);
         break;
     }
-    if (!scene || found.hasErrors()) {
+    // The scene's atlases are part of the document: a broken atlas file refuses the open, a
+    // missing one is a warning (the scene reader's) and the scene opens without atlases.
+    std::optional<AtlasSet> atlases = AtlasSet{};
+    if (scene && !found.hasErrors() && !scene->atlases.empty()) {
+        std::error_code ec;
+        if (std::filesystem::exists(scene->atlases, ec))
+            atlases = loadAtlasFile(scene->atlases, found);
+    }
+    if (!scene || !atlases || found.hasErrors()) {
         if (problems)
             *problems = problemLines(found, path);
         return false;
     }
     // A preset is not a scene: saving it writes a new scene file, never over the preset.
     const bool isPreset = kind == DocumentKind::Material;
-    setDocument(std::move(*scene), isPreset ? QString() : QFileInfo(path).absoluteFilePath());
+    setDocument(std::move(*scene), isPreset ? QString() : QFileInfo(path).absoluteFilePath(),
+                std::move(*atlases));
     return true;
 }
 
@@ -168,11 +182,29 @@ bool DocumentController::save(QString* error) {
 
 bool DocumentController::saveAs(const QString& path, QString* error) {
     std::string message;
-    if (!saveSceneFile(m_scene, toPath(path), &message)) {
+    // The atlases first ("<name>.atlas.json" beside the scene, sources that exist only in memory
+    // written next to it), then the scene that names them; each write is atomic.
+    Scene scene = m_scene;
+    AtlasSet atlases = m_atlases;
+    scene.atlases.clear();
+    if (!atlases.empty()) {
+        const std::filesystem::path file = toPath(path);
+        const std::filesystem::path atlasFile =
+            file.parent_path() / (file.stem().string() + ".atlas.json");
+        if (!saveAtlasFile(atlases, atlasFile, &message)) {
+            if (error)
+                *error = QString::fromStdString(message);
+            return false;
+        }
+        scene.atlases = std::filesystem::absolute(atlasFile).lexically_normal().generic_string();
+    }
+    if (!saveSceneFile(scene, toPath(path), &message)) {
         if (error)
             *error = QString::fromStdString(message);
         return false;
     }
+    m_scene.atlases = scene.atlases;
+    m_atlases = std::move(atlases); // sources now name their files
     const QString absolute = QFileInfo(path).absoluteFilePath();
     if (absolute != m_filePath) {
         m_filePath = absolute;
@@ -182,14 +214,17 @@ bool DocumentController::saveAs(const QString& path, QString* error) {
     return true;
 }
 
-void DocumentController::setDocument(Scene scene, const QString& filePath) {
+void DocumentController::setDocument(Scene scene, const QString& filePath, AtlasSet atlases) {
     m_scene = std::move(scene);
+    m_atlases = std::move(atlases);
     m_undoStack->clear(); // the old document's commands point at values that no longer exist
     m_undoStack->setClean();
     m_filePath = filePath;
     emit fileChanged(m_filePath);
     emit documentReplaced();
     emit postChainChanged();
+    for (int k = 0; k < kAtlasKindCount; ++k)
+        emit atlasChanged(AtlasKind(k));
     emit materialReplaced();
     emit sceneChanged();
     emit dirtyChanged(false);
@@ -200,7 +235,15 @@ void DocumentController::setDocument(Scene scene, const QString& filePath) {
 namespace velvet::ui {
 
 void DocumentController::setRecoveredDocument(Scene scene, const QString& filePath) {
-    setDocument(std::move(scene), filePath);
+    // The atlases as last saved (the autosave holds the scene only); unreadable: none.
+    AtlasSet atlases;
+    std::error_code ec;
+    if (!scene.atlases.empty() && std::filesystem::exists(scene.atlases, ec)) {
+        Problems problems;
+        if (std::optional<AtlasSet> loaded = loadAtlasFile(scene.atlases, problems))
+            atlases = std::move(*loaded);
+    }
+    setDocument(std::move(scene), filePath, std::move(atlases));
     m_undoStack->resetClean(); // no clean state on the stack: dirty until saved
     emit dirtyChanged(true);
 }

@@ -4,6 +4,7 @@
 /// Panels edit through the controller (edit* functions push a QUndoCommand); commands apply their
 /// change through the set* functions; views listen to the signals.
 
+#include "core/atlas_document.h"
 #include "core/scene.h"
 
 #include <QObject>
@@ -33,6 +34,9 @@ public:
     QUndoStack* undoStack() const { return m_undoStack; }
     /// True when the undo stack is not at its clean index.
     bool isDirty() const;
+    /// The document's atlases (core/atlas_document.h). Saved beside the scene file as
+    /// "<scene name>.atlas.json", which the scene names (Scene::atlases), and read with it.
+    const AtlasSet& atlases() const { return m_atlases; }
     /// @}
 
     /// @name Edits from panels (each pushes one undoable command)
@@ -66,6 +70,8 @@ public:
     void setTexture(TextureSlot slot, const TextureRef& ref);
     /// Replaces the post chain and notifies (postChainChanged, sceneChanged).
     void setPostChain(const PostChain& chain);
+    /// Replaces one atlas and notifies (atlasChanged).
+    void setAtlas(AtlasKind kind, AtlasDocument atlas);
     /// Replaces the whole material (a library preset) and where it came from; notifies
     /// (paramChanged for every parameter, materialReplaced, sceneChanged).
     void setMaterial(const Material& material, const std::string& preset);
@@ -82,8 +88,9 @@ public:
     bool save(QString* error);
     /// Saves as a scene to @p path and makes it the document's file. False + @p error on failure.
     bool saveAs(const QString& path, QString* error);
-    /// Takes @p scene as a new, clean document (used by newDocument/openFile and tests).
-    void setDocument(Scene scene, const QString& filePath);
+    /// Takes @p scene (and its atlases) as a new, clean document (used by newDocument/openFile
+    /// and tests).
+    void setDocument(Scene scene, const QString& filePath, AtlasSet atlases = {});
     /// Takes @p scene as the document of @p filePath with unsaved changes (crash recovery: the
     /// undo stack is empty and the document is dirty until saved).
     void setRecoveredDocument(Scene scene, const QString& filePath);
@@ -96,6 +103,8 @@ signals:
     void paramChanged(velvet::ParamId id);
     /// The post chain changed (an effect added, removed, moved, toggled or edited; undo, redo).
     void postChainChanged();
+    /// One atlas changed (an edit, undo, redo; every kind on new and open).
+    void atlasChanged(velvet::AtlasKind kind);
     /// The whole material was replaced (a library preset applied, or its undo).
     void materialReplaced();
     /// The whole document was replaced (new or open); views reset their view state.
@@ -107,6 +116,7 @@ signals:
 
 private:
     Scene m_scene;
+    AtlasSet m_atlases;
     QString m_filePath;
     QUndoStack* m_undoStack = nullptr;
 };

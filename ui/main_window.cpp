@@ -180,13 +180,15 @@ void MainWindow::createDocks() {
     addDockWidget(Qt::BottomDockWidgetArea, log);
     resizeDocks({log}, {120}, Qt::Vertical);
 
-    // Post chain and Library: tabs beside Properties; their errors go to the Log.
+    // Post chain: a tab beside the Log, under the viewport, so the selected effect's parameters
+    // (shown in Properties) and the list are visible at once; Library a tab beside Properties;
+    // their errors go to the Log.
     m_postChain = new PostChainPanel(m_controller, this);
     auto* postChain = new QDockWidget(tr("Post chain"), this);
     postChain->setObjectName(QStringLiteral("postChainDock"));
     postChain->setWidget(m_postChain);
-    addDockWidget(Qt::RightDockWidgetArea, postChain);
-    tabifyDockWidget(properties, postChain);
+    tabifyDockWidget(log, postChain);
+    log->raise();
     m_library = new LibraryPanel(m_controller, this);
     auto* library = new QDockWidget(tr("Library"), this);
     library->setObjectName(QStringLiteral("libraryDock"));
@@ -207,6 +209,17 @@ void MainWindow::createDocks() {
     connect(graphPanel, &GraphPanel::message, this, [this](const QString& text) {
         statusBar()->showMessage(text, 10000);
         m_log->warning(text);
+    });
+
+    // The selected effect or node shows its parameters in Properties.
+    connect(m_postChain, &PostChainPanel::effectSelected, m_properties, &PropertyPanel::showEffect);
+    connect(graphPanel, &GraphPanel::nodeSelected, m_properties,
+            [this, graphPanel](graph::NodeId id) {
+                m_properties->showGraphNode(graphPanel->model(), id);
+            });
+    connect(m_properties, &PropertyPanel::subjectChanged, properties, [this, properties] {
+        if (m_properties->subject() != PropertyPanel::Subject::Material)
+            properties->raise();
     });
 }
 
@@ -464,7 +477,7 @@ void MainWindow::showFrameTime(double cpuMs) {
         m_progressLabel->setText(tr("Prefiltering environment %1 %").arg(int(progress * 100.0)));
         m_progressLabel->show();
         // The renderer bakes a slice per frame: keep frames coming until it is done.
-        QTimer::singleShot(15, m_viewport, qOverload<>(&QWidget::update));
+        QTimer::singleShot(15, m_viewport, &ViewportWidget::requestFrame);
     } else {
         m_progressLabel->setMinimumWidth(
             m_progressLabel->fontMetrics().horizontalAdvance(tr("Prefiltering environment 100 %")) +

@@ -43,7 +43,7 @@ public:
     ~MainWindow() override;
 
     /// Bump when docks or toolbars are added or renamed (QMainWindow::saveState's version).
-    static constexpr int kLayoutVersion = 3;
+    static constexpr int kLayoutVersion = 4;
     /// At most this many entries in File > Open Recent.
     static constexpr int kMaxRecentFiles = 8;
 

@@ -367,7 +367,8 @@ private slots:
         QVERIFY(c.glsl.find("// node " + std::to_string(n) + ": " + std::string(t.id)) !=
                 std::string::npos);
         if (!m_gl)
-            QSKIP("no GL context");
+            QFAIL("no headless GL context (EGL surfaceless); the render half of this test cannot "
+                  "run");
         render::ShaderProgram program;
         const std::string error = buildProgram(c, program);
         if (!error.empty())
@@ -400,7 +401,8 @@ private slots:
         if (qEnvironmentVariableIsSet("VELVET_DUMP_GRAPH_GLSL")) // to read what the compiler writes
             qInfo("%s", c.glsl.c_str());
         if (!m_gl)
-            QSKIP("no GL context");
+            QFAIL("no headless GL context (EGL surfaceless); the render half of this test cannot "
+                  "run");
         render::ShaderProgram program;
         const std::string error = buildProgram(c, program);
         QVERIFY2(error.empty(), error.c_str());
@@ -410,7 +412,8 @@ private slots:
     // same program draws the new colour; roughness, unconnected, keeps the value passed in.
     void renderValueEdit() {
         if (!m_gl)
-            QSKIP("no GL context");
+            QFAIL("no headless GL context (EGL surfaceless); the render half of this test cannot "
+                  "run");
         Graph g;
         const NodeId o = add(g, kOutputTypeId);
         const NodeId c = add(g, "constant.color");
@@ -432,7 +435,8 @@ private slots:
     // inputs (scale, colours) come from the block.
     void renderChecker() {
         if (!m_gl)
-            QSKIP("no GL context");
+            QFAIL("no headless GL context (EGL surfaceless); the render half of this test cannot "
+                  "run");
         Graph g;
         const NodeId o = add(g, kOutputTypeId);
         const NodeId k = add(g, "noise.checker");
@@ -461,7 +465,8 @@ private slots:
     // in [0, 1] and varies; FBM too.
     void renderNoise() {
         if (!m_gl)
-            QSKIP("no GL context");
+            QFAIL("no headless GL context (EGL surfaceless); the render half of this test cannot "
+                  "run");
         for (const char* type : {"noise.perlin", "noise.fbm"}) {
             Graph g;
             const NodeId o = add(g, kOutputTypeId);

@@ -375,7 +375,7 @@ private slots:
     void childProcessImport() {
         const fs::path velvet = VELVET_BINARY;
         if (!fs::exists(velvet))
-            QSKIP("the velvet executable is not built");
+            QFAIL("the velvet executable is not built (build the velvet target first)");
         MeshImportOptions options;
         options.helper = velvet;
         writeText(path("box.obj"), kCubeObj);

@@ -246,8 +246,8 @@ private slots:
                  std::string("f.json: version: version 3 is newer than this Velvet reads (2); "
                              "update Velvet"));
         Problems sceneProblems;
-        QVERIFY(!parseScene(R"({"format":"velvet.scene","version":2})", "", {}, sceneProblems));
-        QVERIFY(problemsText(sceneProblems).find("newer than this Velvet reads (1)") !=
+        QVERIFY(!parseScene(R"({"format":"velvet.scene","version":3})", "", {}, sceneProblems));
+        QVERIFY(problemsText(sceneProblems).find("newer than this Velvet reads (2)") !=
                 std::string::npos);
     }
 

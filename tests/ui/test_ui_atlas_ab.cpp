@@ -4,7 +4,8 @@
 // region to base colour puts it in the document's TextureRef; with A/B on, the right half shows
 // B (differs when B has another roughness, equal when A == B); slider-like edit streams draw at
 // reduced size and refine when idle; the dock layout (Atlas included) restores; save, reopen,
-// equal; the autosave is written and recovered.
+// equal; a region dragged with the mouse survives save and reopen (the atlases are saved beside
+// the scene); the autosave is written and recovered.
 #include "core/document_io.h"
 #include "core/image.h"
 #include "ui/atlas/atlas_model.h"
@@ -37,7 +38,7 @@ constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles ev
 
 AtlasEntry solid(const QString& name, int w, int h, glm::vec4 colour) {
     AtlasEntry e;
-    e.name = name;
+    e.name = name.toStdString();
     e.source = Image(w, h, 4);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -95,6 +96,7 @@ private slots:
     void editStreamRendersReducedThenRefines();
     void dockLayoutRestores();
     void saveReopenEqual();
+    void regionDragSurvivesSaveAndReopen();
     void autosaveWritesAndRecovers();
 
 private:
@@ -232,7 +234,7 @@ void TestUiAtlasAb::assignRegionToBaseColour() {
     QVERIFY(ref.useRegion);
     QCOMPARE(ref.region, model->atlas(AtlasKind::Albedo).entries[size_t(last)].region);
     QVERIFY(QFileInfo::exists(QString::fromStdString(ref.file)));
-    QCOMPARE(QString::fromStdString(ref.file), model->atlas(AtlasKind::Albedo).filePath);
+    QCOMPARE(ref.file, model->atlas(AtlasKind::Albedo).filePath);
     QVERIFY(m_doc->isDirty());
     m_doc->undoStack()->undo();
     QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());
@@ -340,6 +342,68 @@ void TestUiAtlasAb::saveReopenEqual() {
     QVERIFY(m_window->openFile(path));
     QCOMPARE(sceneToJson(m_doc->scene()), sceneToJson(saved));
     QCOMPARE(m_doc->material().value(ParamId::Roughness).x, 0.37f);
+}
+
+void TestUiAtlasAb::regionDragSurvivesSaveAndReopen() {
+    AtlasPanel* panel = m_window->atlasPanel();
+    AtlasModel* model = panel->model();
+    QVERIFY(model->atlas(AtlasKind::Albedo).entries.empty()); // a new document has none
+    std::vector<AtlasEntry> images;
+    images.push_back(solid(QStringLiteral("blue"), 20, 12, {0, 0, 1, 1}));
+    images.push_back(solid(QStringLiteral("white"), 12, 12, {1, 1, 1, 1}));
+    QVERIFY(model->addImages(AtlasKind::Albedo, std::move(images), nullptr));
+    panel->setCurrentKind(AtlasKind::Albedo);
+    AtlasView* view = panel->view();
+    const AtlasDocument& a = model->atlas(AtlasKind::Albedo);
+    const AtlasRegion start = a.entries[1].region;
+    const int dx = start.x + start.width + 4 <= a.width ? 3 : -3;
+    const int dy = start.y + start.height + 4 <= a.height ? 2 : -2;
+    const QPointF grab(start.x + start.width * 0.5, start.y + start.height * 0.5);
+    QWidget* vp = view->viewport();
+    sendMouse(vp, QEvent::MouseButtonPress, view->viewPosition(grab), Qt::LeftButton,
+              Qt::LeftButton);
+    QCOMPARE(view->selectedRegion(), 1);
+    for (int step = 1; step <= 3; ++step)
+        sendMouse(vp, QEvent::MouseMove,
+                  view->viewPosition(grab + QPointF(dx * step / 3.0, dy * step / 3.0)),
+                  Qt::NoButton, Qt::LeftButton);
+    sendMouse(vp, QEvent::MouseButtonRelease, view->viewPosition(grab + QPointF(dx, dy)),
+              Qt::LeftButton, Qt::NoButton);
+    const AtlasDocument dragged = model->atlas(AtlasKind::Albedo);
+    QVERIFY(!(dragged.entries[1].region == start));
+    QVERIFY(m_doc->isDirty());
+
+    // Save: the atlas document lands beside the scene, which names it.
+    const QString path = m_dir.filePath(QStringLiteral("with-atlas.json"));
+    QString error;
+    QVERIFY2(m_doc->saveAs(path, &error), qPrintable(error));
+    const QString atlasFile = m_dir.filePath(QStringLiteral("with-atlas.atlas.json"));
+    QVERIFY(QFileInfo::exists(atlasFile));
+    QCOMPARE(QString::fromStdString(m_doc->scene().atlases),
+             QFileInfo(atlasFile).absoluteFilePath());
+
+    // A new document has no atlases; reopening the scene brings the dragged region back.
+    m_doc->newDocument();
+    QVERIFY(model->atlas(AtlasKind::Albedo).entries.empty());
+    QVERIFY(m_window->openFile(path));
+    const AtlasDocument& reopened = model->atlas(AtlasKind::Albedo);
+    QCOMPARE(reopened.entries.size(), size_t(2));
+    QCOMPARE(reopened.entries[1].region, dragged.entries[1].region);
+    QCOMPARE(reopened.entries[0].region, dragged.entries[0].region);
+    QCOMPARE(reopened.entries[1].name, std::string("white"));
+    QVERIFY(reopened.image.pixels == dragged.image.pixels); // composed again, the same texels
+    QVERIFY(!m_doc->isDirty());
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+    // The panel shows the reopened atlas (the region is selectable where it was dropped).
+    const AtlasRegion r = reopened.entries[1].region;
+    sendMouse(vp, QEvent::MouseButtonPress,
+              view->viewPosition(QPointF(r.x + r.width * 0.5, r.y + r.height * 0.5)),
+              Qt::LeftButton, Qt::LeftButton);
+    sendMouse(vp, QEvent::MouseButtonRelease,
+              view->viewPosition(QPointF(r.x + r.width * 0.5, r.y + r.height * 0.5)),
+              Qt::LeftButton, Qt::NoButton);
+    QCOMPARE(view->selectedRegion(), 1);
+    QCOMPARE(m_doc->undoStack()->count(), 0); // a click moves nothing
 }
 
 void TestUiAtlasAb::autosaveWritesAndRecovers() {

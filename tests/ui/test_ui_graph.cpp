@@ -1,7 +1,11 @@
 // The node editor in the real main window, driven by key and mouse events: nodes come from the
 // palette (Tab, a filter, Enter), links from drags between ports, and every edit is checked in
 // the model, on the undo stack and, for a link into base colour, in the viewport's pixels.
+// Selecting a node shows its inputs in the Properties dock: a slider drag there is one command,
+// reaches the viewport as a uniform (the renderer compiles nothing) and undo restores it; vector
+// inputs and settings (an image node's UV scale and file) are edited there too.
 #include "core/graph/graph.h"
+#include "ui/commands/graph_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_model.h"
 #include "ui/graph/graph_panel.h"
@@ -10,14 +14,20 @@
 #include "ui/graph/node_item.h"
 #include "ui/graph/node_palette.h"
 #include "ui/main_window.h"
+#include "ui/properties/param_editor.h"
+#include "ui/properties/property_panel.h"
 #include "ui/viewport_widget.h"
 
 #include <QApplication>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QLineEdit>
 #include <QSignalSpy>
+#include <QSlider>
 #include <QStandardPaths>
 #include <QStatusBar>
+#include <QStyle>
+#include <QStyleOptionSlider>
 #include <QSurfaceFormat>
 #include <QUndoStack>
 #include <QtTest>
@@ -53,6 +63,21 @@ double maxDifference(const QVector<double>& a, const QVector<double>& b) {
     return d;
 }
 
+/// Centre of the slider's handle, from the style (where a user would grab it).
+QPoint handleCentre(QSlider* slider) {
+    QStyleOptionSlider option;
+    option.initFrom(slider);
+    option.orientation = slider->orientation();
+    option.minimum = slider->minimum();
+    option.maximum = slider->maximum();
+    option.sliderPosition = slider->sliderPosition();
+    option.sliderValue = slider->value();
+    option.subControls = QStyle::SC_SliderGroove | QStyle::SC_SliderHandle;
+    return slider->style()
+        ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
+        .center();
+}
+
 } // namespace
 
 class TestUiGraph : public QObject {
@@ -62,6 +87,7 @@ private slots:
     void initTestCase();
     void cleanupTestCase();
     void buildConnectUndoDelete();
+    void nodeInputsInPropertiesAreUniformEdits();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -224,6 +250,131 @@ void TestUiGraph::buildConnectUndoDelete() {
     QCOMPARE(model->graph().nodes().size(), nodes + 1);
     stack->undo();
     QCOMPARE(model->graph().nodes().size(), nodes);
+}
+
+void TestUiGraph::nodeInputsInPropertiesAreUniformEdits() {
+    GraphModel* model = m_panel->model();
+    GraphScene* scene = m_panel->scene();
+    QUndoStack* stack = m_doc->undoStack();
+    ViewportWidget* viewport = m_window->viewport();
+    PropertyPanel* properties = m_window->propertyPanel();
+
+    // A constant value into the output's metallic input (structural: one recompile).
+    const graph::NodeId out = model->graph().outputNode();
+    QVERIFY(out != graph::kInvalidNodeId);
+    const auto metallic = graph::PortIndex(model->graph().node(out)->type->inputIndex("metallic"));
+    auto* add = new AddNodeCommand(model, "constant.float", glm::vec2(-260.0f, 40.0f));
+    stack->push(add);
+    const graph::NodeId value = add->node();
+    QVERIFY(value != graph::kInvalidNodeId);
+    QVERIFY(pushConnect(model, {value, 0, out, metallic}));
+    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
+    QTRY_VERIFY_WITH_TIMEOUT(frames.count() >= 2 && !viewport->renderer()->graphPending(),
+                             kFrameTimeoutMs);
+    QVERIFY2(viewport->renderer()->graphError().empty(),
+             viewport->renderer()->graphError().c_str());
+    const QVector<double> pixelBefore = centrePixel(viewportImage());
+    const int compiles = viewport->renderer()->shaderCompileCount();
+
+    // Click the node's title: Properties shows its inputs.
+    NodeItem* item = scene->nodeItem(value);
+    QVERIFY(item);
+    scene->clearSelection();
+    const int beforeClick = stack->count();
+    QTest::mouseClick(m_view->viewport(), Qt::LeftButton, {},
+                      at(item->scenePos() + QPointF(40, 10)));
+    QCOMPARE(stack->count(), beforeClick); // a click moves nothing
+    QCOMPARE(properties->subject(), PropertyPanel::Subject::GraphNode);
+    QCOMPARE(properties->graphNode(), value);
+    ParamEditor* editor = properties->subjectEditor(QStringLiteral("value"));
+    QVERIFY(editor);
+    auto* slider = editor->findChild<QSlider*>(QStringLiteral("nodeInput:value/slider"));
+    QVERIFY(slider);
+    m_window->activateWindow();
+    QTRY_VERIFY(slider->isVisible());
+    QCOMPARE(slider->value(), 500); // 0.5 on the soft range [0, 1]
+
+    // A drag of the handle: one command, however many moves, a new value in the graph.
+    const float valueBefore = model->graph().node(value)->inputValues[0].x;
+    QPoint pos = handleCentre(slider);
+    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, pos);
+    for (int i = 0; i < 8; ++i) {
+        pos.rx() += slider->width() / 20;
+        QTest::mouseMove(slider, pos);
+    }
+    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, pos);
+    QCOMPARE(stack->count(), beforeClick + 1);
+    const float valueAfter = model->graph().node(value)->inputValues[0].x;
+    QVERIFY2(valueAfter > valueBefore + 0.2f, qPrintable(QString::number(valueAfter)));
+    QCOMPARE(m_doc->material().graph->node(value)->inputValues[0].x, valueAfter);
+
+    // The viewport changes through the uniform block: nothing is compiled.
+    frames.clear();
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), kFrameTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(maxDifference(pixelBefore, centrePixel(viewportImage())) > 4.0,
+                             kFrameTimeoutMs);
+    QCOMPARE(viewport->renderer()->shaderCompileCount(), compiles);
+
+    // Undo: the value, the slider and the pixel come back, still without a compile.
+    stack->undo();
+    QCOMPARE(model->graph().node(value)->inputValues[0].x, valueBefore);
+    QCOMPARE(slider->value(), 500);
+    QTRY_VERIFY_WITH_TIMEOUT(maxDifference(pixelBefore, centrePixel(viewportImage())) < 2.0,
+                             kFrameTimeoutMs);
+    QCOMPARE(viewport->renderer()->shaderCompileCount(), compiles);
+
+    // A linked input is shown but not editable (the link feeds it).
+    const graph::NodeId colour =
+        model->graph()
+            .connectionTo(out,
+                          graph::PortIndex(model->graph().node(out)->type->inputIndex("baseColor")))
+            ->outNode;
+    auto* mix = new AddNodeCommand(model, "math.mix", glm::vec2(-520.0f, 200.0f));
+    stack->push(mix);
+    QVERIFY(pushConnect(model, {colour, 0, mix->node(), 0}));
+    scene->clearSelection();
+    scene->nodeItem(mix->node())->setSelected(true);
+    QCOMPARE(properties->graphNode(), mix->node());
+    QVERIFY(!properties->subjectEditor(QStringLiteral("a"))->isEnabled());
+    QVERIFY(properties->subjectEditor(QStringLiteral("factor"))->isEnabled());
+
+    // An image node: the UV scale is a vector (one spin box per component), the file a setting.
+    auto* image = new AddNodeCommand(model, "texture.image", glm::vec2(-520.0f, -200.0f));
+    stack->push(image);
+    scene->clearSelection();
+    scene->nodeItem(image->node())->setSelected(true);
+    QCOMPARE(properties->graphNode(), image->node());
+    auto* scaleX = properties->findChild<QDoubleSpinBox*>(QStringLiteral("nodeInput:scale/x"));
+    QVERIFY(scaleX);
+    QVERIFY(properties->findChild<QDoubleSpinBox*>(QStringLiteral("nodeInput:scale/y")));
+    const int beforeScale = stack->count();
+    scaleX->setValue(3.0);
+    QCOMPARE(stack->count(), beforeScale + 1);
+    QCOMPARE(model->graph().node(image->node())->inputValues[1], glm::vec4(3.0f, 1.0f, 0.0f, 0.0f));
+    auto* file = properties->findChild<QLineEdit*>(QStringLiteral("nodeSetting:file"));
+    QVERIFY(file);
+    file->setText(QStringLiteral("/nonexistent/weave.png"));
+    emit file->editingFinished();
+    QCOMPARE(stack->count(), beforeScale + 2);
+    QCOMPARE(model->graph().node(image->node())->settings[0],
+             std::string("/nonexistent/weave.png"));
+    stack->undo();
+    QVERIFY(model->graph().node(image->node())->settings[0].empty());
+    QVERIFY(file->text().isEmpty());
+    stack->undo();
+    QCOMPARE(scaleX->value(), 1.0);
+
+    // The material output shows the material's parameters; a deleted node gives way too.
+    scene->clearSelection();
+    scene->nodeItem(out)->setSelected(true);
+    QCOMPARE(properties->subject(), PropertyPanel::Subject::Material);
+    scene->clearSelection();
+    scene->nodeItem(image->node())->setSelected(true);
+    QCOMPARE(properties->subject(), PropertyPanel::Subject::GraphNode);
+    m_view->setFocus();
+    QTest::keyClick(m_view, Qt::Key_Delete);
+    QVERIFY(!model->graph().node(image->node()));
+    QCOMPARE(properties->subject(), PropertyPanel::Subject::Material);
 }
 
 int main(int argc, char** argv) {

@@ -4,6 +4,9 @@
 // row; a parameter drag is one command; chain presets load (errors name file and JSON path);
 // library presets apply as one undoable command; the search filters by name and tag; thumbnails
 // render in the background and a second panel loads them from the disk cache without rendering.
+// In the real main window, selecting an effect shows its parameters in the Properties dock; a
+// slider drag there is one command that changes the chain and the viewport, and undo restores
+// both.
 //
 // Real drags: QDrag::exec runs a nested loop fed by the window system, which QTest's synthetic
 // mouse events do not reach under xvfb, so the drop half of a drag is driven by sending
@@ -18,6 +21,9 @@
 #include "ui/main_window.h"
 #include "ui/post_chain/post_chain_model.h"
 #include "ui/post_chain/post_chain_panel.h"
+#include "ui/properties/param_editor.h"
+#include "ui/properties/property_panel.h"
+#include "ui/viewport_widget.h"
 
 #include <QApplication>
 #include <QDir>
@@ -32,12 +38,17 @@
 #include <QMenu>
 #include <QMimeData>
 #include <QPushButton>
+#include <QSignalSpy>
 #include <QSlider>
 #include <QSortFilterProxyModel>
 #include <QStandardItemModel>
 #include <QStandardPaths>
+#include <QStyle>
+#include <QStyleOptionSlider>
+#include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QToolButton>
 #include <QUndoStack>
 
 using namespace velvet;
@@ -46,6 +57,56 @@ using namespace velvet::ui;
 namespace {
 
 constexpr int kThumbnailTimeoutMs = 180000; // llvmpipe, two shared cores, shaders compiled once
+constexpr int kFrameTimeoutMs = 120000;     // llvmpipe: the first frame compiles every shader
+
+/// Mean colour of a 5x5 block around the centre, in 0..255 units.
+QVector<double> centrePixel(const QImage& image) {
+    QVector<double> sum(3, 0.0);
+    const int cx = image.width() / 2, cy = image.height() / 2;
+    for (int y = cy - 2; y <= cy + 2; ++y)
+        for (int x = cx - 2; x <= cx + 2; ++x) {
+            const QColor c = image.pixelColor(x, y);
+            sum[0] += c.red();
+            sum[1] += c.green();
+            sum[2] += c.blue();
+        }
+    for (double& v : sum)
+        v /= 25.0;
+    return sum;
+}
+
+double maxDifference(const QVector<double>& a, const QVector<double>& b) {
+    double d = 0.0;
+    for (int i = 0; i < 3; ++i)
+        d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+/// Centre of the slider's handle, from the style (where a user would grab it).
+QPoint handleCentre(QSlider* slider) {
+    QStyleOptionSlider option;
+    option.initFrom(slider);
+    option.orientation = slider->orientation();
+    option.minimum = slider->minimum();
+    option.maximum = slider->maximum();
+    option.sliderPosition = slider->sliderPosition();
+    option.sliderValue = slider->value();
+    option.subControls = QStyle::SC_SliderGroove | QStyle::SC_SliderHandle;
+    return slider->style()
+        ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
+        .center();
+}
+
+/// A left-button drag of @p slider's handle by @p dx pixels, in small steps (one gesture).
+void dragHandle(QSlider* slider, int dx) {
+    QPoint pos = handleCentre(slider);
+    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, pos);
+    for (int i = 0; i < 8; ++i) {
+        pos.rx() += dx / 8;
+        QTest::mouseMove(slider, pos);
+    }
+    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, pos);
+}
 
 PostChain chainOf(std::initializer_list<const char*> types) {
     PostChain chain;
@@ -107,6 +168,7 @@ private slots:
     void stageConflictExplainedOnRow();
     void addRemoveDuplicate();
     void parameterDragIsOneCommand();
+    void effectParametersInPropertiesReachViewport();
     void chainPresetLoadsAndReportsErrors();
     void libraryPresetAppliesAndUndoes();
     void searchFiltersByNameAndTag();
@@ -280,12 +342,19 @@ void TestUiPanels::parameterDragIsOneCommand() {
     DocumentController controller;
     setChain(controller, chainOf({"vignette"}));
     PostChainPanel panel(&controller);
-    panel.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PropertyPanel properties(&controller);
+    connect(&panel, &PostChainPanel::effectSelected, &properties, &PropertyPanel::showEffect);
+    properties.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&properties));
     panel.setCurrentRow(0);
-    auto* slider =
-        panel.parameterBox()->findChild<QSlider*>(QStringLiteral("effectParam:intensity/slider"));
-    QVERIFY2(slider, "the vignette's intensity slider, generated from its ParamMeta");
+    QCOMPARE(properties.subject(), PropertyPanel::Subject::Effect);
+    QCOMPARE(properties.effectIndex(), 0);
+    ParamEditor* editor = properties.subjectEditor(QStringLiteral("intensity"));
+    QVERIFY2(editor, "the vignette's intensity editor, generated from its ParamMeta");
+    auto* slider = editor->findChild<QSlider*>(QStringLiteral("effectParam:intensity/slider"));
+    QVERIFY(slider);
+    QCOMPARE(editor->toolTip(),
+             QString::fromUtf8(findEffectParam(*findPostEffect("vignette"), "intensity")->tooltip));
     const float before = effectFloat(controller.scene().post.effects[0], "intensity");
     slider->setSliderDown(true); // sliderPressed: a new gesture
     for (int v : {100, 300, 500, 700})
@@ -293,10 +362,86 @@ void TestUiPanels::parameterDragIsOneCommand() {
     slider->setSliderDown(false);
     QCOMPARE(controller.undoStack()->count(), 1);
     const float after = effectFloat(controller.scene().post.effects[0], "intensity");
-    QVERIFY(after != before);
+    QCOMPARE(after, 0.7f);
     controller.undoStack()->undo();
     QCOMPARE(effectFloat(controller.scene().post.effects[0], "intensity"), before);
-    QCOMPARE(slider->value() == 700, false); // the form follows the document
+    QCOMPARE(slider->value(), int(std::lround(before * 1000))); // the editor follows the document
+
+    // Reset: one command back to the metadata default.
+    controller.undoStack()->redo();
+    auto* reset = editor->findChild<QToolButton*>(QStringLiteral("effectParam:intensity/reset"));
+    QVERIFY(reset);
+    reset->click();
+    QCOMPARE(controller.undoStack()->count(), 2);
+    QCOMPARE(effectFloat(controller.scene().post.effects[0], "intensity"), 0.35f);
+    QVERIFY(controller.undoStack()->undoText().startsWith(QStringLiteral("Reset")));
+
+    // The effect removed: Properties falls back to the material.
+    panel.removeCurrent();
+    QCOMPARE(properties.subject(), PropertyPanel::Subject::Material);
+}
+
+void TestUiPanels::effectParametersInPropertiesReachViewport() {
+    MainWindow window(/*restoreLayout=*/false);
+    DocumentController* doc = window.controller();
+    ViewportWidget* viewport = window.viewport();
+    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
+    window.resize(1200, 850);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), kFrameTimeoutMs);
+    setChain(*doc, chainOf({"tonemap", "vignette"}));
+    frames.clear();
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), kFrameTimeoutMs);
+    const PostChain chainBefore = doc->scene().post;
+    const QVector<double> pixelBefore = centrePixel(viewport->grabFramebuffer());
+
+    // Click the tone mapping row: its parameters replace the material's in Properties.
+    PropertyPanel* properties = window.propertyPanel();
+    QCOMPARE(properties->subject(), PropertyPanel::Subject::Material);
+    PostChainListView* list = window.postChainPanel()->list();
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      list->visualRect(list->model()->index(0, 0)).center());
+    QCOMPARE(properties->subject(), PropertyPanel::Subject::Effect);
+    QCOMPARE(properties->effectIndex(), 0);
+    ParamEditor* exposure = properties->subjectEditor(QStringLiteral("exposure"));
+    QVERIFY(exposure);
+    QVERIFY(properties->subjectEditor(QStringLiteral("operator")));   // a Choice: a combo
+    QVERIFY(!properties->subjectEditor(QStringLiteral("intensity"))); // the vignette's, not shown
+    auto* slider = exposure->findChild<QSlider*>(QStringLiteral("effectParam:exposure/slider"));
+    QVERIFY(slider);
+    QTRY_VERIFY(slider->isVisible()); // the Properties dock was raised
+    QTest::qWait(50);                 // the new page's layout settles before the mouse comes
+    QCOMPARE(slider->value(), 500);   // 0 EV in the middle of [-16, 16]
+
+    // A real drag of the handle to the right: one command, brighter exposure.
+    frames.clear();
+    dragHandle(slider, slider->width() / 6);
+    QCOMPARE(doc->undoStack()->count(), 1);
+    const float ev = effectFloat(doc->scene().post.effects[0], "exposure");
+    QVERIFY2(ev > 1.0f, qPrintable(QString::number(ev)));
+    QVERIFY(doc->scene().post != chainBefore);
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), kFrameTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(maxDifference(pixelBefore, centrePixel(viewport->grabFramebuffer())) >
+                                 10.0,
+                             kFrameTimeoutMs);
+
+    // Undo: the chain and the pixel come back, and so does the slider.
+    doc->undoStack()->undo();
+    QVERIFY(doc->scene().post == chainBefore);
+    QTRY_VERIFY_WITH_TIMEOUT(maxDifference(pixelBefore, centrePixel(viewport->grabFramebuffer())) <
+                                 2.0,
+                             kFrameTimeoutMs);
+    QCOMPARE(slider->value(), 500); // 0 EV in [-16, 16]
+
+    // The header's Material button shows the material's parameters again.
+    auto* material =
+        properties->findChild<QToolButton*>(QStringLiteral("propertiesMaterialButton"));
+    QVERIFY(material && material->isVisible());
+    material->click();
+    QCOMPARE(properties->subject(), PropertyPanel::Subject::Material);
+    QVERIFY(properties->editor(ParamId::Roughness)->isVisible());
+    doc->newDocument(); // clean: closing asks nothing
 }
 
 void TestUiPanels::chainPresetLoadsAndReportsErrors() {
@@ -509,5 +654,12 @@ void TestUiPanels::mainWindowHasDocks() {
              int(window.controller()->scene().post.effects.size()));
 }
 
-QTEST_MAIN(TestUiPanels)
+int main(int argc, char** argv) {
+    QStandardPaths::setTestModeEnabled(true); // QSettings go to a throwaway place
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("VelvetTest"));
+    TestUiPanels test;
+    return QTest::qExec(&test, argc, argv);
+}
 #include "test_ui_panels.moc"

@@ -1,6 +1,7 @@
 #include "ui/atlas/atlas_model.h"
 
 #include "ui/commands/atlas_commands.h"
+#include "ui/document_controller.h"
 
 #include <QDir>
 #include <QFileInfo>
@@ -12,8 +13,18 @@
 
 namespace velvet::ui {
 
-AtlasModel::AtlasModel(QUndoStack* undoStack, QObject* parent)
-    : QObject(parent), m_undoStack(undoStack) {}
+AtlasModel::AtlasModel(DocumentController* controller, QObject* parent)
+    : QObject(parent), m_controller(controller) {
+    connect(controller, &DocumentController::atlasChanged, this, &AtlasModel::atlasChanged);
+}
+
+const AtlasDocument& AtlasModel::atlas(AtlasKind kind) const {
+    return m_controller->atlases()[kind];
+}
+
+QUndoStack* AtlasModel::undoStack() const {
+    return m_controller->undoStack();
+}
 
 QString AtlasModel::kindLabel(AtlasKind kind) {
     switch (kind) {
@@ -65,35 +76,6 @@ bool AtlasModel::pack(AtlasDocument& atlas, QString* error) const {
     return true;
 }
 
-void AtlasModel::compose(AtlasDocument& atlas) {
-    if (atlas.entries.empty() || atlas.width <= 0 || atlas.height <= 0) {
-        atlas.image = Image();
-        return;
-    }
-    Image image(atlas.width, atlas.height, 4);
-    const int pad = std::max(0, atlas.padding);
-    for (const AtlasEntry& e : atlas.entries) {
-        const AtlasRegion& r = e.region;
-        if (e.source.empty() || r.width <= 0 || r.height <= 0)
-            continue;
-        const int x0 = std::max(0, r.x - pad), x1 = std::min(atlas.width, r.x + r.width + pad);
-        const int y0 = std::max(0, r.y - pad), y1 = std::min(atlas.height, r.y + r.height + pad);
-        for (int y = y0; y < y1; ++y) {
-            // Nearest source texel; outside the region the clamp replicates the edge (padding).
-            const int ly = std::clamp(y - r.y, 0, r.height - 1);
-            const int sy = std::min(e.source.height - 1, ly * e.source.height / r.height);
-            for (int x = x0; x < x1; ++x) {
-                const int lx = std::clamp(x - r.x, 0, r.width - 1);
-                const int sx = std::min(e.source.width - 1, lx * e.source.width / r.width);
-                const glm::vec4 c = e.source.rgba(sx, sy);
-                float* out = image.at(x, y);
-                out[0] = c.r, out[1] = c.g, out[2] = c.b, out[3] = c.a;
-            }
-        }
-    }
-    atlas.image = std::move(image);
-}
-
 bool AtlasModel::addImages(AtlasKind kind, std::vector<AtlasEntry> images, QString* error) {
     if (images.empty())
         return true;
@@ -103,7 +85,7 @@ bool AtlasModel::addImages(AtlasKind kind, std::vector<AtlasEntry> images, QStri
     if (!pack(next, error))
         return false;
     const int added = int(images.size());
-    m_undoStack->push(new ReplaceAtlasCommand(
+    undoStack()->push(new ReplaceAtlasCommand(
         this, kind, atlas(kind), std::move(next),
         tr("Add %n image(s) to the %1 atlas", nullptr, added).arg(kindLabel(kind))));
     return true;
@@ -119,7 +101,8 @@ bool AtlasModel::addImageFiles(AtlasKind kind, const QStringList& files, QString
             problems << QString::fromStdString(message);
             continue;
         }
-        e.name = QFileInfo(file).fileName();
+        e.name = QFileInfo(file).fileName().toStdString();
+        e.file = QDir::cleanPath(QFileInfo(file).absoluteFilePath()).toStdString();
         images.push_back(std::move(e));
     }
     QString packError;
@@ -135,7 +118,7 @@ bool AtlasModel::repack(AtlasKind kind, QString* error) {
     AtlasDocument next = atlas(kind);
     if (!pack(next, error))
         return false;
-    m_undoStack->push(new ReplaceAtlasCommand(this, kind, atlas(kind), std::move(next),
+    undoStack()->push(new ReplaceAtlasCommand(this, kind, atlas(kind), std::move(next),
                                               tr("Repack the %1 atlas").arg(kindLabel(kind))));
     return true;
 }
@@ -151,21 +134,20 @@ void AtlasModel::editRegion(AtlasKind kind, int index, AtlasRegion region, int m
     const AtlasRegion old = a.entries[size_t(index)].region;
     if (region == old)
         return;
-    m_undoStack->push(new SetAtlasRegionCommand(this, kind, index, old, region, mergeKey));
+    undoStack()->push(new SetAtlasRegionCommand(this, kind, index, old, region, mergeKey));
 }
 
 void AtlasModel::setAtlas(AtlasKind kind, AtlasDocument atlas) {
-    m_atlases[size_t(kind)] = std::move(atlas);
-    emit atlasChanged(kind);
+    m_controller->setAtlas(kind, std::move(atlas));
 }
 
 void AtlasModel::setRegion(AtlasKind kind, int index, AtlasRegion region) {
-    AtlasDocument& a = m_atlases[size_t(kind)];
+    AtlasDocument a = atlas(kind);
     if (index < 0 || index >= int(a.entries.size()))
         return;
     a.entries[size_t(index)].region = region;
     compose(a);
-    emit atlasChanged(kind);
+    m_controller->setAtlas(kind, std::move(a));
 }
 
 bool AtlasModel::exportAtlas(AtlasKind kind, const QString& path, QString* error) {
@@ -175,23 +157,38 @@ bool AtlasModel::exportAtlas(AtlasKind kind, const QString& path, QString* error
             *error = tr("The %1 atlas is empty").arg(kindLabel(kind));
         return false;
     }
-    const QString suffix = QFileInfo(path).suffix().toLower();
-    const PixelFormat format = suffix == QLatin1String("exr") ? PixelFormat::Half
-                               : kind == AtlasKind::Albedo    ? PixelFormat::UInt8
-                                                              : PixelFormat::UInt16;
+    const PixelFormat format = atlasExportFormat(kind, QFileInfo(path).suffix().toStdString());
     std::string message;
     if (!writeImage(path.toStdString(), a.image, format, &message)) { // atomic (core/image.h)
         if (error)
             *error = QString::fromStdString(message);
         return false;
     }
-    m_atlases[size_t(kind)].filePath = QFileInfo(path).absoluteFilePath();
+    // Where it was exported is remembered (and saved), but is no edit of the atlas.
+    AtlasDocument next = a;
+    next.filePath = QDir::cleanPath(QFileInfo(path).absoluteFilePath()).toStdString();
+    m_controller->setAtlas(kind, std::move(next));
     return true;
 }
 
+bool AtlasModel::exportAll(const QString& folder, const QString& stem, const QString& extension,
+                           QStringList* written, QString* error) {
+    std::vector<std::filesystem::path> paths;
+    std::string message;
+    const bool ok =
+        exportAtlasImages(m_controller->atlases(), folder.toStdString(), stem.toStdString(),
+                          extension.toStdString(), &paths, &message);
+    if (written)
+        for (const std::filesystem::path& p : paths)
+            *written << QString::fromStdString(p.string());
+    if (!ok && error)
+        *error = QString::fromStdString(message);
+    return ok;
+}
+
 QString AtlasModel::ensureFile(AtlasKind kind, QString* error) {
-    if (!atlas(kind).filePath.isEmpty())
-        return atlas(kind).filePath;
+    if (!atlas(kind).filePath.empty())
+        return QString::fromStdString(atlas(kind).filePath);
     const QString dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) +
                         QStringLiteral("/atlases");
     if (!QDir().mkpath(dir)) {
@@ -204,7 +201,7 @@ QString AtlasModel::ensureFile(AtlasKind kind, QString* error) {
                                   QUuid::createUuid().toString(QUuid::WithoutBraces).left(8));
     if (!exportAtlas(kind, path, error))
         return {};
-    return atlas(kind).filePath;
+    return QString::fromStdString(atlas(kind).filePath);
 }
 
 } // namespace velvet::ui

@@ -16,10 +16,9 @@
 namespace velvet::ui {
 
 AtlasPanel::AtlasPanel(DocumentController* controller, QWidget* parent)
-    : QWidget(parent), m_controller(controller),
-      m_model(new AtlasModel(controller->undoStack(), this)), m_tabs(new QTabBar(this)),
-      m_view(new AtlasView(this)), m_channel(new QComboBox(this)), m_slot(new QComboBox(this)),
-      m_status(new QLabel(this)) {
+    : QWidget(parent), m_controller(controller), m_model(new AtlasModel(controller, this)),
+      m_tabs(new QTabBar(this)), m_view(new AtlasView(this)), m_channel(new QComboBox(this)),
+      m_slot(new QComboBox(this)), m_status(new QLabel(this)) {
     setObjectName(QStringLiteral("atlasPanel"));
     m_tabs->setObjectName(QStringLiteral("atlasTabs"));
     for (int k = 0; k < kAtlasKindCount; ++k)
@@ -40,6 +39,8 @@ AtlasPanel::AtlasPanel(DocumentController* controller, QWidget* parent)
                                        tr("Pack every region again from scratch"));
     QToolButton* exportButton = button(tr("Export…"), QStringLiteral("atlasExportButton"),
                                        tr("Write the atlas image (PNG, EXR, …)"));
+    QToolButton* exportAllButton = button(tr("Export all…"), QStringLiteral("atlasExportAllButton"),
+                                          tr("Write every non-empty atlas image into a folder"));
     QToolButton* assign = button(tr("Assign"), QStringLiteral("atlasAssignButton"),
                                  tr("Use the selected region in the chosen material slot"));
     m_channel->setObjectName(QStringLiteral("atlasChannelCombo"));
@@ -61,6 +62,7 @@ AtlasPanel::AtlasPanel(DocumentController* controller, QWidget* parent)
     row->addWidget(add);
     row->addWidget(repackButton);
     row->addWidget(exportButton);
+    row->addWidget(exportAllButton);
     row->addWidget(m_channel);
     row->addStretch();
     auto* assignRow = new QHBoxLayout;
@@ -78,6 +80,7 @@ AtlasPanel::AtlasPanel(DocumentController* controller, QWidget* parent)
     connect(add, &QToolButton::clicked, this, &AtlasPanel::addImages);
     connect(repackButton, &QToolButton::clicked, this, &AtlasPanel::repack);
     connect(exportButton, &QToolButton::clicked, this, &AtlasPanel::exportCurrent);
+    connect(exportAllButton, &QToolButton::clicked, this, &AtlasPanel::exportAllDialog);
     connect(assign, &QToolButton::clicked, this, &AtlasPanel::assignSelectedToChosenSlot);
     connect(m_channel, &QComboBox::currentIndexChanged, this,
             [this] { m_view->setChannel(m_channel->currentData().toInt()); });
@@ -113,7 +116,8 @@ void AtlasPanel::refresh() {
         regions.push_back(e.region);
     m_view->setAtlas(a.image, regions);
     if (a.entries.empty())
-        m_status->setText(tr("Empty: add images. Atlases are kept in memory; export writes them."));
+        m_status->setText(tr("Empty: add images. Atlases are saved with the scene; export "
+                             "writes their images."));
     else
         m_status->setText(tr("%1 x %2, %n region(s), padding %3", nullptr, int(a.entries.size()))
                               .arg(a.width)
@@ -151,6 +155,22 @@ void AtlasPanel::exportCurrent() {
     QString error;
     if (m_model->exportAtlas(currentKind(), path, &error))
         report(tr("Exported %1").arg(path));
+    else
+        report(error);
+}
+
+void AtlasPanel::exportAllDialog() {
+    const QString folder =
+        QFileDialog::getExistingDirectory(this, tr("Export the atlas images into"));
+    if (folder.isEmpty())
+        return;
+    const QString file = m_controller->filePath();
+    const QString stem =
+        file.isEmpty() ? QStringLiteral("atlas") : QFileInfo(file).completeBaseName();
+    QStringList written;
+    QString error;
+    if (m_model->exportAll(folder, stem, QStringLiteral("png"), &written, &error))
+        report(tr("Exported %1").arg(written.join(QStringLiteral(", "))));
     else
         report(error);
 }

@@ -4,7 +4,8 @@
 /// atlases; the atlas image with its regions (AtlasView); add images (packed with padding by
 /// core/atlas_packing), repack, move and resize regions by dragging (undoable, one command per
 /// drag), assign the selected region to a material texture slot (undoable), isolate R/G/B/A
-/// (view state) and export the atlas image. The atlases live in memory (AtlasModel).
+/// (view state) and export the atlas images. The atlases belong to the document (saved beside the
+/// scene, see AtlasModel).
 
 #include "ui/atlas/atlas_model.h"
 
@@ -40,6 +41,8 @@ public slots:
     void repack();
     /// Asks for a file name and exports the current atlas.
     void exportCurrent();
+    /// Asks for a folder and exports every non-empty atlas image into it (PNG).
+    void exportAllDialog();
     void assignSelectedToChosenSlot();
 
 private:

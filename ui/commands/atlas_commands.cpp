@@ -37,6 +37,8 @@ void SetAtlasRegionCommand::redo() {
 }
 
 bool SetAtlasRegionCommand::mergeWith(const QUndoCommand* other) {
+    if (other->id() != id())
+        return false;
     const auto* o = static_cast<const SetAtlasRegionCommand*>(other);
     if (m_mergeKey == 0 || o->m_mergeKey != m_mergeKey || o->m_kind != m_kind ||
         o->m_index != m_index)

@@ -31,7 +31,7 @@ private:
 /// merge key (one drag) merge; a drag back to where it started makes the command obsolete.
 class SetAtlasRegionCommand : public QUndoCommand {
 public:
-    static constexpr int kId = 0x5f0;
+    static constexpr int kId = 0xa71a; ///< distinct from every other command's id (merging)
     SetAtlasRegionCommand(AtlasModel* model, AtlasKind kind, int index, AtlasRegion oldValue,
                           AtlasRegion newValue, int mergeKey, QUndoCommand* parent = nullptr);
     void undo() override;

@@ -203,6 +203,8 @@ void SetNodeInputCommand::undo() {
 }
 
 bool SetNodeInputCommand::mergeWith(const QUndoCommand* other) {
+    if (other->id() != id())
+        return false;
     const auto* o = static_cast<const SetNodeInputCommand*>(other);
     if (m_mergeKey == 0 || o->m_mergeKey != m_mergeKey || o->m_node != m_node ||
         o->m_input != m_input)
@@ -210,6 +212,33 @@ bool SetNodeInputCommand::mergeWith(const QUndoCommand* other) {
     m_new = o->m_new;
     setObsolete(m_new == m_old);
     return true;
+}
+
+SetNodeSettingCommand::SetNodeSettingCommand(GraphModel* model, graph::NodeId node,
+                                             std::string name, std::string oldValue,
+                                             std::string newValue, QUndoCommand* parent)
+    : QUndoCommand(parent), m_model(model), m_node(node), m_name(std::move(name)),
+      m_old(std::move(oldValue)), m_new(std::move(newValue)) {
+    QString what = QString::fromStdString(m_name);
+    if (const graph::Node* n = model->graph().node(node)) {
+        const int index = n->type->settingIndex(m_name);
+        if (index >= 0) {
+            const std::string_view l = n->type->settings[size_t(index)].label;
+            what = label(n->type->id) + QLatin1Char(' ') +
+                   QString::fromUtf8(l.data(), qsizetype(l.size())).toLower();
+        }
+    }
+    setText(QObject::tr("Set %1").arg(what));
+}
+
+void SetNodeSettingCommand::redo() {
+    const graph::EditResult r = m_model->editableGraph().setSetting(m_node, m_name, m_new);
+    if (!r)
+        m_model->refuse(QString::fromStdString(r.message));
+}
+
+void SetNodeSettingCommand::undo() {
+    m_model->editableGraph().setSetting(m_node, m_name, m_old);
 }
 
 bool pushConnect(GraphModel* model, const graph::Connection& c) {

@@ -134,6 +134,23 @@ private:
     int m_mergeKey;
 };
 
+/// Sets a string setting of a node (an image file, a colour space): a texture rebind, never a
+/// recompile (graph::ChangeKind::Texture).
+class SetNodeSettingCommand : public QUndoCommand {
+public:
+    SetNodeSettingCommand(GraphModel* model, graph::NodeId node, std::string name,
+                          std::string oldValue, std::string newValue,
+                          QUndoCommand* parent = nullptr);
+    void redo() override;
+    void undo() override;
+
+private:
+    GraphModel* m_model;
+    graph::NodeId m_node;
+    std::string m_name;
+    std::string m_old, m_new;
+};
+
 /// Pushes a connection drag's result: one ConnectCommand, or a "Replace link" macro
 /// (disconnect the input's link, then connect) when the input is already fed. A refused link is
 /// reported through GraphModel::refuse() and pushes nothing. True when something was pushed.

@@ -16,6 +16,10 @@ GraphPanel::GraphPanel(DocumentController* controller, QWidget* parent)
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(m_view);
     connect(m_model, &GraphModel::editRefused, this, &GraphPanel::message);
+    connect(m_scene, &QGraphicsScene::selectionChanged, this, [this] {
+        const std::vector<graph::NodeId> nodes = m_scene->selectedNodes();
+        emit nodeSelected(nodes.size() == 1 ? nodes.front() : graph::kInvalidNodeId);
+    });
 }
 
 } // namespace velvet::ui

@@ -1,7 +1,10 @@
 #pragma once
 /// @file graph_panel.h
 /// The "Material graph" dock's contents: the live graph model, its scene and view. Refused
-/// edits come out of message() for the status bar and the Log.
+/// edits come out of message() for the status bar and the Log; the selected node comes out of
+/// nodeSelected() for the Properties panel.
+
+#include "core/graph/graph_types.h"
 
 #include <QWidget>
 
@@ -24,6 +27,9 @@ public:
 signals:
     /// A refused edit, with the model's reason.
     void message(const QString& text);
+    /// The selection became exactly node @p id, or kInvalidNodeId when it became anything else
+    /// (nothing, several nodes, links only). The window shows the node in Properties.
+    void nodeSelected(velvet::graph::NodeId id);
 
 private:
     GraphModel* m_model;

@@ -3,47 +3,31 @@
 #include "core/post_chain_io.h"
 #include "core/post_effects.h"
 #include "core/resources.h"
-#include "ui/color_picking.h"
 #include "ui/commands/post_chain_commands.h"
 #include "ui/document_controller.h"
 #include "ui/post_chain/post_chain_model.h"
 
-#include <QColorDialog>
-#include <QComboBox>
-#include <QDoubleSpinBox>
 #include <QDragEnterEvent>
 #include <QDragMoveEvent>
 #include <QDropEvent>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
-#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QKeyEvent>
 #include <QLabel>
 #include <QMenu>
 #include <QMessageBox>
 #include <QMimeData>
-#include <QSignalBlocker>
-#include <QSlider>
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <algorithm>
-#include <cmath>
 
 namespace velvet::ui {
 namespace {
 
 QString fromView(std::string_view s) {
     return QString::fromUtf8(s.data(), static_cast<qsizetype>(s.size()));
-}
-
-constexpr int kSliderSteps = 1000;
-
-int nextGestureKey() {
-    static int key = 0;
-    return ++key;
 }
 
 QToolButton* makeButton(QWidget* parent, const char* name, const QString& text,
@@ -168,28 +152,6 @@ void PostChainListView::keyPressEvent(QKeyEvent* event) {
 // ---------------------------------------------------------------------------------------------
 // PostChainPanel
 
-/// The widgets of one effect parameter in the form.
-struct PostChainPanel::ParamRow {
-    const ParamMeta* meta = nullptr;
-    QSlider* slider = nullptr;
-    QDoubleSpinBox* spin = nullptr;
-    QComboBox* combo = nullptr;
-    QToolButton* swatch = nullptr;
-    glm::vec3 value{0.0f};
-    int gesture = 0;
-
-    float sliderEnd() const {
-        return (meta->softMax > meta->min && meta->softMax < meta->max) ? meta->softMax : meta->max;
-    }
-    int toSlider(float v) const {
-        const float t = (v - meta->min) / (sliderEnd() - meta->min);
-        return std::clamp(static_cast<int>(std::lround(t * kSliderSteps)), 0, kSliderSteps);
-    }
-    float fromSlider(int position) const {
-        return meta->min + (sliderEnd() - meta->min) * static_cast<float>(position) / kSliderSteps;
-    }
-};
-
 PostChainPanel::PostChainPanel(DocumentController* controller, QWidget* parent)
     : QWidget(parent), m_controller(controller), m_model(new PostChainModel(controller, this)),
       m_list(new PostChainListView(this)) {
@@ -228,16 +190,10 @@ PostChainPanel::PostChainPanel(DocumentController* controller, QWidget* parent)
     m_issueLabel->setTextFormat(Qt::PlainText);
     m_issueLabel->hide();
 
-    m_paramBox = new QGroupBox(tr("Parameters"), this);
-    m_paramBox->setObjectName(QStringLiteral("postChainParameters"));
-    m_paramForm = new QFormLayout(m_paramBox);
-    m_paramForm->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
-
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(buttons);
     layout->addWidget(m_list, 1);
     layout->addWidget(m_issueLabel);
-    layout->addWidget(m_paramBox);
 
     connect(m_removeButton, &QToolButton::clicked, this, &PostChainPanel::removeCurrent);
     connect(m_duplicateButton, &QToolButton::clicked, this, &PostChainPanel::duplicateCurrent);
@@ -251,20 +207,22 @@ PostChainPanel::PostChainPanel(DocumentController* controller, QWidget* parent)
             &PostChainPanel::duplicateCurrent);
     connect(m_list->selectionModel(), &QItemSelectionModel::currentChanged, this, [this] {
         updateActions();
-        syncForm();
+        emit effectSelected(currentRow());
     });
+    // A click on the row already current shows its parameters again (after a graph node was
+    // shown in Properties, say).
+    connect(m_list, &QAbstractItemView::clicked, this,
+            [this](const QModelIndex& index) { emit effectSelected(index.row()); });
     connect(m_model, &QAbstractItemModel::modelReset, this, [this] {
         updateActions();
-        syncForm();
+        emit effectSelected(currentRow());
     });
     connect(m_controller, &DocumentController::postChainChanged, this, [this] {
         updateIssues();
         updateActions();
-        syncForm();
     });
     updateIssues();
     updateActions();
-    syncForm();
 }
 
 PostChainPanel::~PostChainPanel() = default;
@@ -433,164 +391,6 @@ void PostChainPanel::updateIssues() {
     }
     m_issueLabel->setText(lines.join(QLatin1Char('\n')));
     m_issueLabel->setVisible(!lines.isEmpty());
-}
-
-void PostChainPanel::syncForm() {
-    const int row = currentRow();
-    const QString type =
-        row >= 0 ? m_model->index(row).data(PostChainModel::TypeRole).toString() : QString();
-    if (row != m_formRow || type != m_formType)
-        rebuildForm();
-    else
-        refreshFormValues();
-}
-
-void PostChainPanel::rebuildForm() {
-    m_paramRows.clear();
-    while (m_paramForm->rowCount() > 0)
-        m_paramForm->removeRow(0);
-    m_formRow = currentRow();
-    m_formType = m_formRow >= 0
-                     ? m_model->index(m_formRow).data(PostChainModel::TypeRole).toString()
-                     : QString();
-    const EffectMeta* meta = findPostEffect(m_formType.toStdString());
-    if (!meta) {
-        m_paramBox->setTitle(tr("Parameters"));
-        m_paramBox->setEnabled(false);
-        return;
-    }
-    m_paramBox->setEnabled(true);
-    m_paramBox->setTitle(tr("%1 parameters").arg(fromView(meta->label)));
-    for (const ParamMeta& p : meta->params) {
-        auto row = std::make_unique<ParamRow>();
-        ParamRow* r = row.get();
-        r->meta = &p;
-        const QString id = fromView(p.id);
-        const QString name = QStringLiteral("effectParam:") + id;
-        const std::string stdId(p.id);
-        auto* field = new QWidget(m_paramBox);
-        field->setObjectName(name);
-        field->setToolTip(fromView(p.tooltip));
-        auto* h = new QHBoxLayout(field);
-        h->setContentsMargins(0, 0, 0, 0);
-        switch (p.type) {
-        case ParamType::Float: {
-            r->slider = new QSlider(Qt::Horizontal, field);
-            r->slider->setObjectName(name + QStringLiteral("/slider"));
-            r->slider->setRange(0, kSliderSteps);
-            r->spin = new QDoubleSpinBox(field);
-            r->spin->setObjectName(name + QStringLiteral("/spin"));
-            r->spin->setRange(p.min, p.max);
-            r->spin->setDecimals(p.max - p.min > 100.0f ? 1 : 3);
-            r->spin->setSingleStep((r->sliderEnd() - p.min) / 100.0);
-            r->spin->setKeyboardTracking(false);
-            if (!p.unit.empty())
-                r->spin->setSuffix(QLatin1Char(' ') + fromView(p.unit));
-            h->addWidget(r->slider, 1);
-            h->addWidget(r->spin);
-            connect(r->slider, &QSlider::sliderPressed, this,
-                    [r] { r->gesture = nextGestureKey(); });
-            connect(r->slider, &QSlider::sliderReleased, this, [r] { r->gesture = 0; });
-            connect(r->slider, &QSlider::valueChanged, this, [this, r, stdId](int position) {
-                const int key = r->slider->isSliderDown() ? r->gesture : 0;
-                editParam(stdId, {r->fromSlider(position)}, key);
-            });
-            connect(r->spin, &QDoubleSpinBox::valueChanged, this,
-                    [this, stdId](double v) { editParam(stdId, {static_cast<float>(v)}, 0); });
-            break;
-        }
-        case ParamType::Choice: {
-            r->combo = new QComboBox(field);
-            r->combo->setObjectName(name + QStringLiteral("/combo"));
-            for (std::string_view choice : p.choices)
-                r->combo->addItem(fromView(choice));
-            h->addWidget(r->combo, 1);
-            connect(r->combo, &QComboBox::currentIndexChanged, this,
-                    [this, stdId](int index) { editParam(stdId, {static_cast<float>(index)}, 0); });
-            break;
-        }
-        case ParamType::Color: {
-            r->swatch = new QToolButton(field);
-            r->swatch->setObjectName(name + QStringLiteral("/swatch"));
-            r->swatch->setMinimumWidth(64);
-            h->addWidget(r->swatch);
-            h->addStretch(1);
-            connect(r->swatch, &QToolButton::clicked, this, [this, r, stdId] {
-                const PickerColorSpace srgb;
-                const QColor picked =
-                    QColorDialog::getColor(srgb.toQColor(r->value), this, fromView(r->meta->label));
-                if (!picked.isValid())
-                    return;
-                const glm::vec3 linear = srgb.fromQColor(picked);
-                editParam(stdId, {linear.x, linear.y, linear.z}, 0);
-            });
-            break;
-        }
-        }
-        auto* label = new QLabel(fromView(p.label), m_paramBox);
-        label->setToolTip(fromView(p.tooltip));
-        m_paramForm->addRow(label, field);
-        m_paramRows.push_back(std::move(row));
-    }
-    refreshFormValues();
-}
-
-void PostChainPanel::refreshFormValues() {
-    const auto& effects = m_controller->scene().post.effects;
-    if (m_formRow < 0 || m_formRow >= static_cast<int>(effects.size()))
-        return;
-    const EffectInstance& effect = effects[static_cast<size_t>(m_formRow)];
-    m_refreshing = true;
-    for (const auto& row : m_paramRows) {
-        row->value = effectValue(effect, *row->meta);
-        if (row->slider) {
-            const QSignalBlocker b1(row->slider);
-            const QSignalBlocker b2(row->spin);
-            row->spin->setValue(row->value.x);
-            if (!row->slider->isSliderDown())
-                row->slider->setValue(row->toSlider(row->value.x));
-        }
-        if (row->combo) {
-            const QSignalBlocker b(row->combo);
-            row->combo->setCurrentIndex(static_cast<int>(row->value.x));
-        }
-        if (row->swatch) {
-            const QColor c = PickerColorSpace().toQColor(row->value);
-            row->swatch->setStyleSheet(
-                QStringLiteral("background-color: %1;").arg(c.name(QColor::HexRgb)));
-            row->swatch->setToolTip(QStringLiteral("linear (%1, %2, %3)")
-                                        .arg(row->value.x, 0, 'f', 3)
-                                        .arg(row->value.y, 0, 'f', 3)
-                                        .arg(row->value.z, 0, 'f', 3));
-        }
-    }
-    m_refreshing = false;
-}
-
-void PostChainPanel::editParam(const std::string& id, std::vector<float> value, int mergeKey) {
-    if (m_refreshing || m_formRow < 0)
-        return;
-    const auto& effects = m_controller->scene().post.effects;
-    if (m_formRow >= static_cast<int>(effects.size()))
-        return;
-    const EffectInstance& effect = effects[static_cast<size_t>(m_formRow)];
-    const EffectMeta* meta = findPostEffect(effect.type);
-    const ParamMeta* p = meta ? findEffectParam(*meta, id) : nullptr;
-    if (!p)
-        return;
-    for (float& v : value)
-        v = std::clamp(v, p->min, p->max);
-    const glm::vec3 current = effectValue(effect, *p);
-    const bool same = paramComponents(*p) == 3
-                          ? value.size() == 3 && glm::vec3(value[0], value[1], value[2]) == current
-                          : !value.empty() && value[0] == current.x;
-    if (same)
-        return;
-    const auto it = effect.params.find(id);
-    std::vector<float> old = it == effect.params.end() ? std::vector<float>{} : it->second;
-    m_controller->undoStack()->push(
-        new SetEffectParamCommand(m_controller, static_cast<size_t>(m_formRow), id, std::move(old),
-                                  std::move(value), mergeKey));
 }
 
 } // namespace velvet::ui

@@ -3,9 +3,10 @@
 /// The Post chain panel (issue 5): the scene's effects in a list with enable check boxes, drag
 /// to reorder (or Ctrl+Up / Ctrl+Down), add from a menu grouped by stage, remove (Delete),
 /// duplicate (Ctrl+D), chain presets loaded and saved, stage conflicts explained inline (a
-/// warning icon and tooltip on the offending row, the explanations under the list), and the
-/// selected effect's parameters in a form generated from its ParamMeta. Every change is a
-/// QUndoCommand (ui/commands/post_chain_commands.h).
+/// warning icon and tooltip on the offending row, the explanations under the list). The selected
+/// effect's parameters are edited in the Properties panel (effectSelected; PropertyPanel builds
+/// them from the effect's ParamMeta). Every change is a QUndoCommand
+/// (ui/commands/post_chain_commands.h).
 
 #include <QListView>
 #include <QString>
@@ -15,8 +16,6 @@
 #include <string>
 #include <vector>
 
-class QFormLayout;
-class QGroupBox;
 class QLabel;
 class QMenu;
 class QToolButton;
@@ -61,8 +60,6 @@ public:
     QMenu* addMenu() const { return m_addMenu; }
     /// The explanations of every stage conflict, under the list (hidden when there is none).
     QLabel* issueLabel() const { return m_issueLabel; }
-    /// The parameter form of the selected effect.
-    QGroupBox* parameterBox() const { return m_paramBox; }
 
     /// The selected row, or -1.
     int currentRow() const;
@@ -90,18 +87,14 @@ public slots:
 signals:
     /// Errors for the Log (a failed load or save), already formatted.
     void problemsReported(const QString& text);
+    /// The artist selected (or clicked) effect @p row; -1 when nothing is selected. The window
+    /// shows that effect's parameters in Properties.
+    void effectSelected(int row);
 
 private:
     void buildAddMenu();
     void updateActions();
     void updateIssues();
-    void syncForm();
-    void rebuildForm();
-    void refreshFormValues();
-    void editParam(const std::string& id, std::vector<float> value, int mergeKey);
-
-    struct ParamRow;
-
     DocumentController* m_controller;
     PostChainModel* m_model;
     PostChainListView* m_list;
@@ -112,12 +105,6 @@ private:
     QToolButton* m_upButton = nullptr;
     QToolButton* m_downButton = nullptr;
     QLabel* m_issueLabel = nullptr;
-    QGroupBox* m_paramBox = nullptr;
-    QFormLayout* m_paramForm = nullptr;
-    std::vector<std::unique_ptr<ParamRow>> m_paramRows;
-    int m_formRow = -1;
-    QString m_formType;
-    bool m_refreshing = false;
 };
 
 } // namespace velvet::ui

@@ -8,8 +8,8 @@
 
 namespace velvet::ui {
 
-ChoiceParamEditor::ChoiceParamEditor(ParamId id, QWidget* parent)
-    : ParamEditor(id, parent), m_combo(new QComboBox(this)) {
+ChoiceParamEditor::ChoiceParamEditor(const ParamMeta& spec, const QString& name, QWidget* parent)
+    : ParamEditor(spec, name, parent), m_combo(new QComboBox(this)) {
     m_combo->setObjectName(partName("combo"));
     m_combo->setToolTip(QString::fromUtf8(meta().tooltip));
     for (std::string_view name : meta().choices)
@@ -22,7 +22,7 @@ ChoiceParamEditor::ChoiceParamEditor(ParamId id, QWidget* parent)
 
     connect(m_combo, &QComboBox::currentIndexChanged, this, [this](int index) {
         if (index >= 0)
-            emit edited(param(), glm::vec3(static_cast<float>(index)), 0);
+            emitEdited(glm::vec3(static_cast<float>(index)), 0);
     });
     setValue(meta().defaultValue);
 }

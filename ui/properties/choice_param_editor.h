@@ -11,7 +11,7 @@ namespace velvet::ui {
 class ChoiceParamEditor : public ParamEditor {
     Q_OBJECT
 public:
-    ChoiceParamEditor(ParamId id, QWidget* parent = nullptr);
+    ChoiceParamEditor(const ParamMeta& meta, const QString& name, QWidget* parent = nullptr);
     void setValue(glm::vec3 value) override;
 
     QComboBox* comboBox() const { return m_combo; }

@@ -9,8 +9,8 @@
 
 namespace velvet::ui {
 
-ColorParamEditor::ColorParamEditor(ParamId id, QWidget* parent)
-    : ParamEditor(id, parent), m_swatch(new QToolButton(this)) {
+ColorParamEditor::ColorParamEditor(const ParamMeta& spec, const QString& name, QWidget* parent)
+    : ParamEditor(spec, name, parent), m_swatch(new QToolButton(this)) {
     m_swatch->setObjectName(partName("swatch"));
     m_swatch->setIconSize(QSize(48, 16));
     m_swatch->setFocusPolicy(Qt::StrongFocus);
@@ -56,7 +56,7 @@ void ColorParamEditor::pick() {
     // Unchanged (or cancelled): keep the stored value exactly, rather than its round trip.
     if (!chosen.isValid() || chosen.rgb() == initial.rgb())
         return;
-    emit edited(param(), m_space.fromQColor(chosen), 0);
+    emitEdited(m_space.fromQColor(chosen), 0);
 }
 
 } // namespace velvet::ui

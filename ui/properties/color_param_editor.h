@@ -14,7 +14,7 @@ namespace velvet::ui {
 class ColorParamEditor : public ParamEditor {
     Q_OBJECT
 public:
-    ColorParamEditor(ParamId id, QWidget* parent = nullptr);
+    ColorParamEditor(const ParamMeta& meta, const QString& name, QWidget* parent = nullptr);
     void setValue(glm::vec3 linear) override;
     /// How values are shown and picked; redraws the swatch.
     void setColorSpace(const PickerColorSpace& space);

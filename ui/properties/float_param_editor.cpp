@@ -10,8 +10,8 @@
 
 namespace velvet::ui {
 
-FloatParamEditor::FloatParamEditor(ParamId id, QWidget* parent)
-    : ParamEditor(id, parent), m_slider(new QSlider(Qt::Horizontal, this)),
+FloatParamEditor::FloatParamEditor(const ParamMeta& spec, const QString& name, QWidget* parent)
+    : ParamEditor(spec, name, parent), m_slider(new QSlider(Qt::Horizontal, this)),
       m_spin(new QDoubleSpinBox(this)) {
     const ParamMeta& m = meta();
     const QString tip = QString::fromUtf8(m.tooltip);
@@ -27,7 +27,7 @@ FloatParamEditor::FloatParamEditor(ParamId id, QWidget* parent)
     m_spin->setObjectName(partName("spin"));
     m_spin->setRange(m.min, m.max);
     m_spin->setDecimals(range > 100.0f ? 1 : 3);
-    m_spin->setSingleStep((sliderEnd() - m.min) / 100.0);
+    m_spin->setSingleStep((sliderEnd() - sliderStart()) / 100.0);
     m_spin->setKeyboardTracking(false); // typed text commits on Enter or focus out: one command
     m_spin->setToolTip(tip);
     m_spin->setFixedWidth(m_spin->fontMetrics().horizontalAdvance(QStringLiteral("0000.000 nits")));
@@ -44,7 +44,7 @@ FloatParamEditor::FloatParamEditor(ParamId id, QWidget* parent)
     connect(m_slider, &QSlider::sliderReleased, this, [this] { m_gesture = 0; });
     connect(m_slider, &QSlider::valueChanged, this, &FloatParamEditor::onSliderMoved);
     connect(m_spin, &QDoubleSpinBox::valueChanged, this,
-            [this](double v) { emit edited(param(), glm::vec3(static_cast<float>(v)), 0); });
+            [this](double v) { emitEdited(glm::vec3(static_cast<float>(v)), 0); });
 
     setValue(m.defaultValue);
 }
@@ -58,25 +58,35 @@ void FloatParamEditor::setValue(glm::vec3 value) {
         m_slider->setValue(toSlider(value.x));
 }
 
+float FloatParamEditor::sliderStart() const {
+    const ParamMeta& m = meta();
+    constexpr float kUnbounded = -1000.0f; // below this the hard minimum is no slider end
+    if (m.min > kUnbounded)
+        return m.min;
+    const float end = sliderEnd();
+    return end > 0.0f ? std::min(0.0f, end - 1.0f) : end - 1.0f;
+}
+
 float FloatParamEditor::sliderEnd() const {
     const ParamMeta& m = meta();
-    return (m.softMax > m.min && m.softMax < m.max) ? m.softMax : m.max;
+    // softMax 0 means "no soft end" (param_meta.h), also for ranges that contain 0.
+    return (m.softMax != 0.0f && m.softMax > m.min && m.softMax < m.max) ? m.softMax : m.max;
 }
 
 int FloatParamEditor::toSlider(float v) const {
-    const float lo = meta().min;
+    const float lo = sliderStart();
     const float t = (v - lo) / (sliderEnd() - lo);
     return std::clamp(static_cast<int>(std::lround(t * kSliderSteps)), 0, kSliderSteps);
 }
 
 float FloatParamEditor::fromSlider(int position) const {
-    const float lo = meta().min;
+    const float lo = sliderStart();
     return lo + (sliderEnd() - lo) * static_cast<float>(position) / kSliderSteps;
 }
 
 void FloatParamEditor::onSliderMoved(int position) {
     const int key = m_slider->isSliderDown() ? m_gesture : 0;
-    emit edited(param(), glm::vec3(fromSlider(position)), key);
+    emitEdited(glm::vec3(fromSlider(position)), key);
 }
 
 } // namespace velvet::ui

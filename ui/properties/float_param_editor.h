@@ -15,13 +15,16 @@ public:
     /// Slider positions between the ends of its range.
     static constexpr int kSliderSteps = 1000;
 
-    FloatParamEditor(ParamId id, QWidget* parent = nullptr);
+    FloatParamEditor(const ParamMeta& meta, const QString& name, QWidget* parent = nullptr);
     void setValue(glm::vec3 value) override;
 
     QSlider* slider() const { return m_slider; }
     QDoubleSpinBox* spinBox() const { return m_spin; }
 
 private:
+    /// The slider's ends: the hard range, narrowed to the soft end (softMax) and, for values
+    /// without a practical lower bound (a constant node's -10000), to 0 or the soft end minus 1.
+    float sliderStart() const;
     float sliderEnd() const;
     int toSlider(float v) const;
     float fromSlider(int position) const;

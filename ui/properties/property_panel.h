@@ -1,38 +1,111 @@
 #pragma once
 /// @file property_panel.h
-/// The Properties panel, generated from paramMetas(): one group box per ParamMeta::group, one
-/// ParamEditor per parameter. Edits become undo commands through the DocumentController; document
-/// changes (undo, redo, open) refresh the editors without creating commands.
+/// The Properties panel. It shows one subject at a time, always generated from metadata:
+/// - the material (paramMetas()): one group box per ParamMeta::group, one ParamEditor each;
+/// - the effect selected in the Post chain panel (its EffectMeta::params);
+/// - the node selected in the Material graph (its type's inputs described as ParamMeta, and its
+///   string settings: an image file, a colour space). Selecting the material output node, or the
+///   "Material" button in the header, shows the material again.
+/// Every edit is one undo command (slider drags merge into one) pushed through the document's
+/// undo stack; document changes (undo, redo, open) refresh the editors without creating commands.
 
+#include "core/graph/graph_types.h"
 #include "core/material.h"
 #include "ui/color_picking.h"
 
+#include <QPointer>
+#include <QString>
 #include <QWidget>
+#include <glm/vec4.hpp>
+#include <map>
+#include <string>
 #include <vector>
+
+class QLabel;
+class QStackedWidget;
+class QToolButton;
+
+namespace velvet::graph {
+struct Change;
+}
 
 namespace velvet::ui {
 
 class DocumentController;
+class GraphModel;
 class ParamEditor;
 
 class PropertyPanel : public QWidget {
     Q_OBJECT
 public:
+    enum class Subject { Material, Effect, GraphNode };
+
     PropertyPanel(DocumentController* controller, QWidget* parent = nullptr);
 
-    /// The editor of @p id (never null).
+    /// The material page's editor of @p id (never null).
     ParamEditor* editor(ParamId id) const { return m_editors[static_cast<size_t>(id)]; }
     /// How colour swatches and pickers show and pick values (the viewport's display / view).
     void setPickerColorSpace(const PickerColorSpace& space);
+
+    Subject subject() const { return m_subject; }
+    /// The effect shown (its index in the scene's chain), or -1.
+    int effectIndex() const { return m_subject == Subject::Effect ? m_effectIndex : -1; }
+    /// The graph node shown, or kInvalidNodeId.
+    graph::NodeId graphNode() const {
+        return m_subject == Subject::GraphNode ? m_node : graph::kInvalidNodeId;
+    }
+    /// The editor of effect parameter / node input @p id on the effect or node page, or null.
+    /// Named "effectParam:<id>" and "nodeInput:<id>"; node settings are QLineEdit / QComboBox
+    /// children named "nodeSetting:<id>".
+    ParamEditor* subjectEditor(const QString& id) const;
+    /// The header's title ("Material", "Bloom (post effect)", "Image texture (node 3)").
+    QString title() const;
+
+public slots:
+    void showMaterial();
+    /// Shows the parameters of effect @p index of the scene's chain (-1: the material).
+    void showEffect(int index);
+    /// Shows node @p id of @p model. The material output shows the material; no node (the
+    /// graph's selection was cleared) shows the material when a node was shown.
+    void showGraphNode(velvet::ui::GraphModel* model, velvet::graph::NodeId id);
+
+signals:
+    /// The subject changed (the window raises the Properties dock).
+    void subjectChanged();
 
 private:
     void refresh(ParamId id);
     void refreshAll();
     void onEdited(ParamId id, glm::vec3 value, int mergeKey);
+    /// Replaces the subject page (the old one is deleted later: a signal of one of its editors
+    /// may be what led here).
+    QWidget* newSubjectPage(const QString& title, const QString& description);
+    void setSubject(Subject subject, const QString& title);
+    void applyColorSpace(QWidget* root);
+
+    void editEffectParam(const std::string& id, glm::vec4 value, int mergeKey, bool reset);
+    void refreshEffect();
+    void editNodeInput(int input, glm::vec4 value, int mergeKey, bool reset);
+    void editNodeSetting(const std::string& name, const QString& value);
+    void onGraphChanged(const graph::Change& change);
+    void refreshNode();
 
     DocumentController* m_controller;
-    std::vector<ParamEditor*> m_editors; ///< indexed by ParamId
-    bool m_refreshing = false;           ///< set while document values flow into the editors
+    std::vector<ParamEditor*> m_editors; ///< material page, indexed by ParamId
+    QLabel* m_title = nullptr;
+    QToolButton* m_materialButton = nullptr;
+    QStackedWidget* m_stack = nullptr;
+    QWidget* m_materialPage = nullptr;
+    QWidget* m_subjectPage = nullptr;
+    std::map<QString, ParamEditor*> m_subjectEditors; ///< by effect parameter / node input id
+    PickerColorSpace m_space;
+    Subject m_subject = Subject::Material;
+    int m_effectIndex = -1;
+    std::string m_effectType;
+    QPointer<GraphModel> m_graph;
+    graph::NodeId m_node = graph::kInvalidNodeId;
+    QMetaObject::Connection m_graphConnection, m_graphResetConnection;
+    bool m_refreshing = false; ///< set while document values flow into the editors
 };
 
 } // namespace velvet::ui
