@@ -1,18 +1,25 @@
 // Drives the real MainWindow under xvfb-run: an edit made through a property widget changes the
 // document and the viewport's pixels; undo and redo through the Edit shortcuts restore both; a
 // slider drag is one undo command; the title carries the modified marker. Also checks that the
-// property panel is generated from the parameter metadata.
+// property panel is generated from the parameter metadata, and that an image dropped onto a
+// texture slot row fills the slot, shows its thumbnail and changes the viewport, undoably.
 #include "core/color_management.h"
+#include "core/image.h"
 #include "core/material.h"
 #include "ui/commands/set_param_command.h"
 #include "ui/document_controller.h"
+#include "ui/log_panel.h"
 #include "ui/main_window.h"
+#include "ui/properties/property_panel.h"
+#include "ui/properties/texture_slot_editor.h"
 #include "ui/viewport_widget.h"
 
 #include <QApplication>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QDropEvent>
 #include <QFile>
+#include <QMimeData>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QStandardPaths>
@@ -22,6 +29,7 @@
 #include <QTest>
 #include <QToolButton>
 #include <QUndoStack>
+#include <QUrl>
 #include <cmath>
 
 using namespace velvet;
@@ -98,6 +106,8 @@ private slots:
     void colourSwatchShowsDisplayValues();
     void failedOpenLeavesDocumentUntouched();
     void saveMarksCleanAndNamesTitle();
+    void textureDropShowsThumbnailAndUndoes();
+    void textureDropRefusesNonImage();
 
 private:
     /// The viewport's current image (grabFramebuffer renders a fresh frame).
@@ -365,6 +375,170 @@ void TestUiEditor::saveMarksCleanAndNamesTitle() {
     QCOMPARE(m_doc->undoStack()->count(), 0);
     QVERIFY(std::abs(find<QDoubleSpinBox>(kRoughness + "/spin")->value() -
                      saved.material.scalar(ParamId::Roughness)) < 5e-4);
+}
+
+namespace {
+
+/// Sends a drag enter and a drop of @p file's URL onto @p target, as a drag from a file manager
+/// would. Returns whether the drop was accepted; @p entered says whether the drag enter was.
+/// The drop goes straight to the widget's event(): QApplication routes a sent Drop to the drag
+/// manager's current target, which only a real drag sets.
+bool dropFile(QWidget* target, const QString& file, bool* entered) {
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(file)});
+    const QPointF pos(target->width() / 2.0, target->height() / 2.0);
+    QDragEnterEvent enter(pos.toPoint(), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    static_cast<QObject*>(target)->event(&enter);
+    *entered = enter.isAccepted();
+    QDropEvent drop(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    static_cast<QObject*>(target)->event(&drop);
+    return drop.isAccepted();
+}
+
+} // namespace
+
+void TestUiEditor::textureDropShowsThumbnailAndUndoes() {
+    // A 16 x 16 PNG of one known sRGB colour, written through core's image writer.
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    const QString png = dir.filePath(QStringLiteral("red.png"));
+    const int r = 200, g = 60, b = 30;
+    Image image(16, 16, 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            float* p = image.at(x, y);
+            p[0] = r / 255.0f, p[1] = g / 255.0f, p[2] = b / 255.0f, p[3] = 1.0f;
+        }
+    std::string error;
+    QVERIFY2(writeImage(png.toStdString(), image, PixelFormat::UInt8, &error), error.c_str());
+
+    auto* row = find<TextureSlotEditor>(QStringLiteral("textureSlot:baseColor"));
+    QVERIFY(row);
+    QCOMPARE(row, m_window->findChild<PropertyPanel*>()->textureEditor(TextureSlot::BaseColor));
+    QVERIFY(find<QToolButton>(QStringLiteral("textureSlot:baseColor/browse")));
+    QVERIFY(find<QToolButton>(QStringLiteral("textureSlot:baseColor/clear")));
+    auto* combo = find<QComboBox>(QStringLiteral("textureSlot:baseColor/colorSpace"));
+    QVERIFY(combo);
+    QVERIFY(combo->count() > 2); // the default and the config's colour spaces
+    QVERIFY(combo->itemText(0).contains(QStringLiteral("sRGB texture")));
+    auto* normalCombo = find<QComboBox>(QStringLiteral("textureSlot:normal/colorSpace"));
+    QVERIFY(normalCombo && normalCombo->itemText(0).contains(QStringLiteral("Raw")));
+    QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());
+    QVERIFY(row->thumbnail().isNull());
+
+    const QVector<double> pixelBefore = centrePixel(viewportImage());
+    QSignalSpy frames(m_window->viewport(), &ViewportWidget::frameCompleted);
+    bool entered = false;
+    QVERIFY(dropFile(row, png, &entered));
+    QVERIFY(entered);
+    QCOMPARE(QString::fromStdString(m_doc->material().texture(TextureSlot::BaseColor).file),
+             QFileInfo(png).absoluteFilePath());
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    QCOMPARE(m_doc->undoStack()->undoText(), QStringLiteral("Set Base colour texture"));
+    auto* fileLabel = find<QWidget>(QStringLiteral("textureSlot:baseColor/file"));
+    QVERIFY(fileLabel && fileLabel->toolTip().contains(QStringLiteral("red.png")));
+
+    // The thumbnail arrives from the background and shows the file's (display-encoded) colour.
+    QTRY_VERIFY_WITH_TIMEOUT(!row->thumbnail().isNull(), 10000);
+    const QColor shown =
+        row->thumbnail().pixelColor(row->thumbnail().width() / 2, row->thumbnail().height() / 2);
+    QVERIFY2(std::abs(shown.red() - r) <= 2 && std::abs(shown.green() - g) <= 2 &&
+                 std::abs(shown.blue() - b) <= 2,
+             qPrintable(shown.name()));
+
+    waitForFrame(frames);
+    QVector<double> pixelTextured;
+    QTRY_VERIFY_WITH_TIMEOUT(
+        maxDifference(pixelBefore, pixelTextured = centrePixel(viewportImage())) > 2.0, 30000);
+
+    // Undo: the slot, the thumbnail and the viewport are back.
+    frames.clear();
+    m_doc->undoStack()->undo();
+    QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());
+    QVERIFY(row->thumbnail().isNull());
+    waitForFrame(frames);
+    QTRY_VERIFY_WITH_TIMEOUT(maxDifference(pixelBefore, centrePixel(viewportImage())) <= 1.0,
+                             30000);
+
+    // Redo shows the texture again (the thumbnail comes from the cache), then Clear empties it.
+    m_doc->undoStack()->redo();
+    QVERIFY(!m_doc->material().texture(TextureSlot::BaseColor).empty());
+    QTRY_VERIFY_WITH_TIMEOUT(!row->thumbnail().isNull(), 10000);
+    find<QToolButton>(QStringLiteral("textureSlot:baseColor/clear"))->click();
+    QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());
+    QCOMPARE(m_doc->undoStack()->count(), 2);
+
+    // A colour space chosen in the combo is one more command.
+    m_doc->undoStack()->undo(); // the file again
+    const int raw = combo->findData(QStringLiteral("Raw"));
+    QVERIFY(raw > 0);
+    combo->activated(raw);
+    QCOMPARE(m_doc->material().texture(TextureSlot::BaseColor).colorSpace, std::string("Raw"));
+    QCOMPARE(m_doc->undoStack()->undoText(),
+             QStringLiteral("Set Base colour texture colour space"));
+    m_doc->undoStack()->undo();
+    QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).colorSpace.empty());
+    QCOMPARE(combo->currentIndex(), 0);
+
+    // An atlas region: the thumbnail shows just that region (right half blue, left half red).
+    for (int y = 0; y < 16; ++y)
+        for (int x = 8; x < 16; ++x) {
+            float* p = image.at(x, y);
+            p[0] = 0.0f, p[1] = 0.0f, p[2] = 1.0f;
+        }
+    const QString atlas = dir.filePath(QStringLiteral("atlas.png"));
+    QVERIFY2(writeImage(atlas.toStdString(), image, PixelFormat::UInt8, &error), error.c_str());
+    TextureRef region;
+    region.file = QFileInfo(atlas).absoluteFilePath().toStdString();
+    region.useRegion = true;
+    region.region = {8, 0, 8, 16};
+    m_doc->editTexture(TextureSlot::BaseColor, region, QStringLiteral("Assign region"));
+    QVERIFY(fileLabel->toolTip().contains(QStringLiteral("Region: 8, 0, 8 x 16")));
+    QTRY_VERIFY_WITH_TIMEOUT(!row->thumbnail().isNull(), 10000);
+    QCOMPARE(row->thumbnail().size(), QSize(8, 16));
+    for (const QPoint at : {QPoint(0, 0), QPoint(7, 15)})
+        QCOMPARE(row->thumbnail().pixelColor(at), QColor(0, 0, 255));
+}
+
+void TestUiEditor::textureDropRefusesNonImage() {
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    auto* row = find<TextureSlotEditor>(QStringLiteral("textureSlot:baseColor"));
+    QVERIFY(row);
+    LogPanel* log = m_window->logPanel();
+    const Material before = m_doc->material();
+
+    // A text file: refused by the drag enter, and by the drop with a message.
+    const QString text = dir.filePath(QStringLiteral("notes.txt"));
+    QFile file(text);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("not an image\n");
+    file.close();
+    QSignalSpy messages(row, &TextureSlotEditor::message);
+    const size_t logBefore = log->entries().size();
+    bool entered = true;
+    QVERIFY(!dropFile(row, text, &entered));
+    QVERIFY(!entered);
+    QCOMPARE(messages.size(), 1);
+    QVERIFY(messages.at(0).at(0).toString().contains(QStringLiteral("notes.txt")));
+    QCOMPARE(log->entries().size(), logBefore + 1);
+    QVERIFY(log->entries().back().text.contains(QStringLiteral("not an image")));
+    QVERIFY(m_doc->material() == before);
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+    QVERIFY(row->thumbnail().isNull());
+
+    // A file named like an image that OpenImageIO cannot read: refused too, with OIIO's reason.
+    const QString broken = dir.filePath(QStringLiteral("broken.png"));
+    QFile bad(broken);
+    QVERIFY(bad.open(QIODevice::WriteOnly));
+    bad.write("this is not a PNG");
+    bad.close();
+    QVERIFY(!dropFile(row, broken, &entered));
+    QVERIFY(entered); // the extension looks right
+    QCOMPARE(messages.size(), 2);
+    QVERIFY(messages.at(1).at(0).toString().contains(QStringLiteral("broken.png")));
+    QVERIFY(m_doc->material() == before);
+    QCOMPARE(m_doc->undoStack()->count(), 0);
 }
 
 int main(int argc, char** argv) {

@@ -6,8 +6,10 @@
 #include "ui/commands/post_chain_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_model.h"
+#include "ui/log_panel.h"
 #include "ui/properties/color_param_editor.h"
 #include "ui/properties/param_editor.h"
+#include "ui/properties/texture_slot_editor.h"
 
 #include <QComboBox>
 #include <QFileDialog>
@@ -17,8 +19,10 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMainWindow>
 #include <QSignalBlocker>
 #include <QStackedWidget>
+#include <QStatusBar>
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
@@ -71,7 +75,8 @@ const QStringList& colorSpaceChoices() {
 } // namespace
 
 PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
-    : QWidget(parent), m_controller(controller), m_editors(kParamCount, nullptr) {
+    : QWidget(parent), m_controller(controller), m_editors(kParamCount, nullptr),
+      m_textureEditors(kTextureSlotCount, nullptr) {
     setObjectName(QStringLiteral("propertyPanel"));
     auto* outer = new QVBoxLayout(this);
 
@@ -130,6 +135,26 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
                 [this, id] { m_controller->resetParam(id); });
     }
 
+    // Textures: one row per slot (thumbnail, file, Browse…, Clear, colour space; drops).
+    {
+        auto* box = new QGroupBox(tr("Textures"), m_materialPage);
+        box->setObjectName(QStringLiteral("group:Textures"));
+        auto* form = new QFormLayout(box);
+        form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+        for (const TextureSlotMeta& meta : textureSlotMetas()) {
+            const auto slot = static_cast<TextureSlot>(&meta - textureSlotMetas().data());
+            auto* row = new TextureSlotEditor(m_controller, slot, box);
+            auto* label = new QLabel(fromView(meta.label), box);
+            label->setToolTip(fromView(meta.tooltip));
+            label->setBuddy(row);
+            form->addRow(label, row);
+            labels.push_back(label);
+            m_textureEditors[static_cast<size_t>(slot)] = row;
+            connect(row, &TextureSlotEditor::message, this, &PropertyPanel::reportMessage);
+        }
+        layout->addWidget(box);
+    }
+
     // One label column width for every group, so sliders line up from group to group.
     int labelWidth = 0;
     for (QLabel* label : labels)
@@ -138,6 +163,11 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
         label->setMinimumWidth(labelWidth);
 
     connect(m_controller, &DocumentController::paramChanged, this, &PropertyPanel::refresh);
+    // Texture slots change through sceneChanged (edit, undo, redo, open); rows skip unchanged.
+    connect(m_controller, &DocumentController::sceneChanged, this, [this] {
+        for (TextureSlotEditor* row : m_textureEditors)
+            row->refresh();
+    });
     connect(m_controller, &DocumentController::documentReplaced, this, [this] {
         refreshAll();
         showMaterial(); // the old document's effects and nodes are gone
@@ -187,6 +217,19 @@ void PropertyPanel::onEdited(ParamId id, glm::vec3 value, int mergeKey) {
 void PropertyPanel::setPickerColorSpace(const PickerColorSpace& space) {
     m_space = space;
     applyColorSpace(this);
+    if (space.colorManagement)
+        for (TextureSlotEditor* row : m_textureEditors)
+            row->setColorManagement(space.colorManagement);
+}
+
+void PropertyPanel::reportMessage(const QString& text) {
+    emit message(text);
+    // The window's status bar and Log, where there is one (the panel may stand alone in tests).
+    if (auto* window = qobject_cast<QMainWindow*>(this->window())) {
+        window->statusBar()->showMessage(text, 10000);
+        if (auto* log = window->findChild<LogPanel*>())
+            log->warning(text);
+    }
 }
 
 void PropertyPanel::applyColorSpace(QWidget* root) {

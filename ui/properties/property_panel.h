@@ -1,7 +1,8 @@
 #pragma once
 /// @file property_panel.h
 /// The Properties panel. It shows one subject at a time, always generated from metadata:
-/// - the material (paramMetas()): one group box per ParamMeta::group, one ParamEditor each;
+/// - the material (paramMetas()): one group box per ParamMeta::group, one ParamEditor each,
+///   then a "Textures" group with one TextureSlotEditor per slot (textureSlotMetas());
 /// - the effect selected in the Post chain panel (its EffectMeta::params);
 /// - the node selected in the Material graph (its type's inputs described as ParamMeta, and its
 ///   string settings: an image file, a colour space). Selecting the material output node, or the
@@ -34,6 +35,7 @@ namespace velvet::ui {
 class DocumentController;
 class GraphModel;
 class ParamEditor;
+class TextureSlotEditor;
 
 class PropertyPanel : public QWidget {
     Q_OBJECT
@@ -44,6 +46,10 @@ public:
 
     /// The material page's editor of @p id (never null).
     ParamEditor* editor(ParamId id) const { return m_editors[static_cast<size_t>(id)]; }
+    /// The material page's row of texture slot @p slot in the "Textures" group (never null).
+    TextureSlotEditor* textureEditor(TextureSlot slot) const {
+        return m_textureEditors[static_cast<size_t>(slot)];
+    }
     /// How colour swatches and pickers show and pick values (the viewport's display / view).
     void setPickerColorSpace(const PickerColorSpace& space);
 
@@ -72,6 +78,9 @@ public slots:
 signals:
     /// The subject changed (the window raises the Properties dock).
     void subjectChanged();
+    /// A refused edit (e.g. a file that is not an image dropped onto a texture slot). Also shown
+    /// in the window's status bar and Log.
+    void message(const QString& text);
 
 private:
     void refresh(ParamId id);
@@ -82,6 +91,7 @@ private:
     QWidget* newSubjectPage(const QString& title, const QString& description);
     void setSubject(Subject subject, const QString& title);
     void applyColorSpace(QWidget* root);
+    void reportMessage(const QString& text);
 
     void editEffectParam(const std::string& id, glm::vec4 value, int mergeKey, bool reset);
     void refreshEffect();
@@ -91,7 +101,8 @@ private:
     void refreshNode();
 
     DocumentController* m_controller;
-    std::vector<ParamEditor*> m_editors; ///< material page, indexed by ParamId
+    std::vector<ParamEditor*> m_editors;              ///< material page, indexed by ParamId
+    std::vector<TextureSlotEditor*> m_textureEditors; ///< material page, indexed by TextureSlot
     QLabel* m_title = nullptr;
     QToolButton* m_materialButton = nullptr;
     QStackedWidget* m_stack = nullptr;
