@@ -167,7 +167,24 @@ struct Renderer::Impl {
         int uploads = 0;
     } graph;
 
-    ShaderProgram gbufferProgram, lightingProgram, tonemapProgram;
+    ShaderProgram gbufferProgram, tonemapProgram;
+    /// lighting.frag in variants (its header): the surfaces per debug-view family, and the
+    /// background per BackgroundMode. Final and the backgrounds are built with the other programs
+    /// (a scene edit never compiles); the two debug families the first time a frame asks for them
+    /// (a debug-view switch may compile once).
+    enum LightingVariant {
+        kLitFinal,
+        kLitLobeViews,
+        kLitGBufferViews,
+        kLitBackground, ///< + int(BackgroundMode)
+        kLitCount = kLitBackground + 4
+    };
+    ShaderProgram lightingPrograms[kLitCount];
+    /// The HDR colour with the G-buffer's depth (read-only): the lighting pass depth-tests its
+    /// full-screen triangles (at the far plane) so surfaces shade only geometry pixels and the
+    /// background only the others.
+    GLuint litFbo = 0;
+    GLuint litFboColor = 0, litFboDepth = 0;
     GBuffer gbuffer;
     ColorTarget hdr;
     // Preview meshes, uploaded once per kind / custom file; a failed custom import is
@@ -224,7 +241,44 @@ struct Renderer::Impl {
             glDeleteQueries(4, queries);
         if (lightsQuery)
             glDeleteQueries(1, &lightsQuery);
+        if (litFbo)
+            glDeleteFramebuffers(1, &litFbo);
         releaseGraph();
+    }
+
+    static LightingVariant lightingVariantFor(DebugView view) {
+        if (view == DebugView::Final)
+            return kLitFinal;
+        if (view == DebugView::LightsPerPixel ||
+            (view >= DebugView::DiffuseOnly && view <= DebugView::ClearcoatOnly))
+            return kLitLobeViews;
+        return kLitGBufferViews;
+    }
+
+    /// Builds lighting.frag's variant @p v; false + message on failure (the last good build, if
+    /// any, is kept).
+    bool buildLightingVariant(LightingVariant v, std::string* error) {
+        std::vector<std::string> defines{"FULLSCREEN_FAR_PLANE"};
+        if (v == kLitLobeViews)
+            defines.emplace_back("LIGHTING_LOBE_VIEWS");
+        else if (v == kLitGBufferViews)
+            defines.emplace_back("LIGHTING_GBUFFER_VIEWS");
+        else if (v >= kLitBackground) {
+            defines.emplace_back("LIGHTING_BACKGROUND");
+            defines.emplace_back("BACKGROUND_MODE " + std::to_string(v - kLitBackground));
+        }
+        if (!lightingPrograms[v].build("fullscreen.vert", "lighting.frag", defines, error))
+            return false;
+        ++compileCount;
+        return true;
+    }
+
+    /// The variant for @p view, built the first time it is asked for.
+    const ShaderProgram* lightingVariant(DebugView view, std::string* error) {
+        const LightingVariant v = lightingVariantFor(view);
+        if (lightingPrograms[v].id() == 0 && !buildLightingVariant(v, error))
+            return nullptr;
+        return &lightingPrograms[v];
     }
 
     void releaseGraph() {
@@ -393,7 +447,6 @@ struct Renderer::Impl {
             const char* vs;
             const char* fs;
         } programs[] = {{gbufferProgram, "gbuffer.vert", "gbuffer.frag"},
-                        {lightingProgram, "fullscreen.vert", "lighting.frag"},
                         {tonemapProgram, "fullscreen.vert", "post_tonemap.frag"}};
         std::string errors;
         for (auto& p : programs) {
@@ -407,6 +460,15 @@ struct Renderer::Impl {
                 continue;
             }
             ++compileCount;
+        }
+        // lighting.frag: Final and Background always (the first frame needs them), the debug
+        // families again only when built before (a reload).
+        for (int v = 0; v < kLitCount && (keepGoing || errors.empty()); ++v) {
+            if ((v == kLitLobeViews || v == kLitGBufferViews) && lightingPrograms[v].id() == 0)
+                continue;
+            std::string message;
+            if (!buildLightingVariant(LightingVariant(v), &message))
+                errors += (errors.empty() ? "" : "\n") + message;
         }
         if (!errors.empty() && error)
             *error = errors;
@@ -711,6 +773,10 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // old program (graphError()).
     d.buildPendingGraph();
     d.refreshGraphTextures(nullptr); // files changed on disk (polled above) re-upload
+    // lighting.frag's variant for this view (built the first time a debug family is shown).
+    const ShaderProgram* surfaceProgram = d.lightingVariant(fs.view, error);
+    if (!surfaceProgram)
+        return false;
     // An unknown display, view or look fails here, before anything is drawn.
     const bool ocioDisplay = fs.usesColorManagement() && fs.view == DebugView::Final;
     if (ocioDisplay && !d.selectDisplayTransform(fs, error))
@@ -791,11 +857,24 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.unbindGraph();
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
 
-    // 2. Lighting + background into the HDR target.
-    glDisable(GL_DEPTH_TEST);
+    // 2. Lighting + background into the HDR target, with the G-buffer depth read-only.
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
-    glBindFramebuffer(GL_FRAMEBUFFER, d.hdr.framebuffer());
+    {
+        GLint depthTexture = 0;
+        glGetNamedFramebufferAttachmentParameteriv(d.gbuffer.framebuffer(), GL_DEPTH_ATTACHMENT,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
+                                                   &depthTexture);
+        if (!d.litFbo)
+            glCreateFramebuffers(1, &d.litFbo);
+        if (d.litFboColor != d.hdr.texture() || d.litFboDepth != GLuint(depthTexture)) {
+            glNamedFramebufferTexture(d.litFbo, GL_COLOR_ATTACHMENT0, d.hdr.texture(), 0);
+            glNamedFramebufferTexture(d.litFbo, GL_DEPTH_ATTACHMENT, GLuint(depthTexture), 0);
+            d.litFboColor = d.hdr.texture();
+            d.litFboDepth = GLuint(depthTexture);
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, d.litFbo);
     d.gbuffer.bindTextures();
     glBindTextureUnit(binding::kEnvironmentTex, d.environment->texture);
     glBindTextureUnit(binding::kSheenLutTex, d.ibl.sheenLut());
@@ -813,8 +892,27 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     }
     glBindVertexArray(d.emptyVao);
-    glUseProgram(d.lightingProgram.id());
+    // Triangles at the far plane: GL_EQUAL passes where nothing was drawn (the background),
+    // GL_GREATER where there is geometry (the surfaces), so neither pays for the other.
+    glEnable(GL_DEPTH_TEST);
+    if (fs.view == DebugView::Final) {
+        glDepthFunc(GL_EQUAL);
+        // Blurred falls back to Sharp (the same lookup) until the prefiltered cube is ready.
+        BackgroundMode mode = d.scene.environment.background;
+        if (mode == BackgroundMode::Blurred && !d.ibl.specularReady())
+            mode = BackgroundMode::Sharp;
+        const int m = int(mode) >= 0 && int(mode) <= 3 ? int(mode) : 0; // unknown: Sharp (as GLSL)
+        glUseProgram(d.lightingPrograms[Impl::kLitBackground + m].id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    } else {
+        const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f}; // debug views: no background
+        glClearBufferfv(GL_COLOR, 0, black);
+    }
+    glDepthFunc(GL_GREATER);
+    glUseProgram(surfaceProgram->id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
     glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
     // Point, spot and area lights, added on top by the path the frame asks for.
     if (isLightView(fs.view))

@@ -206,10 +206,12 @@ void MainWindow::createDocks() {
     graphDock->setObjectName(QStringLiteral("graphDock"));
     graphDock->setWidget(graphPanel);
     addDockWidget(Qt::BottomDockWidgetArea, graphDock, Qt::Horizontal);
-    connect(graphPanel, &GraphPanel::message, this, [this](const QString& text) {
+    const auto showMessage = [this](const QString& text) {
         statusBar()->showMessage(text, 10000);
         m_log->warning(text);
-    });
+    };
+    connect(graphPanel, &GraphPanel::message, this, showMessage);
+    connect(m_properties, &PropertyPanel::message, this, showMessage);
 
     // The selected effect or node shows its parameters in Properties.
     connect(m_postChain, &PostChainPanel::effectSelected, m_properties, &PropertyPanel::showEffect);

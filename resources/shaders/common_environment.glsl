@@ -149,13 +149,22 @@ vec3 proceduralBackground(vec2 uv, float t) {
 // The background along world direction dir at screen position uv, for BackgroundMode (scene.h):
 // Sharp the environment itself, Blurred a prefiltered level, SolidColor the colour exactly,
 // ProceduralFbm the seed's noise.
+// With BACKGROUND_MODE defined (lighting.frag's background variants) only that mode is compiled
+// in, llvmpipe running every branch otherwise; the Blurred variant is used only once the cube is
+// ready.
 vec3 backgroundRadiance(vec3 dir, vec2 uv) {
+#ifdef BACKGROUND_MODE
+    const int mode = BACKGROUND_MODE;
+    const bool cubeReady = BACKGROUND_MODE == 1;
+#else
     int mode = frame.modes.w;
+    bool cubeReady = ibl.state.x > 0.5;
+#endif
     if (mode == 2)
         return frame.backgroundColor.rgb;
     if (mode == 3)
         return proceduralBackground(uv, ibl.background.y);
-    if (mode == 1 && ibl.state.x > 0.5)
+    if (mode == 1 && cubeReady)
         return textureLod(uSpecularCube, toEnvironment(dir), ibl.background.x).rgb *
                    frame.envParams.z +
                frame.ambientRadiance.rgb;

@@ -1,7 +1,16 @@
 #version 450 core
 // Full-screen lighting: reads the G-buffer, reconstructs the position from depth, adds the
 // directional lights, ambient lights and the environment (SH9 diffuse + GGX-prefiltered cube and
-// DFG LUT specular); where depth is far, draws the background. Debug views write raw values.
+// DFG LUT specular); debug views write raw values.
+//
+// Built in variants (render/renderer.cpp, one program each, so that a pixel pays only for the
+// code of its own variant; llvmpipe runs both sides of every branch):
+//   LIGHTING_BACKGROUND     the background only; drawn where the G-buffer depth is the far plane
+//   LIGHTING_LOBE_VIEWS     surfaces, the lobe views and lights per pixel
+//   LIGHTING_GBUFFER_VIEWS  surfaces, the G-buffer views (albedo .. material id)
+//   (none of them)          surfaces, the final image
+// The surface variants are drawn only where there is geometry (depth test against the G-buffer
+// depth, the full-screen triangle at the far plane: fullscreen.vert's FULLSCREEN_FAR_PLANE).
 #include "common_frame.glsl"
 #include "common_gbuffer.glsl"
 #include "common_material.glsl"
@@ -26,15 +35,17 @@ vec3 background(vec2 ndcXY) {
     return backgroundRadiance(dir, gl_FragCoord.xy * frame.viewport.w); // common_environment.glsl
 }
 
+#if defined(LIGHTING_BACKGROUND)
+void main() {
+    vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
+    outColor = vec4(background(ndcXY), 1.0);
+}
+#else
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
     float depth = texelFetch(gDepthTex, pixel, 0).r;
     int view = frame.modes.y;
-    if (depth >= 1.0) {
-        outColor = vec4(view == DEBUG_FINAL ? background(ndcXY) : vec3(0.0), 1.0);
-        return;
-    }
 
     vec4 rt0 = texelFetch(gBaseColorOcclusionTex, pixel, 0);
     vec2 rt1 = texelFetch(gNormalTex, pixel, 0).rg;
@@ -63,7 +74,8 @@ void main() {
     vec3 toEyeView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, 1.0) : -posView;
     vec3 v = normalize((frame.invViewMatrix * vec4(toEyeView, 0.0)).xyz);
 
-    if (isLobeView(view) || view == DEBUG_LIGHTS_PER_PIXEL) {
+#if defined(LIGHTING_LOBE_VIEWS)
+    {
         // Directional lights through one lobe; light_passes adds the other lights.
         vec3 lobes = vec3(0.0);
         for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
@@ -71,9 +83,9 @@ void main() {
             lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb;
         }
         outColor = vec4(lobes, 1.0);
-        return;
     }
-    if (view != DEBUG_FINAL) {
+#elif defined(LIGHTING_GBUFFER_VIEWS)
+    {
         vec3 value = view == DEBUG_ALBEDO      ? s.baseColor
                      : view == DEBUG_NORMAL    ? n
                      : view == DEBUG_DEPTH     ? vec3(-posView.z)
@@ -87,8 +99,8 @@ void main() {
                      : view == DEBUG_EMISSIVE  ? s.emissive
                                                : vec3(float(decodeMaterialId(rt2.b)));
         outColor = vec4(value, 1.0);
-        return;
     }
+#else
 
     // Direct light.
     vec3 color = vec3(0.0);
@@ -127,4 +139,6 @@ void main() {
     }
     color += ambient * occlusion + emissive;
     outColor = vec4(color, 1.0);
+#endif
 }
+#endif // LIGHTING_BACKGROUND

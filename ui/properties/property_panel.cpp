@@ -6,7 +6,6 @@
 #include "ui/commands/post_chain_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_model.h"
-#include "ui/log_panel.h"
 #include "ui/properties/color_param_editor.h"
 #include "ui/properties/param_editor.h"
 #include "ui/properties/texture_slot_editor.h"
@@ -19,10 +18,8 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
-#include <QMainWindow>
 #include <QSignalBlocker>
 #include <QStackedWidget>
-#include <QStatusBar>
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
@@ -223,13 +220,7 @@ void PropertyPanel::setPickerColorSpace(const PickerColorSpace& space) {
 }
 
 void PropertyPanel::reportMessage(const QString& text) {
-    emit message(text);
-    // The window's status bar and Log, where there is one (the panel may stand alone in tests).
-    if (auto* window = qobject_cast<QMainWindow*>(this->window())) {
-        window->statusBar()->showMessage(text, 10000);
-        if (auto* log = window->findChild<LogPanel*>())
-            log->warning(text);
-    }
+    emit message(text); // the main window shows it in the status bar and the Log
 }
 
 void PropertyPanel::applyColorSpace(QWidget* root) {
