@@ -4,6 +4,7 @@
 #include "core/color_management.h"
 #include "core/document_io.h"
 #include "core/image.h"
+#include "core/light_rigs.h"
 #include "core/post_chain_io.h"
 #include "render/offscreen.h"
 
@@ -34,6 +35,9 @@ const std::vector<OptionSpec> kOptions{
      "clearcoat, sheen, occlusion, emissive, material-id, lights-per-pixel (heat map), "
      "diffuse-only, specular-only, base-specular, sheen-only, clearcoat-only (lobe views: direct "
      "light only)"},
+    {"light-rig", 0, true, "ID",
+     "replace the scene's lights with a rig: key, three-point, softboxes, sun, stage-spot, "
+     "coloured-points or environment (the HDRI alone)"},
     {"chain", 0, true, "CHAIN.json",
      "post-effect chain preset (resources/post-chains/) replacing the scene's chain"},
     {"help", 'h', false, "", "this text"},
@@ -260,6 +264,12 @@ int runRender(const std::vector<std::string>& argv) {
     if (!scene || problems.hasErrors()) {
         printProblems(problems);
         return BadInput;
+    }
+    if (args->has("light-rig")) {
+        auto lights = lightRigLights(args->value("light-rig"));
+        if (!lights)
+            return usage("--light-rig: unknown rig '" + args->value("light-rig") + "'");
+        scene->lights = std::move(*lights);
     }
     if (args->has("chain")) {
         const auto preset = loadPostChainFile(args->value("chain"), problems);

@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 #include "core/json_read.h"
 #include "core/json_value.h"
+#include "core/light_rigs.h"
 #include "core/material_json.h"
 #include "core/resources.h"
 #include "core/scene_json.h"
@@ -127,14 +128,8 @@ Scene defaultScene(Problems* problems) {
         scene.materialPreset = absoluteGeneric(preset);
     }
     // A warm key light from the upper left, in front of the mesh (the camera looks down -Z), so
-    // the sheen shows on the lit rim and the HDRI fills the shadow side.
-    Light key;
-    key.type = LightType::Directional;
-    key.name = "Key";
-    key.color = {1.0f, 0.93f, 0.85f};
-    key.intensity = 3.0f;
-    key.direction = {0.5f, -0.6f, -0.62f};
-    scene.lights.push_back(key);
+    // the sheen shows on the lit rim and the HDRI fills the shadow side (core/light_rigs.h).
+    scene.lights = *lightRigLights("key");
     scene.environment.hdri = absoluteGeneric(resources::path("hdri/studio.exr"));
     scene.environment.intensity = 1.0f;
     return scene;

@@ -77,6 +77,13 @@ void DocumentController::editMesh(const MeshRef& mesh) {
     m_undoStack->push(new SetMeshCommand(this, m_scene.mesh, mesh));
 }
 
+void DocumentController::editLights(const std::vector<Light>& lights, const QString& text,
+                                    int mergeKey) {
+    if (lights == m_scene.lights)
+        return;
+    m_undoStack->push(new SetLightsCommand(this, m_scene.lights, lights, text, mergeKey));
+}
+
 void DocumentController::editTexture(TextureSlot slot, const TextureRef& ref, const QString& text) {
     if (m_scene.material.texture(slot) == ref)
         return;
@@ -95,6 +102,12 @@ void DocumentController::setEnvironment(const Environment& environment) {
 
 void DocumentController::setMesh(const MeshRef& mesh) {
     m_scene.mesh = mesh;
+    emit sceneChanged();
+}
+
+void DocumentController::setLights(const std::vector<Light>& lights) {
+    m_scene.lights = lights;
+    emit lightsChanged();
     emit sceneChanged();
 }
 
@@ -223,6 +236,7 @@ void DocumentController::setDocument(Scene scene, const QString& filePath, Atlas
     emit fileChanged(m_filePath);
     emit documentReplaced();
     emit postChainChanged();
+    emit lightsChanged();
     for (int k = 0; k < kAtlasKindCount; ++k)
         emit atlasChanged(AtlasKind(k));
     emit materialReplaced();

@@ -51,6 +51,10 @@ public:
     void editEnvironment(const Environment& environment, const QString& text, int mergeKey = 0);
     /// Replaces the preview mesh (one command). No-op edits push nothing.
     void editMesh(const MeshRef& mesh);
+    /// Replaces the scene's lights (one command named @p text: a light added, removed or edited,
+    /// a rig applied). Edits sharing a non-zero @p mergeKey (one spin-box or slider gesture)
+    /// merge. No-op edits push nothing.
+    void editLights(const std::vector<Light>& lights, const QString& text, int mergeKey = 0);
     /// Fills a material texture slot (one command named @p text). No-op edits push nothing.
     void editTexture(TextureSlot slot, const TextureRef& ref, const QString& text);
     /// @}
@@ -63,6 +67,8 @@ public:
     void setEnvironment(const Environment& environment);
     /// Sets the preview mesh and notifies (sceneChanged).
     void setMesh(const MeshRef& mesh);
+    /// Sets the lights and notifies (lightsChanged, sceneChanged).
+    void setLights(const std::vector<Light>& lights);
     /// Sets the material's node graph and notifies (sceneChanged only: the graph editor's model,
     /// ui/graph/graph_model.h, is the one caller and already knows).
     void setMaterialGraph(const SharedGraph& graph);
@@ -101,6 +107,8 @@ signals:
     void sceneChanged();
     /// One material parameter changed (undo, redo or edit).
     void paramChanged(velvet::ParamId id);
+    /// The lights changed (an edit, a rig, undo, redo; also on new and open).
+    void lightsChanged();
     /// The post chain changed (an effect added, removed, moved, toggled or edited; undo, redo).
     void postChainChanged();
     /// One atlas changed (an edit, undo, redo; every kind on new and open).

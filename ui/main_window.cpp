@@ -2,6 +2,7 @@
 
 #include "core/color_management.h"
 #include "core/document_io.h"
+#include "core/texture_ref.h"
 #include "ui/atlas/atlas_panel.h"
 #include "ui/autosave.h"
 #include "ui/document_controller.h"
@@ -10,6 +11,7 @@
 #include "ui/log_panel.h"
 #include "ui/post_chain/post_chain_panel.h"
 #include "ui/properties/property_panel.h"
+#include "ui/scene/scene_panel.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
 
@@ -48,7 +50,10 @@ QString fileFilter() {
     return QObject::tr("Velvet scenes and presets (*.json)");
 }
 
-enum class DropKind { None, Document, Hdri, Mesh };
+/// What a file dropped on the window does: a scene opens, a preset is applied to the current
+/// scene (undoable), an HDR image becomes the environment, a mesh the preview mesh, another image
+/// the base colour texture.
+enum class DropKind { None, Document, Hdri, Mesh, Image };
 
 DropKind dropKindOf(const QString& path) {
     const QString suffix = QFileInfo(path).suffix().toLower();
@@ -56,6 +61,12 @@ DropKind dropKindOf(const QString& path) {
         return DropKind::Document;
     if (suffix == QLatin1String("exr") || suffix == QLatin1String("hdr"))
         return DropKind::Hdri;
+    static const QStringList images = {QStringLiteral("png"),  QStringLiteral("jpg"),
+                                       QStringLiteral("jpeg"), QStringLiteral("tif"),
+                                       QStringLiteral("tiff"), QStringLiteral("tga"),
+                                       QStringLiteral("bmp")};
+    if (images.contains(suffix))
+        return DropKind::Image;
     static const QStringList meshes = {
         QStringLiteral("obj"), QStringLiteral("fbx"), QStringLiteral("gltf"), QStringLiteral("glb"),
         QStringLiteral("ply"), QStringLiteral("stl"), QStringLiteral("dae")};
@@ -159,6 +170,18 @@ void MainWindow::createDocks() {
     atlas->setWidget(m_atlas);
     addDockWidget(Qt::RightDockWidgetArea, atlas);
     tabifyDockWidget(properties, atlas);
+    properties->raise();
+
+    m_scene = new ScenePanel(m_controller, this);
+    auto* sceneScroll = new QScrollArea(this);
+    sceneScroll->setWidget(m_scene);
+    sceneScroll->setWidgetResizable(true);
+    sceneScroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    auto* sceneDock = new QDockWidget(tr("Scene"), this);
+    sceneDock->setObjectName(QStringLiteral("sceneDock"));
+    sceneDock->setWidget(sceneScroll);
+    addDockWidget(Qt::RightDockWidgetArea, sceneDock);
+    tabifyDockWidget(properties, sceneDock);
     properties->raise();
 
     m_history = new QUndoView(m_controller->undoStack(), this);
@@ -413,8 +436,30 @@ bool MainWindow::reloadScene() {
 
 bool MainWindow::openDroppedFile(const QString& path) {
     switch (dropKindOf(path)) {
-    case DropKind::Document:
+    case DropKind::Document: {
+        // A material preset dropped on the window is applied to the scene being judged (one
+        // undoable step, like the Library); a scene replaces the document.
+        if (detectDocumentKind(path.toStdString()) == DocumentKind::Material) {
+            QString error;
+            if (!m_library->applyPreset(path, &error)) {
+                m_log->error(error);
+                statusBar()->showMessage(tr("Could not apply %1 (see the Log)").arg(path), 10000);
+                return false;
+            }
+            m_log->info(tr("Applied the preset %1").arg(path));
+            return true;
+        }
         return maybeSave() && openFile(path);
+    }
+    case DropKind::Image: {
+        TextureRef ref;
+        ref.file = documentPath(path);
+        m_controller->editTexture(TextureSlot::BaseColor, ref,
+                                  tr("Set Base colour texture %1").arg(QFileInfo(path).fileName()));
+        m_log->info(
+            tr("Base colour texture: %1 (drop on a Properties slot for another one)").arg(path));
+        return true;
+    }
     case DropKind::Hdri: {
         Environment env = m_controller->scene().environment;
         env.hdri = documentPath(path);
@@ -433,7 +478,7 @@ bool MainWindow::openDroppedFile(const QString& path) {
     case DropKind::None:
         break;
     }
-    m_log->warning(tr("%1: not a scene, preset, HDRI or mesh; nothing done").arg(path));
+    m_log->warning(tr("%1: not a scene, preset, HDRI, mesh or image; nothing done").arg(path));
     return false;
 }
 

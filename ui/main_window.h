@@ -1,9 +1,9 @@
 #pragma once
 /// @file main_window.h
 /// The editor window: the viewport in the centre with its toolbars (view state; scene mesh and
-/// environment), docks around it (Properties, History, Log), the File, Edit and View menus,
-/// recent files, drag and drop of scenes, presets, HDRIs and meshes, a status bar with the frame
-/// time and environment progress, and the dirty-document prompt on close.
+/// environment), docks around it (Properties, Scene, History, Log, …), the File, Edit and View
+/// menus, recent files, drag and drop of scenes, presets, HDRIs and meshes, a status bar with the
+/// frame time and environment progress, and the dirty-document prompt on close.
 
 #include "core/material.h"
 
@@ -24,6 +24,7 @@ class ColorManagement;
 namespace velvet::ui {
 
 class AtlasPanel;
+class ScenePanel;
 class Autosave;
 class DocumentController;
 class LibraryPanel;
@@ -43,7 +44,7 @@ public:
     ~MainWindow() override;
 
     /// Bump when docks or toolbars are added or renamed (QMainWindow::saveState's version).
-    static constexpr int kLayoutVersion = 4;
+    static constexpr int kLayoutVersion = 5;
     /// At most this many entries in File > Open Recent.
     static constexpr int kMaxRecentFiles = 8;
 
@@ -56,6 +57,7 @@ public:
     ViewportToolbar* viewportToolbar() const { return m_viewToolbar; }
     SceneToolbar* sceneToolbar() const { return m_sceneToolbar; }
     AtlasPanel* atlasPanel() const { return m_atlas; }
+    ScenePanel* scenePanel() const { return m_scene; }
     Autosave* autosave() const { return m_autosave; }
     /// The toolbar's A/B split toggle.
     QAction* abSplitAction() const { return m_abAction; }
@@ -116,6 +118,7 @@ private:
     ViewportToolbar* m_viewToolbar = nullptr;
     SceneToolbar* m_sceneToolbar = nullptr;
     AtlasPanel* m_atlas = nullptr;
+    ScenePanel* m_scene = nullptr;
     Autosave* m_autosave = nullptr;
     QAction* m_abAction = nullptr;
     QMenu* m_recentMenu = nullptr;

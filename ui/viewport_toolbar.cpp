@@ -4,6 +4,7 @@
 #include "core/resources.h"
 #include "ui/commands/set_scene_command.h"
 #include "ui/document_controller.h"
+#include "ui/scene/scene_choosers.h"
 
 #include <QAction>
 #include <QComboBox>
@@ -55,29 +56,6 @@ const char* const kOverlayKey = "viewport/timingOverlay";
 
 constexpr double kMaxExposure = 10.0;
 constexpr int kExposureSliderSteps = 10; // slider units per EV
-
-constexpr int kRoleAction = Qt::UserRole + 1; ///< combo items that open a file dialog
-
-/// The form core uses for resource paths (document_io.cpp): absolute, normal, '/' separators.
-QString normalPath(const QString& path) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path p(path.toStdString());
-    const fs::path abs = fs::absolute(p, ec);
-    return QString::fromStdString((ec ? p : abs).lexically_normal().generic_string());
-}
-
-QString fromView(std::string_view text) {
-    return QString::fromUtf8(text.data(), static_cast<qsizetype>(text.size()));
-}
-
-/// "rounded-cube" -> "Rounded cube".
-QString prettyName(std::string_view name) {
-    QString text = fromView(name).replace(QLatin1Char('-'), QLatin1Char(' '));
-    if (!text.isEmpty())
-        text[0] = text[0].toUpper();
-    return text;
-}
 
 QComboBox* makeCombo(const QString& name, const QString& tip, QWidget* parent) {
     auto* combo = new QComboBox(parent);
@@ -291,8 +269,17 @@ SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
                               "in the viewport)"));
     addWidget(m_rotation);
 
+    addWidget(new QLabel(tr(" Lights "), this));
+    m_lightRig = makeCombo(QStringLiteral("lightRigCombo"),
+                           tr("Light rig: a set of lights to judge the material under (edit "
+                              "single lights in the Scene panel)"),
+                           this);
+    addWidget(m_lightRig);
+
     m_intensityKey = SetEnvironmentCommand::nextMergeKey();
     refresh();
+    connect(m_lightRig, &QComboBox::activated, this,
+            [this](int index) { applyLightRigChoice(m_controller, m_lightRig, index); });
 
     connect(m_mesh, &QComboBox::activated, this, &SceneToolbar::onMeshChosen);
     connect(m_hdri, &QComboBox::activated, this, &SceneToolbar::onHdriChosen);
@@ -318,42 +305,8 @@ SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
 void SceneToolbar::refresh() {
     m_updating = true;
     const Scene& scene = m_controller->scene();
-    {
-        const QSignalBlocker block(m_mesh);
-        m_mesh->clear();
-        const auto names = previewMeshKindNames();
-        for (size_t i = 0; i < names.size(); ++i) {
-            const auto kind = static_cast<PreviewMeshKind>(i);
-            if (kind != PreviewMeshKind::Custom)
-                m_mesh->addItem(prettyName(names[i]), static_cast<int>(kind));
-        }
-        if (scene.mesh.kind == PreviewMeshKind::Custom)
-            m_mesh->addItem(QFileInfo(QString::fromStdString(scene.mesh.file)).fileName(),
-                            static_cast<int>(PreviewMeshKind::Custom));
-        m_mesh->addItem(tr("Custom mesh…"), static_cast<int>(PreviewMeshKind::Custom));
-        m_mesh->setItemData(m_mesh->count() - 1, true, kRoleAction);
-        m_mesh->setCurrentIndex(std::max(0, m_mesh->findData(static_cast<int>(scene.mesh.kind))));
-    }
-    {
-        const QSignalBlocker block(m_hdri);
-        m_hdri->clear();
-        m_hdri->addItem(tr("Uniform white"), QString());
-        const QDir dir(QString::fromStdString(resources::path("hdri").string()));
-        for (const QFileInfo& file :
-             dir.entryInfoList({QStringLiteral("*.exr")}, QDir::Files, QDir::Name))
-            m_hdri->addItem(file.completeBaseName(), normalPath(file.absoluteFilePath()));
-        const QString current = scene.environment.hdri.empty()
-                                    ? QString()
-                                    : normalPath(QString::fromStdString(scene.environment.hdri));
-        int index = m_hdri->findData(current);
-        if (index < 0) {
-            m_hdri->addItem(QFileInfo(current).fileName(), current);
-            index = m_hdri->count() - 1;
-        }
-        m_hdri->addItem(tr("Other HDRI…"), QString());
-        m_hdri->setItemData(m_hdri->count() - 1, true, kRoleAction);
-        m_hdri->setCurrentIndex(index);
-    }
+    fillMeshCombo(m_mesh, scene);
+    fillHdriCombo(m_hdri, scene);
     {
         const QSignalBlocker block(m_intensity);
         m_intensity->setValue(scene.environment.intensity);
@@ -365,49 +318,16 @@ void SceneToolbar::refresh() {
             degrees += 360.0f;
         m_rotation->setValue(int(std::lround(degrees)));
     }
+    fillLightRigCombo(m_lightRig, scene);
     m_updating = false;
 }
 
 void SceneToolbar::onMeshChosen(int index) {
-    MeshRef mesh;
-    mesh.kind = static_cast<PreviewMeshKind>(m_mesh->itemData(index).toInt());
-    if (mesh.kind == PreviewMeshKind::Custom) {
-        if (m_mesh->itemData(index, kRoleAction).toBool()) {
-            const QString file = QFileDialog::getOpenFileName(
-                this, tr("Preview mesh"), QString(),
-                tr("Meshes (*.obj *.fbx *.gltf *.glb *.ply *.stl *.dae)"));
-            if (file.isEmpty()) {
-                refresh();
-                return;
-            }
-            mesh.file = normalPath(file).toStdString();
-        } else {
-            mesh.file = m_controller->scene().mesh.file;
-        }
-    }
-    m_controller->editMesh(mesh);
-    refresh(); // a no-op choice sends no signal
+    applyMeshChoice(m_controller, m_mesh, index, this);
 }
 
 void SceneToolbar::onHdriChosen(int index) {
-    Environment env = m_controller->scene().environment;
-    QString path = m_hdri->itemData(index).toString();
-    if (m_hdri->itemData(index, kRoleAction).toBool()) {
-        path = QFileDialog::getOpenFileName(this, tr("Environment"), QString(),
-                                            tr("HDR images (*.exr *.hdr)"));
-        if (path.isEmpty()) {
-            refresh();
-            return;
-        }
-        path = normalPath(path);
-    }
-    env.hdri = path.toStdString();
-    if (path.isEmpty())
-        env.color = glm::vec3(1.0f);
-    m_controller->editEnvironment(env, path.isEmpty()
-                                           ? tr("Uniform white environment")
-                                           : tr("HDRI %1").arg(QFileInfo(path).fileName()));
-    refresh();
+    applyHdriChoice(m_controller, m_hdri, index, this);
 }
 
 void SceneToolbar::editEnvironment(const QString& text, int mergeKey, float intensity,

@@ -6,7 +6,8 @@
 /// per-pass timing overlay. It is persisted in QSettings and never undoable (issue 6: what the
 /// artist looks through is not part of the material).
 ///
-/// SceneToolbar edits *the document*: preview mesh, HDRI, environment intensity and rotation.
+/// SceneToolbar edits *the document*: preview mesh, HDRI, environment intensity and rotation,
+/// light rig.
 /// Each change is an undo command through DocumentController (drags merge into one).
 
 #include "render/renderer.h"
@@ -95,6 +96,7 @@ private:
     QComboBox* m_hdri;
     QDoubleSpinBox* m_intensity;
     QSlider* m_rotation;
+    QComboBox* m_lightRig;
     int m_intensityKey = 0;
     int m_rotationKey = 0;
     bool m_updating = false;

@@ -27,6 +27,20 @@
 namespace velvet::ui {
 namespace {
 
+/// Fabrics first (Velvet's reason to exist), then leather and the other organics, then paints
+/// and coatings, metals, and everything else; by name within a group.
+QString sortKey(const QString& name, const QStringList& tags) {
+    static const QStringList groups = {QStringLiteral("fabric"), QStringLiteral("leather"),
+                                       QStringLiteral("paint"), QStringLiteral("metal")};
+    qsizetype group = groups.size();
+    for (qsizetype g = 0; g < groups.size(); ++g)
+        if (tags.contains(groups[g], Qt::CaseInsensitive)) {
+            group = g;
+            break;
+        }
+    return QString::number(group) + QLatin1Char(' ') + name;
+}
+
 QIcon makePlaceholder() {
     const int size = ThumbnailRenderer::kSize;
     QPixmap pixmap(size, size);
@@ -85,6 +99,7 @@ void LibraryPanel::init(const Options& options) {
     m_proxy->setFilterRole(SearchRole);
     m_proxy->setFilterCaseSensitivity(Qt::CaseInsensitive);
     m_proxy->setSortCaseSensitivity(Qt::CaseInsensitive);
+    m_proxy->setSortRole(SortRole);
 
     m_search = new QLineEdit(this);
     m_search->setObjectName(QStringLiteral("librarySearch"));
@@ -158,6 +173,7 @@ QStandardItem* LibraryPanel::addPresetItem(const QString& path, bool user) {
                       QFileInfo(path).completeBaseName(),
                   SearchRole);
     item->setData(user, UserPresetRole);
+    item->setData(sortKey(name, tags), SortRole);
     item->setData(false, ThumbnailReadyRole);
     item->setToolTip(tags.isEmpty()
                          ? name

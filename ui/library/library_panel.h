@@ -32,6 +32,7 @@ public:
         SearchRole,                  ///< name and tags, what the search field matches
         UserPresetRole,              ///< true for the user's presets
         ThumbnailReadyRole,          ///< true once the rendered thumbnail replaced the placeholder
+        SortRole,                    ///< the list order: fabrics first, then leather, then the rest
     };
 
     struct Options {

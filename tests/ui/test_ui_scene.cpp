@@ -1,0 +1,408 @@
+// Drives the real MainWindow under xvfb-run (issue 5): the Scene dock's lights (a rig, add, edit
+// by typing, Delete) and the toolbar's light rig are undoable document edits that change the
+// viewport's pixels; a material preset dropped on the window is applied as one undoable step
+// (the mesh, HDRI and lights stay), an image dropped on it fills the base colour slot; the
+// History panel jumps; Ctrl+S saves; closing or R with unsaved changes asks first and Cancel
+// keeps everything; the status bar shows the frame time; the Library lists fabrics first.
+#include "core/light_rigs.h"
+#include "core/resources.h"
+#include "ui/document_controller.h"
+#include "ui/library/library_panel.h"
+#include "ui/main_window.h"
+#include "ui/scene/scene_panel.h"
+#include "ui/viewport_widget.h"
+
+#include <QAbstractButton>
+#include <QApplication>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QLabel>
+#include <QListView>
+#include <QListWidget>
+#include <QMenu>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QRegularExpression>
+#include <QSignalSpy>
+#include <QStandardPaths>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QTimer>
+#include <QToolButton>
+#include <QUndoStack>
+#include <QUndoView>
+#include <QUrl>
+#include <QWindow>
+
+using namespace velvet;
+using namespace velvet::ui;
+
+namespace {
+
+constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
+
+/// Mean luma of a 9x9 block around the centre (on the sphere), 0..255.
+double centreLuma(const QImage& image) {
+    double sum = 0.0;
+    const int cx = image.width() / 2, cy = image.height() / 2;
+    for (int y = cy - 4; y <= cy + 4; ++y)
+        for (int x = cx - 4; x <= cx + 4; ++x) {
+            const QColor c = image.pixelColor(x, y);
+            sum += 0.2126 * c.red() + 0.7152 * c.green() + 0.0722 * c.blue();
+        }
+    return sum / 81.0;
+}
+
+/// Sends a file drop of @p file to @p target (enter, move, drop, as QGuiApplication does).
+bool dropFile(QObject* target, QPoint pos, const QString& file) {
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(file)});
+    QDragEnterEvent enter(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    enter.setAccepted(false);
+    QCoreApplication::sendEvent(target, &enter);
+    if (!enter.isAccepted())
+        return false;
+    QDragMoveEvent move(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    move.setDropAction(enter.dropAction());
+    move.setAccepted(true);
+    QCoreApplication::sendEvent(target, &move);
+    QDropEvent drop(QPointF(pos), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    drop.setAccepted(false);
+    QCoreApplication::sendEvent(target, &drop);
+    return drop.isAccepted();
+}
+
+/// Answers the next modal message box with the button whose role is @p role (as a click).
+void answerNextMessageBox(QMessageBox::StandardButton which) {
+    QTimer::singleShot(0, [which] {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        if (!box) {
+            answerNextMessageBox(which); // not shown yet: look again on the next turn
+            return;
+        }
+        QTest::mouseClick(box->button(which), Qt::LeftButton);
+    });
+}
+
+} // namespace
+
+class TestUiScene : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void cleanupTestCase();
+    void init();
+
+    void sceneDockRigChangesPixelAndUndoes();
+    void addAndTypeIntoLightIsOneCommandEach();
+    void deleteKeyRemovesSelectedLight();
+    void toolbarLightRigMatchesSceneDock();
+    void droppedPresetIsAppliedUndoably();
+    void droppedImageFillsBaseColour();
+    void historyPanelJumps();
+    void ctrlSSavesAndClosePromptsWhenDirty();
+    void reloadKeyAsksAndRestoresFile();
+    void statusBarShowsFrameTime();
+    void libraryListsFabricsFirst();
+
+private:
+    QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
+    template <class T>
+    T* find(const QString& name) {
+        T* w = m_window->findChild<T*>(name);
+        if (!w)
+            qWarning("no widget named %s", qPrintable(name));
+        return w;
+    }
+    void chooseRig(QComboBox* combo, std::string_view id) {
+        const int index = combo->findData(QString::fromUtf8(id.data(), qsizetype(id.size())));
+        QVERIFY(index >= 0);
+        combo->setCurrentIndex(index);
+        emit combo->activated(index); // what a click on the item does
+    }
+
+    std::unique_ptr<MainWindow> m_window;
+    DocumentController* m_doc = nullptr;
+    ScenePanel* m_scene = nullptr;
+    QTemporaryDir m_dir;
+};
+
+void TestUiScene::initTestCase() {
+    QVERIFY(m_dir.isValid());
+    m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
+    m_doc = m_window->controller();
+    m_scene = m_window->scenePanel();
+    QVERIFY(m_scene);
+    QSignalSpy frames(m_window->viewport(), &ViewportWidget::frameCompleted);
+    m_window->resize(900, 700);
+    m_window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+    m_window->activateWindow();
+    QApplication::setActiveWindow(m_window.get());
+    QTRY_VERIFY(m_window->isActiveWindow());
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), kFrameTimeoutMs);
+}
+
+void TestUiScene::cleanupTestCase() {
+    m_doc->newDocument();
+    QVERIFY(m_window->close());
+    m_window.reset();
+}
+
+void TestUiScene::init() {
+    m_doc->newDocument();
+}
+
+void TestUiScene::sceneDockRigChangesPixelAndUndoes() {
+    QCOMPARE(matchingLightRig(m_doc->scene().lights).value_or(""), std::string_view("key"));
+    auto* rig = find<QComboBox>(QStringLiteral("sceneLightRig"));
+    QCOMPARE(rig->currentData().toString(), QStringLiteral("key"));
+    const double keyLit = centreLuma(viewportImage());
+
+    chooseRig(rig, "environment");
+    QVERIFY(m_doc->scene().lights.empty());
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    QCOMPARE(m_doc->undoStack()->undoText(), QStringLiteral("Light rig: Environment only"));
+    QCOMPARE(find<QListWidget>(QStringLiteral("lightList"))->count(), 0);
+    const double envOnly = centreLuma(viewportImage());
+    QVERIFY2(envOnly < keyLit - 3.0,
+             qPrintable(QStringLiteral("%1 -> %2").arg(keyLit).arg(envOnly)));
+
+    chooseRig(rig, "sun"); // twice the key's illuminance, from higher up
+    QCOMPARE(m_doc->scene().lights.size(), size_t(1));
+    QCOMPARE(m_doc->scene().lights[0].name, std::string("Sun"));
+
+    m_doc->undoStack()->undo();
+    m_doc->undoStack()->undo();
+    QCOMPARE(matchingLightRig(m_doc->scene().lights).value_or(""), std::string_view("key"));
+    QCOMPARE(rig->currentData().toString(), QStringLiteral("key"));
+    QVERIFY(std::abs(centreLuma(viewportImage()) - keyLit) < 1.0);
+}
+
+void TestUiScene::addAndTypeIntoLightIsOneCommandEach() {
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "environment");
+    const double dark = centreLuma(viewportImage());
+
+    // Add > Point from the dock's menu.
+    auto* add = find<QToolButton>(QStringLiteral("addLightButton"));
+    QMenu* menu = add->menu();
+    QAction* point = nullptr;
+    for (QAction* a : menu->actions())
+        if (a->text() == QStringLiteral("Point"))
+            point = a;
+    QVERIFY(point);
+    point->trigger();
+    QCOMPARE(m_doc->scene().lights.size(), size_t(1));
+    QCOMPARE(m_doc->scene().lights[0].type, LightType::Point);
+    QCOMPARE(m_scene->selectedLight(), 0);
+    QCOMPARE(m_doc->undoStack()->count(), 2);
+
+    // Put it in front of the sphere and type a new intensity: one command for the typing.
+    m_doc->editLights(
+        [&] {
+            auto lights = m_doc->scene().lights;
+            lights[0].position = {0.0f, 0.0f, 2.0f};
+            return lights;
+        }(),
+        QStringLiteral("Move light"));
+    auto* intensity = find<QDoubleSpinBox>(QStringLiteral("lightIntensity"));
+    QVERIFY(intensity->isVisibleTo(m_window.get()) || intensity->isEnabled());
+    QCOMPARE(intensity->suffix(), QStringLiteral(" cd"));
+    const int before = m_doc->undoStack()->count();
+    intensity->setFocus();
+    intensity->selectAll();
+    QTest::keyClicks(intensity, QStringLiteral("40"));
+    QTest::keyClick(intensity, Qt::Key_Return);
+    QCOMPARE(m_doc->scene().lights[0].intensity, 40.0f);
+    QCOMPARE(m_doc->undoStack()->count(), before + 1); // "4" then "40" merged
+    const double lit = centreLuma(viewportImage());
+    QVERIFY2(lit > dark + 10.0, qPrintable(QStringLiteral("%1 -> %2").arg(dark).arg(lit)));
+
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->scene().lights[0].intensity, 10.0f);
+    QCOMPARE(intensity->value(), 10.0);
+    m_doc->undoStack()->undo(); // move
+    m_doc->undoStack()->undo(); // add
+    QVERIFY(m_doc->scene().lights.empty());
+    QVERIFY(std::abs(centreLuma(viewportImage()) - dark) < 1.0);
+}
+
+void TestUiScene::deleteKeyRemovesSelectedLight() {
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "three-point");
+    auto* list = find<QListWidget>(QStringLiteral("lightList"));
+    QCOMPARE(list->count(), 3);
+    m_window->findChild<QDockWidget*>(QStringLiteral("sceneDock"))->raise();
+    list->setCurrentRow(1);
+    list->setFocus();
+    QTest::keyClick(list, Qt::Key_Delete);
+    QCOMPARE(m_doc->scene().lights.size(), size_t(2));
+    QCOMPARE(m_doc->scene().lights[0].name, std::string("Key"));
+    QCOMPARE(m_doc->scene().lights[1].name, std::string("Rim"));
+    QCOMPARE(m_doc->undoStack()->undoText(), QStringLiteral("Remove light Fill"));
+    QCOMPARE(find<QComboBox>(QStringLiteral("sceneLightRig"))->currentData().toString(),
+             QString()); // "Custom"
+    m_doc->undoStack()->undo();
+    QCOMPARE(matchingLightRig(m_doc->scene().lights).value_or(""), std::string_view("three-point"));
+}
+
+void TestUiScene::toolbarLightRigMatchesSceneDock() {
+    auto* toolbarRig = find<QComboBox>(QStringLiteral("lightRigCombo"));
+    auto* dockRig = find<QComboBox>(QStringLiteral("sceneLightRig"));
+    QCOMPARE(toolbarRig->count(), int(lightRigs().size()));
+    chooseRig(toolbarRig, "coloured-points");
+    QCOMPARE(m_doc->scene().lights.size(), size_t(64));
+    QCOMPARE(dockRig->currentData().toString(), QStringLiteral("coloured-points"));
+    QCOMPARE(find<QListWidget>(QStringLiteral("lightList"))->count(), 64);
+    m_doc->undoStack()->undo();
+    QCOMPARE(toolbarRig->currentData().toString(), QStringLiteral("key"));
+}
+
+void TestUiScene::droppedPresetIsAppliedUndoably() {
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "softboxes");
+    const Scene before = m_doc->scene();
+    const double velvet = centreLuma(viewportImage());
+    const QString gold = QString::fromStdString(resources::path("presets/gold.json").string());
+    QVERIFY(dropFile(m_window.get(), m_window->rect().center(), gold));
+    QCOMPARE(m_doc->scene().material.name, std::string("Polished gold"));
+    // The scene being judged stays: mesh, HDRI, lights, post chain.
+    QVERIFY(m_doc->scene().lights == before.lights);
+    QVERIFY(m_doc->scene().environment == before.environment);
+    QVERIFY(m_doc->scene().mesh == before.mesh);
+    QCOMPARE(m_doc->undoStack()->count(), 2);
+    QVERIFY(std::abs(centreLuma(viewportImage()) - velvet) > 3.0);
+    m_doc->undoStack()->undo();
+    QVERIFY(m_doc->scene() == before);
+}
+
+void TestUiScene::droppedImageFillsBaseColour() {
+    // A flat green image: the base colour texture replaces the velvet's red.
+    const QString png = m_dir.filePath(QStringLiteral("green.png"));
+    QImage image(16, 16, QImage::Format_RGB32);
+    image.fill(QColor(20, 200, 40));
+    QVERIFY(image.save(png));
+    const QImage beforeImage = viewportImage();
+    const QColor before = beforeImage.pixelColor(beforeImage.width() / 2, beforeImage.height() / 2);
+    QVERIFY(dropFile(m_window.get(), m_window->rect().center(), png));
+    QCOMPARE(QString::fromStdString(m_doc->material().texture(TextureSlot::BaseColor).file),
+             QFileInfo(png).absoluteFilePath());
+    const QImage after = viewportImage();
+    const QColor c = after.pixelColor(after.width() / 2, after.height() / 2);
+    QVERIFY2(c.green() > c.red() && before.red() > before.green(),
+             qPrintable(QStringLiteral("%1 -> %2").arg(before.name(), c.name())));
+    m_doc->undoStack()->undo();
+    QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());
+    // Something that is none of these is refused, and nothing changes.
+    const QString text = m_dir.filePath(QStringLiteral("notes.txt"));
+    QFile f(text);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("hello");
+    f.close();
+    QVERIFY(!dropFile(m_window.get(), m_window->rect().center(), text));
+}
+
+void TestUiScene::historyPanelJumps() {
+    auto* rig = find<QComboBox>(QStringLiteral("sceneLightRig"));
+    chooseRig(rig, "sun");
+    chooseRig(rig, "three-point");
+    chooseRig(rig, "softboxes");
+    QCOMPARE(m_doc->undoStack()->count(), 3);
+    auto* history = m_window->findChild<QUndoView*>(QStringLiteral("historyView"));
+    QVERIFY(history);
+    m_window->findChild<QDockWidget*>(QStringLiteral("historyDock"))->raise();
+    // Row 0 is "<opened>", row k the state after command k.
+    const QModelIndex second = history->model()->index(1, 0);
+    QCOMPARE(second.data().toString(), QStringLiteral("Light rig: Sun"));
+    const QRect rect = history->visualRect(second);
+    QTest::mouseClick(history->viewport(), Qt::LeftButton, Qt::NoModifier, rect.center());
+    QCOMPARE(m_doc->undoStack()->index(), 1);
+    QCOMPARE(m_doc->scene().lights[0].name, std::string("Sun"));
+    QTest::mouseClick(history->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      history->visualRect(history->model()->index(3, 0)).center());
+    QCOMPARE(m_doc->undoStack()->index(), 3);
+}
+
+void TestUiScene::ctrlSSavesAndClosePromptsWhenDirty() {
+    const QString path = m_dir.filePath(QStringLiteral("ctrl_s.json"));
+    QString error;
+    QVERIFY2(m_doc->saveAs(path, &error), qPrintable(error));
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "stage-spot");
+    QVERIFY(m_doc->isDirty());
+    QVERIFY(m_window->windowTitle().contains(QStringLiteral("ctrl_s.json")));
+
+    m_window->activateWindow();
+    QTRY_VERIFY(m_window->isActiveWindow());
+    QTest::keyClick(m_window.get(), Qt::Key_S, Qt::ControlModifier);
+    QVERIFY(!m_doc->isDirty());
+    QFile saved(path);
+    QVERIFY(saved.open(QIODevice::ReadOnly));
+    QVERIFY(saved.readAll().contains("\"spot\""));
+
+    // Dirty again; closing asks, Cancel keeps the window and the edit.
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "sun");
+    answerNextMessageBox(QMessageBox::Cancel);
+    QVERIFY(!m_window->close());
+    QVERIFY(m_window->isVisible());
+    QVERIFY(m_doc->isDirty());
+    QCOMPARE(m_doc->scene().lights[0].name, std::string("Sun"));
+}
+
+void TestUiScene::reloadKeyAsksAndRestoresFile() {
+    const QString path = m_dir.filePath(QStringLiteral("reload.json"));
+    QString error;
+    QVERIFY2(m_doc->saveAs(path, &error), qPrintable(error));
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "sun");
+    // R with unsaved changes asks; Cancel keeps them.
+    m_window->activateWindow();
+    QTRY_VERIFY(m_window->isActiveWindow());
+    answerNextMessageBox(QMessageBox::Cancel);
+    QTest::keyClick(m_window.get(), Qt::Key_R);
+    QCOMPARE(m_doc->scene().lights[0].name, std::string("Sun"));
+    // Discard reads the file again.
+    answerNextMessageBox(QMessageBox::Discard);
+    QTest::keyClick(m_window.get(), Qt::Key_R);
+    QCOMPARE(matchingLightRig(m_doc->scene().lights).value_or(""), std::string_view("key"));
+    QVERIFY(!m_doc->isDirty());
+}
+
+void TestUiScene::statusBarShowsFrameTime() {
+    auto* label = find<QLabel>(QStringLiteral("frameTime"));
+    QVERIFY(label);
+    m_window->viewport()->requestFrame();
+    QTRY_VERIFY(
+        QRegularExpression(QStringLiteral("^Frame \\d+\\.\\d ms")).match(label->text()).hasMatch());
+}
+
+void TestUiScene::libraryListsFabricsFirst() {
+    QListView* view = m_window->libraryPanel()->view();
+    QAbstractItemModel* model = view->model();
+    QVERIFY(model->rowCount() >= 12);
+    // Every fabric comes before every non-fabric.
+    bool seenOther = false;
+    for (int row = 0; row < model->rowCount(); ++row) {
+        const QStringList tags = model->index(row, 0).data(LibraryPanel::TagsRole).toStringList();
+        const bool fabric = tags.contains(QStringLiteral("fabric"));
+        QVERIFY2(!(fabric && seenOther),
+                 qPrintable(model->index(row, 0).data().toString() + " after a non-fabric"));
+        seenOther |= !fabric;
+    }
+    QVERIFY(model->index(0, 0)
+                .data(LibraryPanel::TagsRole)
+                .toStringList()
+                .contains(QStringLiteral("fabric")));
+}
+
+int main(int argc, char** argv) {
+    QStandardPaths::setTestModeEnabled(true); // QSettings go to a throwaway place
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("VelvetSceneTest"));
+    QApplication::setOrganizationName(QStringLiteral("VelvetTest"));
+    TestUiScene test;
+    return QTest::qExec(&test, argc, argv);
+}
+#include "test_ui_scene.moc"
