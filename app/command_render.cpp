@@ -34,6 +34,10 @@ const std::vector<OptionSpec> kOptions{
      "clearcoat, sheen, occlusion, emissive, material-id, lights-per-pixel (heat map), "
      "diffuse-only, specular-only, base-specular, sheen-only, clearcoat-only (lobe views: direct "
      "light only)"},
+    {"time", 0, true, "SECONDS",
+     "animation time in seconds, >= 0 (default 0): film grain, night-vision grain, vaporwave "
+     "static, paintbrush strokes and the procedural FBM background; the same time gives the same "
+     "image"},
     {"chain", 0, true, "CHAIN.json",
      "post-effect chain preset (resources/post-chains/) replacing the scene's chain"},
     {"help", 'h', false, "", "this text"},
@@ -233,6 +237,9 @@ int runRender(const std::vector<std::string>& argv) {
                      "'");
     if (args->has("exposure") && !parseFloat(args->value("exposure"), settings.exposureEv))
         return usage("--exposure expects a number, got '" + args->value("exposure") + "'");
+    if (args->has("time") &&
+        (!parseFloat(args->value("time"), settings.time) || settings.time < 0.0f))
+        return usage("--time expects a number of seconds >= 0, got '" + args->value("time") + "'");
     if (args->has("tonemap") &&
         !parseName(args->value("tonemap"), kToneMappers, settings.toneMapper))
         return usage("--tonemap: unknown tone mapper '" + args->value("tonemap") + "'");

@@ -322,6 +322,13 @@ float effectFloat(const EffectInstance& effect, std::string_view id) {
     return 0.0f;
 }
 
+bool postChainReadsTime(const PostChain& chain) {
+    return std::any_of(chain.effects.begin(), chain.effects.end(), [](const EffectInstance& e) {
+        const EffectMeta* meta = findPostEffect(e.type);
+        return e.enabled && meta && (meta->reads & kReadsTime);
+    });
+}
+
 bool setEffectEnabled(PostChain& chain, size_t index, bool enabled) {
     if (index >= chain.effects.size())
         return false;
