@@ -917,6 +917,17 @@ private slots:
         if (meta->stage == PostStage::Ldr)
             chain.effects.push_back(fx("tonemap"));
         chain.effects.push_back(fx(type.toStdString().c_str()));
+        // Effects whose defaults change nothing on this input get parameters (or a camera move)
+        // that show them; otherwise their golden would equal post_tonemap.png.
+        if (type == "color_grading")
+            chain.effects.back() = fx("color_grading", {{"contrast", {1.4f}},
+                                                        {"saturation", {1.6f}},
+                                                        {"temperature", {0.5f}},
+                                                        {"lift", {0.0f, 0.02f, 0.06f}},
+                                                        {"gain", {1.2f, 1.0f, 0.9f}}});
+        if (type == "motion_blur") // the camera was 0.4 m to the right and 0.2 m lower
+            in.prevViewProj = in.proj * glm::lookAt(glm::vec3(0.4f, -0.2f, 3),
+                                                    glm::vec3(0.4f, -0.2f, 0), glm::vec3(0, 1, 0));
         if (meta->stage != PostStage::Ldr && type != "tonemap")
             chain.effects.push_back(fx("tonemap"));
         const Image out = run(chain, in);
