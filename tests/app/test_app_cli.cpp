@@ -290,6 +290,37 @@ private slots:
         QVERIFY(runVelvet({"render", "--help"}).out.contains("--time"));
     }
 
+    /// --chain replaces the scene's chain: the toon preset gives another image than the default
+    /// scene's own chain; a malformed chain file is bad input naming the file, nothing written.
+    void renderWithChainFile() {
+        QTemporaryDir dir;
+        const QString plain = dir.filePath("plain.png"), toon = dir.filePath("toon.png");
+        Result r = runVelvet({"render", "-o", plain, "--size", "48x48"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        r = runVelvet({"render", "-o", toon, "--size", "48x48", "--chain",
+                       source("resources/post-chains/toon.json")});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        velvet::Image a, b;
+        std::string error;
+        QVERIFY2(velvet::readImage(plain.toStdString(), a, &error), error.c_str());
+        QVERIFY2(velvet::readImage(toon.toStdString(), b, &error), error.c_str());
+        const float d = maxDifference(a, b);
+        QVERIFY2(d > 0.1f, qPrintable(QString::number(d)));
+
+        QTemporaryDir bad;
+        const QString chain = bad.filePath("broken_chain.json");
+        QFile f(chain);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(R"({"format": "velvet.post-chain", "version": 1, "effects": [{"type": )");
+        f.close();
+        const QString out = dir.filePath("never.png");
+        r = runVelvet({"render", "-o", out, "--size", "16x16", "--chain", chain});
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("broken_chain.json"), qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(out));
+    }
+
     void infoReportsHeadlessGl() {
         Result r = runVelvet({"info"});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err + r.out));
