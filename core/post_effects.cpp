@@ -186,8 +186,9 @@ const std::array<EffectMeta, 17> kCatalogue{{
      PostStage::Hdr, kReadsColor | kReadsDepth | kReadsCameraMotion | kReadsPreviousFrame, false,
      kMotionBlur},
     {"depth_of_field", "Depth of field",
-     "Circle of confusion from the focal distance and range blends a blurred copy.", PostStage::Hdr,
-     kReadsColor | kReadsDepth, false, kDof},
+     "Circle of confusion from the focal distance and range sets the blur radius: sharp, half and "
+     "full maxBlur interpolated.",
+     PostStage::Hdr, kReadsColor | kReadsDepth, false, kDof},
     {"toon", "Toon", "Luminance bands and an outline from depth and normal edges (seed 002).",
      PostStage::Hdr, kReadsColor | kReadsDepth | kReadsNormals, true, kToon},
     {"color_grading", "Colour grading",

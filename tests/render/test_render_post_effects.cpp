@@ -445,6 +445,52 @@ private slots:
                  qPrintable(QString::number(blockVariance(far, c - 4, c - 4, 8) / sphere)));
     }
 
+    // The blur grows with the circle of confusion: a plane 5 m away with a vertical step edge,
+    // focused so that its CoC is 0.5 and then 1. At 0.5 the edge is blurred by half the radius
+    // (no sharp half-step left, as a mix of sharp and full blur would leave), at 1 by the whole.
+    void dofBlurGrowsWithCircleOfConfusion() {
+        PostTestInput in;
+        in.color = flat(0.1f);
+        for (int y = 0; y < kSize; ++y)
+            for (int x = kSize / 2; x < kSize; ++x)
+                for (int k = 0; k < 3; ++k)
+                    in.color.at(x, y)[k] = 0.9f;
+        in.proj = glm::perspective(glm::radians(45.0f), 1.0f, 0.1f, 20.0f);
+        const glm::vec4 clip = in.proj * glm::vec4(0, 0, -5.0f, 1);
+        in.depth = Image(kSize, kSize, 1);
+        for (float& d : in.depth.pixels)
+            d = clip.z / clip.w * 0.5f + 0.5f;
+        // halfRange 0.5 m: CoC = clamp((|5 - focus| - 0.5) / 0.5, 0, 1).
+        auto edge = [&](float focus, float& maxJump) {
+            const Image out = run(chainOf({fx("depth_of_field", {{"focalDistance", {focus}},
+                                                                 {"focalRange", {1.0f}},
+                                                                 {"maxBlur", {16}}})}),
+                                  in);
+            int width = 0; // pixels of the row between 10 % and 90 % of the step
+            maxJump = 0;
+            const int y = kSize / 2;
+            for (int x = 0; x < kSize; ++x) {
+                const float t = (out.at(x, y)[0] - 0.1f) / 0.8f;
+                width += t > 0.1f && t < 0.9f;
+                if (x > 0)
+                    maxJump = std::max(maxJump, std::abs(out.at(x, y)[0] - out.at(x - 1, y)[0]));
+            }
+            return width;
+        };
+        float jumpSharp = 0, jumpHalf = 0, jumpFull = 0;
+        const int sharp = edge(5.0f, jumpSharp), half = edge(4.25f, jumpHalf),
+                  full = edge(3.0f, jumpFull);
+        qInfo("dof edge width: %d px in focus, %d at CoC 0.5, %d at CoC 1 (max steps %.2f %.2f "
+              "%.2f)",
+              sharp, half, full, jumpSharp, jumpHalf, jumpFull);
+        QCOMPARE(sharp, 0);
+        QVERIFY(std::abs(jumpSharp - 0.8f) < 2e-3f);
+        QVERIFY(jumpHalf < 0.3f * 0.8f); // blurred, not half sharp
+        QVERIFY(half >= 3);
+        QVERIFY(full > half * 3 / 2);
+        QVERIFY(jumpFull < jumpHalf);
+    }
+
     void nightVisionIsGreen() {
         const Image out = run(chainOf({fx("tonemap"), fx("night_vision")}), pattern());
         double r = 0, g = 0, b = 0;
