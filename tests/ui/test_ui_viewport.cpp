@@ -23,6 +23,7 @@
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QMimeData>
 #include <QRegularExpression>
@@ -548,17 +549,33 @@ void TestUiViewport::recentFilesKeepNewestEight() {
 // still chain, no frame comes without a change and the time stays where it was.
 void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
     ViewportWidget* viewport = m_window->viewport();
+    // True once no frame has come for 500 ms (the frame a change asks for may take a while on a
+    // loaded llvmpipe); false if frames keep coming for @p deadlineMs.
+    const auto settles = [viewport](int deadlineMs = 10000) {
+        QElapsedTimer deadline;
+        deadline.start();
+        int frames = viewport->frameCount();
+        QElapsedTimer quiet;
+        quiet.start();
+        while (deadline.elapsed() < deadlineMs) {
+            QTest::qWait(50);
+            if (viewport->frameCount() != frames) {
+                frames = viewport->frameCount();
+                quiet.restart();
+            } else if (quiet.elapsed() >= 500) {
+                return true;
+            }
+        }
+        return false;
+    };
     Scene still = m_doc->scene();
     still.environment.background = BackgroundMode::Sharp;
     still.post = defaultPostChain();
     QVERIFY(!sceneReadsTime(still));
     viewport->setScene(still);
     QVERIFY(!viewport->isAnimating());
-    QTest::qWait(300); // the frame for the change itself
-    int frames = viewport->frameCount();
     const double stillTime = viewport->animationTime();
-    QTest::qWait(400);
-    QCOMPARE(viewport->frameCount(), frames);
+    QVERIFY(settles());
     QCOMPARE(viewport->animationTime(), stillTime);
 
     Scene grain = still;
@@ -567,8 +584,9 @@ void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
     QVERIFY(sceneReadsTime(grain));
     viewport->setScene(grain);
     QVERIFY(viewport->isAnimating());
-    frames = viewport->frameCount();
+    const int frames = viewport->frameCount();
     QTRY_VERIFY_WITH_TIMEOUT(viewport->frameCount() >= frames + 3, 20000);
+    QVERIFY(!settles(2000)); // frames keep coming without any change
     QVERIFY(viewport->animationTime() > stillTime);
     // Two grabs at different times differ (the grain moved).
     const QImage a = viewportImage();
@@ -578,11 +596,8 @@ void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
 
     viewport->setAnimationPaused(true);
     QVERIFY(!viewport->isAnimating());
-    QTest::qWait(300);
-    frames = viewport->frameCount();
     const double paused = viewport->animationTime();
-    QTest::qWait(400);
-    QCOMPARE(viewport->frameCount(), frames);
+    QVERIFY(settles());
     QCOMPARE(viewport->animationTime(), paused);
     QVERIFY(viewportImage() == viewportImage()); // a paused frame is repeatable
     viewport->setAnimationPaused(false);
@@ -592,6 +607,7 @@ void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
     grain.post.effects.back().enabled = false;
     viewport->setScene(grain);
     QVERIFY(!viewport->isAnimating());
+    QVERIFY(settles());
     viewport->setScene(m_doc->scene());
 }
 
