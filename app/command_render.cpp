@@ -38,6 +38,10 @@ const std::vector<OptionSpec> kOptions{
     {"light-rig", 0, true, "ID",
      "replace the scene's lights with a rig: key, three-point, softboxes, sun, stage-spot, "
      "coloured-points or environment (the HDRI alone)"},
+    {"time", 0, true, "SECONDS",
+     "animation time in seconds, >= 0 (default 0): film grain, night-vision grain, vaporwave "
+     "static, paintbrush strokes and the procedural FBM background; the same time gives the same "
+     "image"},
     {"chain", 0, true, "CHAIN.json",
      "post-effect chain preset (resources/post-chains/) replacing the scene's chain"},
     {"help", 'h', false, "", "this text"},
@@ -237,6 +241,9 @@ int runRender(const std::vector<std::string>& argv) {
                      "'");
     if (args->has("exposure") && !parseFloat(args->value("exposure"), settings.exposureEv))
         return usage("--exposure expects a number, got '" + args->value("exposure") + "'");
+    if (args->has("time") &&
+        (!parseFloat(args->value("time"), settings.time) || settings.time < 0.0f))
+        return usage("--time expects a number of seconds >= 0, got '" + args->value("time") + "'");
     if (args->has("tonemap") &&
         !parseName(args->value("tonemap"), kToneMappers, settings.toneMapper))
         return usage("--tonemap: unknown tone mapper '" + args->value("tonemap") + "'");

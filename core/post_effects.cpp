@@ -186,8 +186,9 @@ const std::array<EffectMeta, 17> kCatalogue{{
      PostStage::Hdr, kReadsColor | kReadsDepth | kReadsCameraMotion | kReadsPreviousFrame, false,
      kMotionBlur},
     {"depth_of_field", "Depth of field",
-     "Circle of confusion from the focal distance and range blends a blurred copy.", PostStage::Hdr,
-     kReadsColor | kReadsDepth, false, kDof},
+     "Circle of confusion from the focal distance and range sets the blur radius: sharp, half and "
+     "full maxBlur interpolated.",
+     PostStage::Hdr, kReadsColor | kReadsDepth, false, kDof},
     {"toon", "Toon", "Luminance bands and an outline from depth and normal edges (seed 002).",
      PostStage::Hdr, kReadsColor | kReadsDepth | kReadsNormals, true, kToon},
     {"color_grading", "Colour grading",
@@ -320,6 +321,13 @@ float effectFloat(const EffectInstance& effect, std::string_view id) {
         if (const ParamMeta* p = findEffectParam(*meta, id))
             return effectValue(effect, *p).x;
     return 0.0f;
+}
+
+bool postChainReadsTime(const PostChain& chain) {
+    return std::any_of(chain.effects.begin(), chain.effects.end(), [](const EffectInstance& e) {
+        const EffectMeta* meta = findPostEffect(e.type);
+        return e.enabled && meta && (meta->reads & kReadsTime);
+    });
 }
 
 bool setEffectEnabled(PostChain& chain, size_t index, bool enabled) {

@@ -73,6 +73,11 @@ glm::vec3 effectValue(const EffectInstance& effect, const ParamMeta& param);
 /// Scalar shortcut; the default of an unknown id is 0.
 float effectFloat(const EffectInstance& effect, std::string_view id);
 
+/// Whether an enabled effect of @p chain reads FrameSettings::time (kReadsTime: film grain,
+/// night-vision grain, vaporwave static, paintbrush strokes): its image changes from one second
+/// to the next, so a viewport must keep drawing frames to show it.
+bool postChainReadsTime(const PostChain& chain);
+
 /// @name Chain edits. Each returns false (and changes nothing) on an index out of range.
 /// @{
 bool setEffectEnabled(PostChain& chain, size_t index, bool enabled);

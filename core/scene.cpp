@@ -1,5 +1,7 @@
 #include "core/scene.h"
 
+#include "core/post_effects.h"
+
 #include <array>
 
 namespace velvet {
@@ -31,6 +33,11 @@ std::span<const std::string_view> backgroundModeNames() {
 }
 std::span<const std::string_view> previewMeshKindNames() {
     return kMeshKinds;
+}
+
+bool sceneReadsTime(const Scene& scene) {
+    return scene.environment.background == BackgroundMode::ProceduralFbm ||
+           postChainReadsTime(scene.post);
 }
 
 } // namespace velvet

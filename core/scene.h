@@ -99,4 +99,9 @@ std::span<const std::string_view> areaShapeNames();
 std::span<const std::string_view> backgroundModeNames();
 std::span<const std::string_view> previewMeshKindNames();
 
+/// Whether the image of @p scene depends on FrameSettings::time: the procedural FBM background
+/// drifts, or an enabled post effect reads time (postChainReadsTime). A still scene needs no new
+/// frame until something changes.
+bool sceneReadsTime(const Scene& scene);
+
 } // namespace velvet

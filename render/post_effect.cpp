@@ -23,6 +23,7 @@ std::string postParamsGlsl() {
     s << "// Generated from core/post_effects.cpp and render/post_effect.h; do not edit.\n"
       << "#define POST_INPUT_UNIT " << kPostInputUnit << "\n"
       << "#define POST_AUX_UNIT " << kPostAuxUnit << "\n"
+      << "#define POST_AUX2_UNIT " << kPostAux2Unit << "\n"
       << "#define POST_FRAME_UBO " << kPostFrameUbo << "\n"
       << "#define POST_MAX_SLOTS " << kPostMaxSlots << "\n"
       << "#define POST_PASS_LOCATION " << kPostPassLocation << "\n"

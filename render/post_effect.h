@@ -19,6 +19,7 @@ namespace velvet::render {
 /// @{
 inline constexpr int kPostInputUnit = 8; ///< the image an effect reads (linear sampler)
 inline constexpr int kPostAuxUnit = 9;   ///< a second image (bloom level, blur, curl field)
+inline constexpr int kPostAux2Unit = 10; ///< a third image, bound by the effect (DoF's wide blur)
 inline constexpr int kPostFrameUbo = 7;  ///< PostFrame block
 inline constexpr int kPostMaxSlots = 48; ///< vec4 parameter slots (uParams)
 inline constexpr int kPostPassLocation = 50;

@@ -126,7 +126,7 @@ private:
 ViewportWidget::ViewportWidget(QWidget* parent)
     : QWidget(parent), m_surface(new Surface(this)),
       m_container(QWidget::createWindowContainer(m_surface, this)), m_flyTimer(new QTimer(this)),
-      m_refineTimer(new QTimer(this)) {
+      m_refineTimer(new QTimer(this)), m_animationTimer(new QTimer(this)) {
     setObjectName(QStringLiteral("viewport"));
     m_surface->setObjectName(QStringLiteral("viewportWindow"));
     m_container->setObjectName(QStringLiteral("viewportContainer"));
@@ -150,6 +150,10 @@ ViewportWidget::ViewportWidget(QWidget* parent)
         if (m_lastRenderScale < 1.0f)
             requestFrame();
     });
+    // A timer rather than a request after every frame: a steady rate that leaves the event loop
+    // time for input, instead of drawing as fast as llvmpipe can.
+    m_animationTimer->setInterval(kAnimationIntervalMs);
+    connect(m_animationTimer, &QTimer::timeout, this, &ViewportWidget::requestFrame);
 }
 
 QOpenGLWindow* ViewportWidget::glWindow() const {
@@ -200,7 +204,38 @@ void ViewportWidget::setScene(const Scene& scene) {
     m_scene = scene;
     m_sceneDirty = true;
     noteInteraction();
+    updateAnimation();
     requestFrame();
+}
+
+bool ViewportWidget::isAnimating() const {
+    return !m_animationPaused && sceneReadsTime(m_scene);
+}
+
+double ViewportWidget::animationTime() const {
+    const double running =
+        m_animationClock.isValid() ? double(m_animationClock.nsecsElapsed()) / 1.0e9 : 0.0;
+    return m_animatedSeconds + running;
+}
+
+void ViewportWidget::setAnimationPaused(bool paused) {
+    m_animationPaused = paused;
+    updateAnimation();
+    requestFrame();
+}
+
+void ViewportWidget::updateAnimation() {
+    const bool animate = isAnimating();
+    if (animate == m_animationClock.isValid())
+        return;
+    if (animate) {
+        m_animationClock.start();
+        m_animationTimer->start();
+    } else {
+        m_animatedSeconds = animationTime(); // keep the time reached; go on from it later
+        m_animationClock.invalidate();
+        m_animationTimer->stop();
+    }
 }
 
 void ViewportWidget::noteInteraction() {
@@ -418,6 +453,7 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     settings.splitMaterial = m_splitMaterial;
     settings.splitPosition = m_splitPosition;
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
+    settings.time = float(animationTime());
 
     QElapsedTimer timer;
     timer.start();

@@ -89,6 +89,23 @@ public:
     /// The render scale of the last frame drawn (1 at full size).
     float lastRenderScale() const { return m_lastRenderScale; }
     /// @}
+    /// @name Animation
+    /// Film grain, night-vision grain, vaporwave static, paintbrush strokes and the procedural
+    /// FBM background read FrameSettings::time. While the scene reads time (sceneReadsTime) and
+    /// the animation is not paused, the viewport feeds the seconds it has animated so far and
+    /// draws kAnimationIntervalMs apart; a still scene draws only on changes, so an idle editor
+    /// costs nothing. The time pauses with the animation and while the scene is still, and goes
+    /// on from there (strokes do not jump when an effect is re-enabled). View state, never in the
+    /// document.
+    /// @{
+    static constexpr int kAnimationIntervalMs = 33;
+    void setAnimationPaused(bool paused);
+    bool isAnimationPaused() const { return m_animationPaused; }
+    /// True while frames are drawn for time alone (a time-dependent scene, not paused).
+    bool isAnimating() const;
+    /// The time, in seconds, the next frame is drawn at.
+    double animationTime() const;
+    /// @}
     /// Shows the last frame's per-pass GPU timings in a label over the viewport.
     void setTimingOverlayVisible(bool visible);
     bool isTimingOverlayVisible() const;
@@ -168,6 +185,8 @@ private:
     void fail(const QString& message);
     /// A scene or view change: decides whether the next frame is reduced (see kRefineDelayMs).
     void noteInteraction();
+    /// Starts or stops the animation clock and timer after a scene or pause change.
+    void updateAnimation();
     void paintError();
     /// The frame size in device pixels.
     QSize frameSize() const;
@@ -201,6 +220,10 @@ private:
     float m_lastRenderScale = 1.0f;
     QElapsedTimer m_lastInteraction;
     QTimer* m_refineTimer;
+    bool m_animationPaused = false;
+    double m_animatedSeconds = 0.0; ///< time accumulated before m_animationClock started
+    QElapsedTimer m_animationClock; ///< valid while animating
+    QTimer* m_animationTimer;
 };
 
 } // namespace velvet::ui

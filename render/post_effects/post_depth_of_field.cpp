@@ -1,22 +1,26 @@
-// Depth of field: a half-resolution gaussian copy (sigma = maxBlur / 2 at half resolution, so
-// maxBlur full-resolution pixels), blended with the sharp image by the circle of confusion.
+// Depth of field: two half-resolution gaussian copies, a narrow one (blur radius maxBlur / 2 in
+// full-resolution pixels) and a wide one (maxBlur), blended with the sharp image by the circle of
+// confusion: the blur radius grows with the CoC.
 #include "render/post_effect.h"
 
 #include <algorithm>
 #include <cmath>
+#include <epoxy/gl.h>
 
 namespace velvet::render {
 namespace {
 
-/// Depth of field: the blur (ctx.blur, so it depends on "gaussian_blur") at half resolution,
-/// then post_depth_of_field.frag blends it by the circle of confusion; uniforms: the DoF
-/// parameters at slot 0, the blurred copy on kPostAuxUnit.
+/// Depth of field: the blurs (ctx.blur, so it depends on "gaussian_blur") at half resolution,
+/// then post_depth_of_field.frag interpolates sharp, narrow and wide by the circle of confusion;
+/// uniforms: the DoF parameters at slot 0, the narrow copy on kPostAuxUnit, the wide one on
+/// kPostAux2Unit.
 class DepthOfFieldEffect final : public PostEffect {
 public:
     DepthOfFieldEffect() : PostEffect("depth_of_field") {}
 
     std::vector<PostPassInfo> passes() const override {
-        return {{"gaussian copy", "post_gaussian_blur.frag", 2},
+        return {{"narrow gaussian copy", "post_gaussian_blur.frag", 2},
+                {"wide gaussian copy", "post_gaussian_blur.frag", 2},
                 {"circle-of-confusion blend", "post_depth_of_field.frag", 1}};
     }
     std::vector<std::string_view> dependencies() const override { return {"gaussian_blur"}; }
@@ -29,12 +33,23 @@ public:
              const PostTarget& output) override {
         setEffectParams(m_program.id(), meta(), effect, 0);
         const float maxBlur = effectFloat(effect, "maxBlur");
-        const PostTarget blurred =
-            ctx.pool->acquire(std::max(input.width / 2, 1), std::max(input.height / 2, 1));
-        const float sigma = std::max(maxBlur * 0.25f, 0.3f); // radius maxBlur ~ 2 sigma
-        ctx.blur(input, blurred, sigma, int(std::ceil(2.5f * sigma)));
-        drawPostPass(ctx, m_program.id(), input, output, 0, 0, blurred.texture);
-        ctx.pool->release(blurred);
+        const int w = std::max(input.width / 2, 1), h = std::max(input.height / 2, 1);
+        const PostTarget narrow = ctx.pool->acquire(w, h);
+        const PostTarget wide = ctx.pool->acquire(w, h);
+        // Sigmas at half resolution: a full-resolution radius r is ~2 sigma, i.e. sigma = r / 4
+        // here. The wide copy blurs the narrow one further: gaussians add their variances, so
+        // sqrt(wide^2 - narrow^2) more gives the wide sigma with fewer taps.
+        const float narrowSigma = std::max(maxBlur * 0.125f, 0.3f);
+        const float wideSigma = std::max(maxBlur * 0.25f, 0.3f);
+        const float extra = std::max(
+            std::sqrt(std::max(wideSigma * wideSigma - narrowSigma * narrowSigma, 0.0f)), 0.3f);
+        ctx.blur(input, narrow, narrowSigma, int(std::ceil(2.5f * narrowSigma)));
+        ctx.blur(narrow, wide, extra, int(std::ceil(2.5f * extra)));
+        glBindTextureUnit(kPostAux2Unit, wide.texture);
+        drawPostPass(ctx, m_program.id(), input, output, 0, 0, narrow.texture);
+        glBindTextureUnit(kPostAux2Unit, 0);
+        ctx.pool->release(wide);
+        ctx.pool->release(narrow);
     }
 
 private:

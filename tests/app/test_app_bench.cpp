@@ -1,6 +1,8 @@
 // `velvet bench --short --json` (DESIGN.md, "Measuring"): one JSON object with every key the
 // renderer issue names, a G-buffer within budget, and finite positive ratios. Times and ratio
 // targets are recorded in BENCHMARKS.md, never asserted (llvmpipe shares 2 cores here).
+#include "core/post_effects.h"
+
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
@@ -49,6 +51,13 @@ private slots:
                               "lights1000_avg_lights_per_pixel", "bloom_vs_gauss9"}) {
             const double v = o.value(k).toDouble();
             QVERIFY2(std::isfinite(v) && v > 0.0, k);
+        }
+        // Each effect of the catalogue is timed alone (render/post_bench.h): one key per type.
+        for (const velvet::EffectMeta& m : velvet::postEffectCatalogue()) {
+            const QString key = QStringLiteral("effect_%1_ms")
+                                    .arg(QString::fromUtf8(m.type.data(), int(m.type.size())));
+            QVERIFY2(o.contains(key) && o.value(key).isDouble(), qPrintable(key));
+            QVERIFY2(std::isfinite(o.value(key).toDouble()), qPrintable(key));
         }
         // A share of a frame is below 1; in short mode on a loaded machine the chain's cost can
         // drown in frame-to-frame noise (even read as negative), so only sanity is asserted here.

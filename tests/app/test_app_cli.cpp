@@ -4,10 +4,12 @@
 #include "core/image.h"
 
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -52,6 +54,17 @@ QString source(const QString& rel) {
     return QStringLiteral(VELVET_SOURCE_DIR "/") + rel;
 }
 
+/// Largest distance between two colours at the same pixel; infinity when the sizes differ.
+float maxDifference(const velvet::Image& a, const velvet::Image& b) {
+    if (a.width != b.width || a.height != b.height)
+        return INFINITY;
+    float d = 0.0f;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            d = std::max(d, glm::length(glm::vec3(a.rgba(x, y)) - glm::vec3(b.rgba(x, y))));
+    return d;
+}
+
 } // namespace
 
 class TestAppCli : public QObject {
@@ -90,6 +103,9 @@ private slots:
             << QStringList{"render", "-o", "x.png", "--look", "Teal"};
         QTest::newRow("tonemap with OCIO view")
             << QStringList{"render", "-o", "x.png", "--view", "ACES", "--tonemap", "aces"};
+        QTest::newRow("bad time") << QStringList{"render", "-o", "x.png", "--time", "noon"};
+        QTest::newRow("negative time") << QStringList{"render", "-o", "x.png", "--time", "-1"};
+        QTest::newRow("infinite time") << QStringList{"render", "-o", "x.png", "--time", "inf"};
         QTest::newRow("option without value") << QStringList{"render", "-o"};
         QTest::newRow("two files") << QStringList{"render", "a.json", "b.json", "-o", "x.png"};
         QTest::newRow("validate nothing") << QStringList{"validate"};
@@ -245,6 +261,64 @@ private slots:
         // Gold reflects more red than blue at the sphere's centre.
         const glm::vec4 c = image.rgba(16, 16);
         QVERIFY2(c.r > c.b, qPrintable(QString("r=%1 b=%2").arg(c.r).arg(c.b)));
+    }
+
+    /// --time sets the animation time: the painterly chain's strokes change between two times
+    /// (they change every 4 s) and are identical for the same time.
+    void renderTimeAnimatesPainterly() {
+        QTemporaryDir dir;
+        const QString chain = source("resources/post-chains/painterly.json");
+        auto render = [&](const QString& name, const QString& time) {
+            const QString out = dir.filePath(name);
+            Result r = runVelvet(
+                {"render", "-o", out, "--size", "48x48", "--chain", chain, "--time", time});
+            velvet::Image image;
+            std::string error;
+            if (r.exitCode != 0 || !velvet::readImage(out.toStdString(), image, &error))
+                qWarning("render --time %s: %s %s", qPrintable(time), qPrintable(r.err),
+                         error.c_str());
+            return image;
+        };
+        const velvet::Image a = render("a.png", "0.5"), again = render("again.png", "0.5");
+        const velvet::Image later = render("later.png", "9.5");
+        QCOMPARE(a.width, 48);
+        QCOMPARE(again.width, 48);
+        QCOMPARE(later.width, 48);
+        QCOMPARE(maxDifference(a, again), 0.0f);
+        const float d = maxDifference(a, later);
+        QVERIFY2(d > 0.05f, qPrintable(QString::number(d)));
+        QVERIFY(runVelvet({"render", "--help"}).out.contains("--time"));
+    }
+
+    /// --chain replaces the scene's chain: the toon preset gives another image than the default
+    /// scene's own chain; a malformed chain file is bad input naming the file, nothing written.
+    void renderWithChainFile() {
+        QTemporaryDir dir;
+        const QString plain = dir.filePath("plain.png"), toon = dir.filePath("toon.png");
+        Result r = runVelvet({"render", "-o", plain, "--size", "48x48"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        r = runVelvet({"render", "-o", toon, "--size", "48x48", "--chain",
+                       source("resources/post-chains/toon.json")});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        velvet::Image a, b;
+        std::string error;
+        QVERIFY2(velvet::readImage(plain.toStdString(), a, &error), error.c_str());
+        QVERIFY2(velvet::readImage(toon.toStdString(), b, &error), error.c_str());
+        const float d = maxDifference(a, b);
+        QVERIFY2(d > 0.1f, qPrintable(QString::number(d)));
+
+        QTemporaryDir bad;
+        const QString chain = bad.filePath("broken_chain.json");
+        QFile f(chain);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(R"({"format": "velvet.post-chain", "version": 1, "effects": [{"type": )");
+        f.close();
+        const QString out = dir.filePath("never.png");
+        r = runVelvet({"render", "-o", out, "--size", "16x16", "--chain", chain});
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("broken_chain.json"), qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(out));
     }
 
     void infoReportsHeadlessGl() {

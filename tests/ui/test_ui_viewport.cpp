@@ -8,6 +8,7 @@
 // orbit, pan, zoom, fly keys, F, T and Ctrl+Z while it has focus, and a file dropped on it
 // reaches the main window; screenshots compose its frame (QWidget::grab leaves it out).
 #include "core/color_management.h"
+#include "core/post_effects.h"
 #include "core/resources.h"
 #include "render/renderer.h"
 #include "ui/color_picking.h"
@@ -22,6 +23,7 @@
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QMimeData>
 #include <QRegularExpression>
@@ -118,6 +120,7 @@ private slots:
     void dockLayoutRestores();
     void pickerRoundTripsThroughOcioView();
     void recentFilesKeepNewestEight();
+    void animationRunsOnlyWhileSceneReadsTime();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -540,6 +543,72 @@ void TestUiViewport::recentFilesKeepNewestEight() {
     QCOMPARE(files.front(), QStringLiteral("/tmp/velvet-recent-5.json"));
     QCOMPARE(files.count(QStringLiteral("/tmp/velvet-recent-5.json")), 1);
     QVERIFY(!files.contains(QStringLiteral("/tmp/velvet-recent-0.json")));
+}
+
+// Film grain reads time: the viewport keeps drawing and its time advances; paused, or with a
+// still chain, no frame comes without a change and the time stays where it was.
+void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
+    ViewportWidget* viewport = m_window->viewport();
+    // True once no frame has come for 500 ms (the frame a change asks for may take a while on a
+    // loaded llvmpipe); false if frames keep coming for @p deadlineMs.
+    const auto settles = [viewport](int deadlineMs = 10000) {
+        QElapsedTimer deadline;
+        deadline.start();
+        int frames = viewport->frameCount();
+        QElapsedTimer quiet;
+        quiet.start();
+        while (deadline.elapsed() < deadlineMs) {
+            QTest::qWait(50);
+            if (viewport->frameCount() != frames) {
+                frames = viewport->frameCount();
+                quiet.restart();
+            } else if (quiet.elapsed() >= 500) {
+                return true;
+            }
+        }
+        return false;
+    };
+    Scene still = m_doc->scene();
+    still.environment.background = BackgroundMode::Sharp;
+    still.post = defaultPostChain();
+    QVERIFY(!sceneReadsTime(still));
+    viewport->setScene(still);
+    QVERIFY(!viewport->isAnimating());
+    const double stillTime = viewport->animationTime();
+    QVERIFY(settles());
+    QCOMPARE(viewport->animationTime(), stillTime);
+
+    Scene grain = still;
+    grain.post.effects.push_back(makeEffect("film_grain"));
+    grain.post.effects.back().params["intensity"] = {0.5f};
+    QVERIFY(sceneReadsTime(grain));
+    viewport->setScene(grain);
+    QVERIFY(viewport->isAnimating());
+    const int frames = viewport->frameCount();
+    QTRY_VERIFY_WITH_TIMEOUT(viewport->frameCount() >= frames + 3, 20000);
+    QVERIFY(!settles(2000)); // frames keep coming without any change
+    QVERIFY(viewport->animationTime() > stillTime);
+    // Two grabs at different times differ (the grain moved).
+    const QImage a = viewportImage();
+    QTest::qWait(120); // > 1/24 s: a new grain pattern
+    const QImage b = viewportImage();
+    QVERIFY(a != b);
+
+    viewport->setAnimationPaused(true);
+    QVERIFY(!viewport->isAnimating());
+    const double paused = viewport->animationTime();
+    QVERIFY(settles());
+    QCOMPARE(viewport->animationTime(), paused);
+    QVERIFY(viewportImage() == viewportImage()); // a paused frame is repeatable
+    viewport->setAnimationPaused(false);
+    QVERIFY(viewport->isAnimating());
+
+    // Disabling the only time-dependent effect stops the clock too.
+    grain.post.effects.back().enabled = false;
+    viewport->setScene(grain);
+    QVERIFY(!viewport->isAnimating());
+    QVERIFY(settles());
+    viewport->setScene(m_doc->scene());
 }
 
 int main(int argc, char** argv) {
