@@ -264,6 +264,20 @@ void MainWindow::createToolbars() {
         setAbSplit(false);
         setAbSplit(true);
     });
+    // Comparing BRDF terms as the seed documents did: B is A with one term switched (GGX
+    // beside Beckmann, Lambert beside Burley, …); everything else stays A's.
+    QMenu* termMenu = abMenu->addMenu(tr("B = A with another BRDF term"));
+    termMenu->setObjectName(QStringLiteral("abTermMenu"));
+    for (ParamId id : {ParamId::Distribution, ParamId::Visibility, ParamId::Fresnel,
+                       ParamId::Diffuse, ParamId::SheenModel}) {
+        const ParamMeta& meta = paramMeta(id);
+        QMenu* sub = termMenu->addMenu(QString::fromUtf8(meta.label.data(), meta.label.size()));
+        for (size_t i = 0; i < meta.choices.size(); ++i) {
+            const QString choice =
+                QString::fromUtf8(meta.choices[i].data(), qsizetype(meta.choices[i].size()));
+            sub->addAction(choice, this, [this, id, i] { setAbSplitTerm(id, int(i)); });
+        }
+    }
     abMenu->addAction(tr("B from preset…"), this, [this] {
         const QString path = QFileDialog::getOpenFileName(this, tr("Material preset for B"),
                                                           QString(), fileFilter());
@@ -296,6 +310,17 @@ void MainWindow::setAbSplit(bool on, std::optional<Material> b) {
     m_abAction->setChecked(on);
     if (on)
         statusBar()->showMessage(tr("A/B split: left the current material, right B"), 4000);
+}
+
+void MainWindow::setAbSplitTerm(ParamId term, int choice) {
+    Material b = m_controller->material();
+    b.setChoice(term, choice);
+    setAbSplit(true, b);
+    const ParamMeta& meta = paramMeta(term);
+    const std::string_view name = meta.choices[size_t(b.choice(term))];
+    m_log->info(tr("A/B split: B is A with %1 %2")
+                    .arg(QString::fromUtf8(meta.label.data(), qsizetype(meta.label.size())),
+                         QString::fromUtf8(name.data(), qsizetype(name.size()))));
 }
 
 bool MainWindow::setAbSplitPreset(const QString& path) {

@@ -87,6 +87,9 @@ public slots:
     /// A/B split on: B is a snapshot of the current material (or @p b when given); off: one
     /// material. View state only.
     void setAbSplit(bool on, std::optional<Material> b = std::nullopt);
+    /// A/B split with B = the current material with BRDF term @p term (a choice parameter:
+    /// distribution, visibility, Fresnel, diffuse, sheen model) set to @p choice.
+    void setAbSplitTerm(ParamId term, int choice);
     /// Loads a material preset as B and turns the split on. False when it could not be read.
     bool setAbSplitPreset(const QString& path);
 

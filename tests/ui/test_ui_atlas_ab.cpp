@@ -21,6 +21,7 @@
 #include <QDockWidget>
 #include <QFile>
 #include <QFileInfo>
+#include <QMenu>
 #include <QMouseEvent>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -93,6 +94,7 @@ private slots:
     void assignRegionToBaseColour();
     void channelIsolationAndExport();
     void abSplitShowsBOnTheRight();
+    void abSplitComparesBrdfTerms();
     void editStreamRendersReducedThenRefines();
     void dockLayoutRestores();
     void saveReopenEqual();
@@ -285,6 +287,37 @@ void TestUiAtlasAb::abSplitShowsBOnTheRight() {
     m_window->setAbSplit(false);
     QVERIFY(!m_window->abSplitAction()->isChecked());
     QVERIFY(maxDiff(single, frame(), 0, w) <= 1);
+    viewport->setReducedResolution(true);
+}
+
+void TestUiAtlasAb::abSplitComparesBrdfTerms() {
+    ViewportWidget* viewport = m_window->viewport();
+    viewport->setReducedResolution(false);
+    m_doc->editParam(ParamId::Roughness, glm::vec3(0.35f));
+    const QImage single = frame();
+    const int w = single.width(), half = w / 2;
+    const int undoCount = m_doc->undoStack()->count();
+
+    // The A/B button's menu: B = A with Beckmann instead of GGX, picked as an artist does.
+    auto* termMenu = m_window->findChild<QMenu*>(QStringLiteral("abTermMenu"));
+    QVERIFY(termMenu);
+    QAction* beckmann = nullptr;
+    for (QAction* sub : termMenu->actions())
+        if (sub->menu() && sub->text().startsWith(QStringLiteral("Distribution")))
+            for (QAction* a : sub->menu()->actions())
+                if (a->text().contains(QStringLiteral("Beckmann"), Qt::CaseInsensitive))
+                    beckmann = a;
+    QVERIFY(beckmann);
+    beckmann->trigger();
+    QVERIFY(m_window->abSplitAction()->isChecked());
+    QVERIFY(viewport->splitMaterial().has_value());
+    QCOMPARE(viewport->splitMaterial()->distribution(), Distribution::Beckmann);
+    QCOMPARE(m_doc->material().distribution(), Distribution::GGX); // A untouched
+    QCOMPARE(m_doc->undoStack()->count(), undoCount);              // view state, not an edit
+    const QImage split = frame();
+    QVERIFY2(maxDiff(single, split, 0, half - 2) <= 1, "the left half must stay A");
+    QVERIFY2(maxDiff(single, split, half + 2, w) > 2, "the right half must show Beckmann");
+    m_window->setAbSplit(false);
     viewport->setReducedResolution(true);
 }
 
