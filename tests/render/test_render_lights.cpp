@@ -11,11 +11,14 @@
 #include "render/renderer.h"
 #include "render_test_util.h"
 
+#include <QTemporaryDir>
 #include <QtTest>
 #include <cmath>
 #include <cstdlib>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <optional>
+#include <set>
 
 using namespace velvet;
 
@@ -47,7 +50,8 @@ struct Frame {
 };
 
 Frame renderFrame(const Scene& scene, int size, render::DebugView view = render::DebugView::Final,
-                  render::LightPath path = render::LightPath::Auto) {
+                  render::LightPath path = render::LightPath::Auto,
+                  const std::optional<Material>& splitMaterial = std::nullopt) {
     Rig* r = rig();
     std::string error;
     if (!r->target.resize(size, size, &error))
@@ -56,6 +60,7 @@ Frame renderFrame(const Scene& scene, int size, render::DebugView view = render:
     fs.width = fs.height = size;
     fs.view = view;
     fs.lightPath = path;
+    fs.splitMaterial = splitMaterial;
     r->renderer.setScene(scene);
     if (!r->renderer.render(fs, r->target.framebuffer(), &error))
         qFatal("render failed: %s", error.c_str());
@@ -159,6 +164,87 @@ void compareWithTwin(const Scene& scene, const Light& light, Factor factor, int&
                 ++checked;
             }
         }
+}
+
+/// The debug-view golden scene: the shipped default scene (HDRI, key light, crimson velvet) with
+/// a material that has every lobe (textured metallic, roughness and occlusion, clearcoat, sheen,
+/// emission), 20 point lights of overlapping radii around the sphere (so the lights-per-pixel
+/// heat map has several levels), and the A/B split's material B (id 1) on the right half, which
+/// differs in every G-buffer and material value a view shows.
+struct GoldenScene {
+    Scene scene;
+    Material b;
+};
+GoldenScene debugViewGoldenScene() {
+    GoldenScene g{test::shippedDefaultScene(), {}};
+    Material& a = g.scene.material;
+    // Textures written here (both materials use them): metallic and roughness (glTF packing: G
+    // roughness, B metallic) and occlusion as gradients across u and v, so those views vary
+    // across the sphere and not only between the halves.
+    static QTemporaryDir dir;
+    const std::string mr = dir.filePath("metal_rough.png").toStdString();
+    const std::string ao = dir.filePath("occlusion.png").toStdString();
+    Image metalRough(16, 16, 3), occlusion(16, 16, 1);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            metalRough.at(x, y)[1] = 0.3f + 0.7f * float(y) / 15.0f;
+            metalRough.at(x, y)[2] = float(x) / 15.0f;
+            occlusion.at(x, y)[0] = 0.2f + 0.8f * float(y) / 15.0f;
+        }
+    std::string error;
+    if (!writeImage(mr, metalRough, PixelFormat::UInt8, &error) ||
+        !writeImage(ao, occlusion, PixelFormat::UInt8, &error))
+        qFatal("writing the golden scene's textures: %s", error.c_str());
+    a.setTexture(TextureSlot::MetallicRoughness, TextureRef{mr});
+    a.setTexture(TextureSlot::Occlusion, TextureRef{ao});
+    a.setColor(ParamId::BaseColor, {0.75f, 0.2f, 0.15f});
+    a.setScalar(ParamId::Metallic, 0.5f);
+    a.setScalar(ParamId::Roughness, 0.5f);
+    a.setScalar(ParamId::ClearcoatWeight, 0.8f);
+    a.setScalar(ParamId::ClearcoatRoughness, 0.15f);
+    a.setScalar(ParamId::SheenWeight, 1.0f);
+    a.setColor(ParamId::SheenColor, {0.9f, 0.6f, 0.9f});
+    a.setColor(ParamId::EmissiveColor, {0.2f, 0.5f, 1.0f});
+    a.setScalar(ParamId::EmissiveStrength, 0.3f);
+    g.b = a;
+    g.b.setColor(ParamId::BaseColor, {0.9f, 0.8f, 0.3f});
+    g.b.setScalar(ParamId::Metallic, 1.0f);
+    g.b.setScalar(ParamId::SpecularWeight, 0.6f);
+    g.b.setColor(ParamId::SpecularColor, {1.0f, 0.8f, 0.6f});
+    g.b.setScalar(ParamId::Roughness, 0.7f);
+    g.b.setScalar(ParamId::ClearcoatWeight, 0.3f);
+    g.b.setScalar(ParamId::ClearcoatRoughness, 0.5f);
+    g.b.setColor(ParamId::SheenColor, {0.2f, 0.9f, 0.4f});
+    g.b.setColor(ParamId::EmissiveColor, {1.0f, 0.4f, 0.1f});
+    g.b.setScalar(ParamId::EmissiveStrength, 0.6f);
+    for (int i = 0; i < 20; ++i) {
+        // A ring of lights around the view axis, alternating in depth and radius.
+        const float angle = 2.0f * 3.14159265f * float(i) / 20.0f;
+        Light l;
+        l.type = LightType::Point;
+        l.position = {1.1f * std::cos(angle), 1.1f * std::sin(angle), i % 2 ? 0.9f : 0.3f};
+        l.range = i % 3 == 0 ? 1.4f : 0.9f;
+        l.intensity = 0.6f;
+        l.color = {0.5f + 0.5f * std::cos(angle), 0.7f, 0.5f + 0.5f * std::sin(angle)};
+        g.scene.lights.push_back(l);
+    }
+    return g;
+}
+
+/// Fraction of pixels that differ from pixel (0, 0) by more than 5/255 in some channel (a
+/// constant image gives 0).
+double fractionUnlikeCorner(const Image& im) {
+    int unlike = 0;
+    const glm::vec4 c = im.rgba(0, 0);
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x) {
+            const glm::vec4 p = im.rgba(x, y);
+            float d = 0.0f;
+            for (int k = 0; k < 3; ++k)
+                d = std::max(d, std::abs(p[k] - c[k]));
+            unlike += d * 255.0f > 5.0f;
+        }
+    return double(unlike) / double(im.width * im.height);
 }
 
 } // namespace
@@ -423,7 +509,9 @@ private slots:
         }
     }
 
-    // A golden image of the default scene for every debug view (DESIGN.md's tolerance).
+    // A golden image of every debug view of debugViewGoldenScene() (DESIGN.md's tolerance). Each
+    // view must show structure (no constant image, so a view that goes blank fails even when its
+    // golden is regenerated), and the material-id view both ids of the A/B split.
     void debugViewGoldens_data() {
         QTest::addColumn<int>("view");
         const char* names[] = {"final",         "albedo",           "normal",
@@ -440,7 +528,38 @@ private slots:
         QFETCH(int, view);
         const QString path = QString(VELVET_SOURCE_DIR "/tests/render/golden/view_%1_128.png")
                                  .arg(QTest::currentDataTag());
-        const Frame f = renderFrame(test::shippedDefaultScene(), 128, render::DebugView(view));
+        const GoldenScene g = debugViewGoldenScene();
+        // The whole environment bake first: the views must not depend on how many slices the
+        // frames before happened to run (the final view shows the prefiltered environment).
+        rig()->renderer.setScene(g.scene);
+        rig()->renderer.finishEnvironment();
+        const Frame f =
+            renderFrame(g.scene, 128, render::DebugView(view), render::LightPath::Auto, g.b);
+        const double unlike = fractionUnlikeCorner(f.display);
+        qInfo("%s: %.1f %% of pixels unlike the corner", QTest::currentDataTag(), 100.0 * unlike);
+        QVERIFY2(unlike >= 0.02, "the view is (nearly) one colour");
+        if (render::DebugView(view) == render::DebugView::MaterialId) {
+            QCOMPARE(f.linear.rgba(40, 64).x, 0.0f); // left half of the sphere: A
+            QCOMPARE(f.linear.rgba(88, 64).x, 1.0f); // right half: B
+        }
+        if (render::DebugView(view) == render::DebugView::Metallic ||
+            render::DebugView(view) == render::DebugView::Roughness ||
+            render::DebugView(view) == render::DebugView::Occlusion) {
+            std::set<float> values; // the textures' gradients, not one value per half
+            for (int y = 0; y < 128; ++y)
+                for (int x = 0; x < 64; ++x)
+                    values.insert(f.linear.rgba(x, y).x);
+            QVERIFY2(values.size() >= 10, qPrintable(QString("%1 values").arg(values.size())));
+        }
+        if (render::DebugView(view) == render::DebugView::LightsPerPixel) {
+            std::set<float> counts; // a heat map, not a mask: several overlap levels
+            for (int y = 0; y < 128; ++y)
+                for (int x = 0; x < 128; ++x)
+                    counts.insert(f.linear.rgba(x, y).x);
+            qInfo("lights per pixel: %d distinct counts, up to %.0f", int(counts.size()),
+                  *counts.rbegin());
+            QVERIFY(counts.size() >= 4);
+        }
         std::string error;
         if (updateGoldens()) {
             QVERIFY2(writeImage(path.toStdString(), f.display, PixelFormat::UInt8, &error),
