@@ -784,6 +784,48 @@ private slots:
         }
     }
 
+    // Directional lights past render::kMaxDirectionalLights are not drawn, and setScene() says
+    // so: one warning per dropped light naming its JSON path (the index in the scene's lights,
+    // counting the other light types before it); the first 16 are drawn as before.
+    void directionalLightsPastTheLimitAreReported() {
+        Scene scene = analyticScene();
+        Light ambient;
+        ambient.type = LightType::Ambient;
+        ambient.intensity = 0.05f;
+        scene.lights = {ambient};
+        for (int i = 0; i < render::kMaxDirectionalLights; ++i) {
+            Light l;
+            l.type = LightType::Directional;
+            l.direction = glm::normalize(glm::vec3(0.1f * float(i - 8), -0.3f, -1.0f));
+            l.intensity = 0.1f;
+            scene.lights.push_back(l);
+        }
+        Problems problems;
+        rig()->renderer.setScene(scene, &problems);
+        QVERIFY(problems.items.empty());
+        const Frame drawn = renderFrame(scene, 48);
+        Scene over = scene;
+        Light bright;
+        bright.type = LightType::Directional;
+        bright.direction = {0.0f, 0.0f, -1.0f};
+        bright.intensity = 50.0f;
+        over.lights.push_back(bright);
+        over.lights.push_back(bright);
+        rig()->renderer.setScene(over, &problems);
+        QCOMPARE(problems.items.size(), size_t(2));
+        for (size_t k = 0; k < 2; ++k) {
+            const Problem& p = problems.items[k];
+            qInfo("%s", p.toString().c_str());
+            QVERIFY(p.severity == Problem::Severity::Warning);
+            QCOMPARE(p.path, "lights[" + std::to_string(17 + k) + "]");
+            QVERIFY2(p.message.find("16") != std::string::npos, p.message.c_str());
+        }
+        QVERIFY(!problems.hasErrors());
+        // The dropped lights really are not drawn (they would be 500x brighter than the rest).
+        const Frame f = renderFrame(over, 48);
+        QCOMPARE(differingFraction(drawn.display, f.display), 0.0);
+    }
+
     // A golden image of every debug view of debugViewGoldenScene() (DESIGN.md's tolerance). Each
     // view must show structure (no constant image, so a view that goes blank fails even when its
     // golden is regenerated), and the material-id view both ids of the A/B split.
