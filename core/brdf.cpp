@@ -1,5 +1,7 @@
 #include "core/brdf.h"
 
+#include "core/lights.h"
+
 #include <algorithm>
 #include <cmath>
 #include <glm/common.hpp>
@@ -444,6 +446,71 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
         f = f * (1.0f - s.clearcoat * fc) + s.clearcoat * coat;
     }
     return f * NdotL;
+}
+
+Lobes evalLobes(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 lDiffuse, glm::vec3 lSpecular,
+                float widen) {
+    // Mirrors shadeLobes() in light_lobes.glsl line for line.
+    Lobes o;
+    const float NdotV = std::max(glm::dot(n, v), 1e-4f);
+    const float rough = std::max(s.roughness, kMinRoughness);
+    const float alpha = rough * rough;
+    const float fc = s.clearcoat > 0.0f ? s.clearcoat * fresnelSchlick(0.04f, 1.0f, NdotV) : 0.0f;
+    const float coatAttenuation = 1.0f - fc;
+    const bool hasSheen = max3(s.sheenColor) > 0.0f;
+    const float sheenAlbedoV =
+        hasSheen ? sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel) : 0.0f;
+    auto sheenScaling = [&](float NdotL) {
+        return std::min(1.0f - max3(s.sheenColor) * sheenAlbedoV,
+                        1.0f - max3(s.sheenColor) *
+                                   sheenDirectionalAlbedo(NdotL, s.sheenRoughness, s.sheenModel));
+    };
+
+    const float NdotLd = glm::dot(n, lDiffuse);
+    if (NdotLd > 0.0f) {
+        const glm::vec3 h = glm::normalize(lDiffuse + v);
+        const float VdotH = saturate(glm::dot(v, h));
+        const glm::vec3 fDielectric =
+            s.specularWeight * fresnelDielectric(s.fresnel, dielectricF0(s), s.ior, VdotH);
+        const glm::vec3 diffuseLobe = diffuse(s.diffuse, s.baseColor, rough, NdotLd, NdotV, VdotH);
+        float scaling = 1.0f;
+        if (hasSheen) {
+            scaling = sheenScaling(NdotLd);
+            const float NdotH = saturate(glm::dot(n, h));
+            const float sheen = distributionCharlie(NdotH, sinSquared(n, h), s.sheenRoughness) *
+                                visibilitySheen(s.sheenModel, NdotLd, NdotV, s.sheenRoughness);
+            o.sheen = s.sheenColor * sheen * coatAttenuation * NdotLd;
+        }
+        o.diffuse = (1.0f - s.metallic) * (1.0f - max3(fDielectric)) * diffuseLobe * scaling *
+                    coatAttenuation * NdotLd;
+    }
+
+    const float NdotL = glm::dot(n, lSpecular);
+    if (NdotL > 0.0f) {
+        const glm::vec3 h = glm::normalize(lSpecular + v);
+        const float NdotH = saturate(glm::dot(n, h));
+        const float sin2H = sinSquared(n, h);
+        const float VdotH = saturate(glm::dot(v, h));
+        const float specular = distribution(s.distribution, NdotH, sin2H, alpha) *
+                               visibility(s.visibility, NdotL, NdotV, NdotH, VdotH, alpha) *
+                               lights::areaSpecularNormalization(alpha, widen);
+        const glm::vec3 fDielectric =
+            s.specularWeight * fresnelDielectric(s.fresnel, dielectricF0(s), s.ior, VdotH);
+        const glm::vec3 fMetal = fresnelConductor(s.fresnel, s.baseColor, VdotH);
+        const float scaling = hasSheen ? sheenScaling(NdotL) : 1.0f;
+        o.specular = glm::mix(fDielectric, fMetal, s.metallic) * specular * scaling *
+                     coatAttenuation * NdotL;
+        if (s.clearcoat > 0.0f) {
+            const float cr = std::max(s.clearcoatRoughness, kMinRoughness);
+            const float ca = cr * cr;
+            const float coat = fresnelSchlick(0.04f, 1.0f, VdotH) *
+                               distributionGGX(NdotH, sin2H, ca) *
+                               visibilitySmithGGXSeparable(NdotL, NdotV, ca) *
+                               lights::areaSpecularNormalization(ca, widen);
+            o.clearcoat = glm::vec3(s.clearcoat * coat * NdotL);
+        }
+    }
+    return o;
 }
 
 } // namespace velvet::brdf

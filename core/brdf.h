@@ -169,4 +169,17 @@ glm::vec3 dielectricF0(const Surface& s);
 /// f(l, v) * max(n.l, 0), all lobes layered. Vectors unit length, world space.
 glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l);
 
+/// The layered BRDF split into its lobes (twin of Lobes / shadeLobes() in
+/// resources/shaders/light_lobes.glsl), for area lights: @p lDiffuse (unit, towards the light's
+/// centre) drives the diffuse and sheen lobes, @p lSpecular (unit, towards Karis 2013's
+/// representative point) the base specular and clearcoat lobes, whose D is renormalised by
+/// lights::areaSpecularNormalization(alpha, @p widen). Each lobe includes its n.l. With
+/// lDiffuse = lSpecular and widen = 0 the sum equals evalDirectional().
+struct Lobes {
+    glm::vec3 diffuse{0.0f}, specular{0.0f}, sheen{0.0f}, clearcoat{0.0f};
+    glm::vec3 sum() const { return diffuse + specular + sheen + clearcoat; }
+};
+Lobes evalLobes(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 lDiffuse, glm::vec3 lSpecular,
+                float widen);
+
 } // namespace velvet::brdf

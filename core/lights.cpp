@@ -67,4 +67,16 @@ float sphereIlluminancePerNit(float distance, float radius, float range) {
     return kPi * (radius * radius) / (d * d) * windowFalloff(distance, range);
 }
 
+void rectangleAxes(glm::vec3 normal, glm::vec3& axisX, glm::vec3& axisY) {
+    const glm::vec3 up = std::abs(normal.y) < 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    axisX = glm::normalize(glm::cross(up, normal));
+    axisY = glm::cross(normal, axisX);
+}
+
+float rectangleIlluminancePerNit(float distance, float cosLight, float halfX, float halfY,
+                                 float range) {
+    const float d = std::max(distance, kMinLightDistance);
+    return 4.0f * halfX * halfY * saturate(cosLight) / (d * d) * windowFalloff(distance, range);
+}
+
 } // namespace velvet::lights

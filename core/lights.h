@@ -45,6 +45,15 @@ float areaSpecularNormalization(float alpha, float widen);
 /// Illuminance (lux) per nit at distance @p distance from the centre of a sphere light of radius
 /// @p radius, facing it: pi (r / d)^2 (exact outside the sphere), windowed by @p range.
 float sphereIlluminancePerNit(float distance, float radius, float range);
+/// The rectangle's unit axes from the light's unit direction @p normal (the way it emits): x
+/// horizontal (perpendicular to +Y, or to +X for a light facing straight up or down), y = n x x.
+void rectangleAxes(glm::vec3 normal, glm::vec3& axisX, glm::vec3& axisY);
+/// Illuminance (lux) per nit of a one-sided rectangle light of half sizes @p halfX / @p halfY
+/// whose centre is @p distance away, @p cosLight the cosine between its normal and the direction
+/// from the light to the point: the small-source form factor A cos(theta_light) / d^2 (no
+/// horizon clipping; exact only far from the rectangle), windowed by @p range. 0 behind it.
+float rectangleIlluminancePerNit(float distance, float cosLight, float halfX, float halfY,
+                                 float range);
 /// @}
 
 } // namespace velvet::lights

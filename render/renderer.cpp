@@ -29,7 +29,7 @@
 namespace velvet::render {
 namespace {
 
-constexpr int kMaxLights = 16;
+constexpr int kMaxLights = kMaxDirectionalLights;
 
 /// Mirrors FrameBlock in common_frame.glsl (std140; vec4 / mat4 members only).
 struct FrameBlock {
@@ -728,6 +728,17 @@ void Renderer::setScene(const Scene& scene, Problems* problems) {
     // The graph: values and textures now, a new structure at the next render().
     d.setGraph(scene.material, problems);
     d.lights.upload(scene.lights);
+    if (problems) {
+        // The full-screen pass has a fixed array of directional lights (MAX_LIGHTS in
+        // common_frame.glsl); frameBlock() draws the first kMaxLights and drops the rest.
+        int directional = 0;
+        for (size_t i = 0; i < scene.lights.size(); ++i)
+            if (scene.lights[i].type == LightType::Directional && ++directional > kMaxLights)
+                problems->warning("", "lights[" + std::to_string(i) + "]",
+                                  "directional light " + std::to_string(directional) +
+                                      " is not drawn: the renderer draws the first " +
+                                      std::to_string(kMaxLights) + " directional lights only");
+    }
     d.environment = &d.environments.get(scene.environment, problems);
     d.ibl.request(*d.environment);
 }

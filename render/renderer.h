@@ -22,6 +22,10 @@ namespace velvet::render {
 
 class PostChainRenderer;
 
+/// Directional lights the lighting pass draws (MAX_LIGHTS in resources/shaders/common_frame.glsl);
+/// setScene() reports each one past this as a warning naming its JSON path ("lights[i]").
+inline constexpr int kMaxDirectionalLights = 16;
+
 /// What the final pass shows (the renderer issue adds every G-buffer and lighting view).
 /// Debug views write raw values to the linear image (readLinear): Albedo linear base colour, Normal
 /// world normal, Depth view-space distance along -Z in metres, Roughness, Metallic, Position world

@@ -64,6 +64,34 @@ private slots:
         const double share = o.value("post_chain_share").toDouble();
         QVERIFY(std::isfinite(share) && share < 1.0);
     }
+
+    // Full mode only (VELVET_BENCH_FULL=1; 1280x720, 7 frames per variant, minutes): the tiled
+    // path's cost grows no faster than its work, i.e. lights_growth_1000_vs_100 (a ratio of
+    // times) <= light_pixel_pairs_ratio_1000_vs_100 (a ratio of light-pixel pairs) -
+    // BENCHMARKS.md's target. Short mode is too noisy for a ratio of times.
+    void fullBenchTiledGrowsWithLightPixelPairs() {
+        if (qgetenv("VELVET_BENCH_FULL") != "1")
+            QSKIP("full-mode bench: set VELVET_BENCH_FULL=1");
+        QProcess p;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.remove("DISPLAY");
+        env.remove("WAYLAND_DISPLAY");
+        p.setProcessEnvironment(env);
+        p.start(VELVET_BINARY, {"bench", "--json"});
+        QVERIFY2(p.waitForFinished(1800000), "velvet bench did not finish in 30 min");
+        QVERIFY2(p.exitCode() == 0, p.readAllStandardError().constData());
+        const QJsonObject o = QJsonDocument::fromJson(p.readAllStandardOutput()).object();
+        const double growth = o.value("lights_growth_1000_vs_100").toDouble(NAN);
+        const double pairs = o.value("light_pixel_pairs_ratio_1000_vs_100").toDouble(NAN);
+        qInfo("full bench: tiled growth 1000 vs 100 lights %.2f (%.1f / %.1f ms over a %.1f ms "
+              "frame without point lights), light-pixel pairs ratio %.2f",
+              growth, o.value("lights1000_tiled_ms").toDouble(),
+              o.value("lights100_tiled_ms").toDouble(),
+              o.value("frame_nolights_wall_ms").toDouble(), pairs);
+        QVERIFY(std::isfinite(growth) && std::isfinite(pairs));
+        QVERIFY2(growth <= pairs,
+                 qPrintable(QString("growth %1 > pairs %2").arg(growth).arg(pairs)));
+    }
 };
 
 QTEST_GUILESS_MAIN(TestAppBench)

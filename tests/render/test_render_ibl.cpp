@@ -357,9 +357,11 @@ private slots:
     }
 
     // The bake runs in slices: a renderer asked for frames reports progress that only grows and
-    // reaches 1, needs more than one slice, and no slice overruns the slice target by more than a
-    // margin (5x; the times are reported, the ratio is what is asserted). Frames drawn before
-    // completion succeed (the approximate path).
+    // reaches 1, needs more than one slice, and frames drawn before completion succeed (the
+    // approximate path). No time is asserted (DESIGN.md, "Measuring": llvmpipe on a shared
+    // machine): what bounds a slice is its work, which sliceWorkIsBounded() asserts against
+    // IblBakeOptions::maxSliceUnits. The worst slice and the worst frame's bake time are logged
+    // against the 50 ms a window may freeze.
     void slicedBakeWithProgress() {
         render::Renderer renderer;
         std::string error;
@@ -393,9 +395,13 @@ private slots:
         QVERIFY(s.warmUpFrames > 1);
         const int slices = s.slices - before.slices;
         const double target8 = render::IblBakeOptions{}.sliceTargetMs;
-        qInfo("studio.exr bake: %d frames, %d slices, %.1f ms in all, worst slice %.1f ms "
-              "(target %.1f ms), worst IBL time in one frame %.1f ms",
-              frames, slices, s.totalMs - before.totalMs, s.worstSliceMs, target8, worstFrameIbl);
+        auto within50 = [](double ms) { return ms <= 50.0 ? "within" : "OVER"; };
+        qInfo("studio.exr bake: %d frames, %d slices, %.1f ms in all; worst slice %.1f ms (target "
+              "%.1f ms; 50 ms window-freeze limit: %s); worst frame's bake time %.1f ms, "
+              "including the llvmpipe shader warm-up (worst warm-up frame %.1f ms; limit: %s)",
+              frames, slices, s.totalMs - before.totalMs, s.worstSliceMs, target8,
+              within50(s.worstSliceMs), worstFrameIbl, s.worstWarmUpFrameMs,
+              within50(worstFrameIbl));
         QVERIFY(frames > 1);
         QVERIFY(slices > 1);
         // What bounds a slice's time is its work, asserted by sliceWorkIsBounded() below.
