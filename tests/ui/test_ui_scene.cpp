@@ -4,11 +4,14 @@
 // (the mesh, HDRI and lights stay), an image dropped on it fills the base colour slot; the
 // History panel jumps; Ctrl+S saves; closing or R with unsaved changes asks first and Cancel
 // keeps everything; the status bar shows the frame time; the Library lists fabrics first.
+#include "core/document_io.h"
 #include "core/light_rigs.h"
+#include "core/post_effects.h"
 #include "core/resources.h"
 #include "ui/document_controller.h"
 #include "ui/library/library_panel.h"
 #include "ui/main_window.h"
+#include "ui/post_chain/post_chain_panel.h"
 #include "ui/scene/scene_panel.h"
 #include "ui/viewport_widget.h"
 
@@ -16,6 +19,7 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QDockWidget>
+#include <QFileDialog>
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLabel>
@@ -108,6 +112,9 @@ private slots:
     void reloadKeyAsksAndRestoresFile();
     void statusBarShowsFrameTime();
     void libraryListsFabricsFirst();
+    void libraryDoubleClickAppliesAndCtrlZUndoes();
+    void postChainDragInWindowReordersAndRedraws();
+    void ctrlOReopensSavedDocumentEqual();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -393,6 +400,107 @@ void TestUiScene::libraryListsFabricsFirst() {
                 .data(LibraryPanel::TagsRole)
                 .toStringList()
                 .contains(QStringLiteral("fabric")));
+}
+
+void TestUiScene::libraryDoubleClickAppliesAndCtrlZUndoes() {
+    m_window->findChild<QDockWidget*>(QStringLiteral("libraryDock"))->raise();
+    QListView* view = m_window->libraryPanel()->view();
+    QAbstractItemModel* model = view->model();
+    QModelIndex gold;
+    for (int row = 0; row < model->rowCount(); ++row)
+        if (model->index(row, 0).data().toString() == QStringLiteral("Polished gold"))
+            gold = model->index(row, 0);
+    QVERIFY(gold.isValid());
+    view->scrollTo(gold);
+    const Material velvet = m_doc->material();
+    const double before = centreLuma(viewportImage());
+    const QPoint at = view->visualRect(gold).center();
+    QTest::mouseClick(view->viewport(), Qt::LeftButton, Qt::NoModifier, at);
+    QTest::mouseDClick(view->viewport(), Qt::LeftButton, Qt::NoModifier, at);
+    QCOMPARE(m_doc->material().name, std::string("Polished gold"));
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    const double gilded = centreLuma(viewportImage());
+    QVERIFY2(std::abs(gilded - before) > 3.0,
+             qPrintable(QStringLiteral("%1 -> %2").arg(before).arg(gilded)));
+
+    m_window->activateWindow();
+    QTRY_VERIFY(m_window->isActiveWindow());
+    QTest::keyClick(m_window.get(), Qt::Key_Z, Qt::ControlModifier);
+    QVERIFY(m_doc->material() == velvet);
+    QVERIFY(std::abs(centreLuma(viewportImage()) - before) < 1.0);
+}
+
+void TestUiScene::postChainDragInWindowReordersAndRedraws() {
+    // Blur then pixelate gives flat cells; pixelate then blur soft ones: the order shows.
+    Scene scene = m_doc->scene();
+    scene.post.effects = {makeEffect("gaussian_blur"), makeEffect("pixelate")};
+    m_doc->setDocument(scene, QString());
+    m_window->findChild<QDockWidget*>(QStringLiteral("postChainDock"))->raise();
+    PostChainListView* list = m_window->postChainPanel()->list();
+    QCOMPARE(list->model()->rowCount(), 2);
+    const QImage before = viewportImage();
+
+    // The drop half of a drag of row 0 onto the lower half of row 1 (QDrag::exec's nested loop
+    // is fed by the window system, which synthetic events do not reach; test_ui_panels.cpp).
+    const QRect row1 = list->visualRect(list->model()->index(1, 0));
+    const QPoint lowerHalf(row1.center().x(), row1.bottom() - 1);
+    QMimeData* mime = list->model()->mimeData({list->model()->index(0, 0)});
+    QDragEnterEvent enter(lowerHalf, Qt::MoveAction, mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(list->viewport(), &enter);
+    QDragMoveEvent move(lowerHalf, Qt::MoveAction, mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(list->viewport(), &move);
+    QDropEvent drop(QPointF(lowerHalf), Qt::MoveAction, mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(list->viewport(), &drop);
+    delete mime;
+    QCOMPARE(m_doc->scene().post.effects[0].type, std::string("pixelate"));
+    QCOMPARE(m_doc->scene().post.effects[1].type, std::string("gaussian_blur"));
+    QCOMPARE(m_doc->undoStack()->count(), 1);
+    const QImage after = viewportImage();
+    int differing = 0;
+    for (int y = 0; y < after.height(); y += 2)
+        for (int x = 0; x < after.width(); x += 2)
+            differing += before.pixel(x, y) != after.pixel(x, y);
+    QVERIFY2(differing > 100, qPrintable(QString::number(differing)));
+
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->scene().post.effects[0].type, std::string("gaussian_blur"));
+    const QImage undone = viewportImage();
+    int stillDiffering = 0;
+    for (int y = 0; y < undone.height(); y += 2)
+        for (int x = 0; x < undone.width(); x += 2)
+            stillDiffering += before.pixel(x, y) != undone.pixel(x, y);
+    QCOMPARE(stillDiffering, 0);
+}
+
+void TestUiScene::ctrlOReopensSavedDocumentEqual() {
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "softboxes");
+    m_doc->editParam(ParamId::Roughness, glm::vec3(0.42f));
+    const QString path = m_dir.filePath(QStringLiteral("reopen.json"));
+    QString error;
+    QVERIFY2(m_doc->saveAs(path, &error), qPrintable(error));
+    const Scene saved = m_doc->scene();
+    m_doc->newDocument();
+    QVERIFY(!(m_doc->scene() == saved));
+
+    // Ctrl+O, answered in Qt's own file dialog (no native dialog under xvfb).
+    QTimer::singleShot(0, this, [path] {
+        std::function<void()> answer = [&answer, path] {
+            for (QWidget* w : QApplication::topLevelWidgets())
+                if (auto* dialog = qobject_cast<QFileDialog*>(w); dialog && dialog->isVisible()) {
+                    dialog->selectFile(path);
+                    dialog->accept();
+                    return;
+                }
+            QTimer::singleShot(20, answer);
+        };
+        answer();
+    });
+    m_window->activateWindow();
+    QTRY_VERIFY(m_window->isActiveWindow());
+    QTest::keyClick(m_window.get(), Qt::Key_O, Qt::ControlModifier);
+    QTRY_COMPARE(m_doc->filePath(), QFileInfo(path).absoluteFilePath());
+    QVERIFY(m_doc->scene() == saved);
+    QVERIFY(!m_doc->isDirty());
 }
 
 int main(int argc, char** argv) {
