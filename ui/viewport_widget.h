@@ -49,6 +49,8 @@ class OffscreenTarget;
 
 namespace velvet::ui {
 
+class TextureFileWatcher;
+
 class ViewportWidget : public QWidget {
     Q_OBJECT
 public:
@@ -201,6 +203,9 @@ private:
     float m_lastRenderScale = 1.0f;
     QElapsedTimer m_lastInteraction;
     QTimer* m_refineTimer;
+    /// Draws a frame when a texture file the material uses changes on disk (an idle viewport
+    /// would otherwise not notice; ui/texture_file_watcher.h).
+    TextureFileWatcher* m_textureWatcher;
 };
 
 } // namespace velvet::ui

@@ -8,6 +8,7 @@
 // orbit, pan, zoom, fly keys, F, T and Ctrl+Z while it has focus, and a file dropped on it
 // reaches the main window; screenshots compose its frame (QWidget::grab leaves it out).
 #include "core/color_management.h"
+#include "core/image.h"
 #include "core/resources.h"
 #include "render/renderer.h"
 #include "ui/color_picking.h"
@@ -22,6 +23,7 @@
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QMimeData>
 #include <QRegularExpression>
@@ -118,6 +120,7 @@ private slots:
     void dockLayoutRestores();
     void pickerRoundTripsThroughOcioView();
     void recentFilesKeepNewestEight();
+    void editedTextureFileRedrawsIdleViewport();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -540,6 +543,56 @@ void TestUiViewport::recentFilesKeepNewestEight() {
     QCOMPARE(files.front(), QStringLiteral("/tmp/velvet-recent-5.json"));
     QCOMPARE(files.count(QStringLiteral("/tmp/velvet-recent-5.json")), 1);
     QVERIFY(!files.contains(QStringLiteral("/tmp/velvet-recent-0.json")));
+}
+
+namespace {
+
+/// A 16 x 16 opaque image of one colour (display-encoded sRGB values, as a PNG holds them).
+Image flatImage(glm::vec3 rgb) {
+    Image img(16, 16, 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            float* p = img.at(x, y);
+            p[0] = rgb.r, p[1] = rgb.g, p[2] = rgb.b, p[3] = 1.0f;
+        }
+    return img;
+}
+
+} // namespace
+
+// An image edited in another program shows in an idle viewport: the texture file watcher
+// (ui/texture_file_watcher.h) asks for a frame when the base colour's file changes on disk, and
+// that frame re-uploads it (nothing else asks for one while the test waits).
+void TestUiViewport::editedTextureFileRedrawsIdleViewport() {
+    QTemporaryDir dir;
+    const std::string file = dir.filePath(QStringLiteral("base.png")).toStdString();
+    std::string error;
+    QVERIFY2(writeImage(file, flatImage({1.0f, 0.0f, 0.0f}), PixelFormat::UInt8, &error),
+             error.c_str());
+    TextureRef ref;
+    ref.file = file;
+    m_doc->setTexture(TextureSlot::BaseColor, ref);
+    const QVector<double> red = centrePixel(viewportImage());
+    QVERIFY2(red[0] > red[2] + 20.0, qPrintable(describe(red)));
+
+    // Idle: no frame for a second (the environment bake and the refine timer are done).
+    ViewportWidget* viewport = m_window->viewport();
+    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
+    QElapsedTimer quiet;
+    quiet.start();
+    while (quiet.elapsed() < 1000) {
+        const qsizetype before = frames.count();
+        QTest::qWait(100);
+        if (frames.count() != before)
+            quiet.restart();
+        QVERIFY2(frames.count() < 2000, "the viewport never goes idle");
+    }
+    frames.clear();
+    QVERIFY2(writeImage(file, flatImage({0.0f, 0.0f, 1.0f}), PixelFormat::UInt8, &error),
+             error.c_str());
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), 10000); // drawn without anyone asking
+    const QVector<double> blue = centrePixel(viewportImage());
+    QVERIFY2(blue[2] > blue[0] + 20.0, qPrintable(describe(red) + " -> " + describe(blue)));
 }
 
 int main(int argc, char** argv) {
