@@ -27,6 +27,7 @@
 #include <QFile>
 #include <QMimeData>
 #include <QRegularExpression>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTemporaryDir>
@@ -121,6 +122,7 @@ private slots:
     void pickerRoundTripsThroughOcioView();
     void recentFilesKeepNewestEight();
     void editedTextureFileRedrawsIdleViewport();
+    void lookComboChangesPixelAndPersists();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -558,6 +560,18 @@ Image flatImage(glm::vec3 rgb) {
     return img;
 }
 
+/// Largest channel difference between two frames of the same size, in 0..255 units.
+int maxImageDifference(const QImage& a, const QImage& b) {
+    int worst = 0;
+    for (int y = 0; y < std::min(a.height(), b.height()); ++y)
+        for (int x = 0; x < std::min(a.width(), b.width()); ++x) {
+            const QColor p = a.pixelColor(x, y), q = b.pixelColor(x, y);
+            worst = std::max({worst, std::abs(p.red() - q.red()), std::abs(p.green() - q.green()),
+                              std::abs(p.blue() - q.blue())});
+        }
+    return worst;
+}
+
 } // namespace
 
 // An image edited in another program shows in an idle viewport: the texture file watcher
@@ -593,6 +607,38 @@ void TestUiViewport::editedTextureFileRedrawsIdleViewport() {
     QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), 10000); // drawn without anyone asking
     const QVector<double> blue = centrePixel(viewportImage());
     QVERIFY2(blue[2] > blue[0] + 20.0, qPrintable(describe(red) + " -> " + describe(blue)));
+}
+
+// The look combo: choosing a look changes the viewport (OCIO applies it in scene-linear before
+// the view), is view state saved to QSettings as the toolbar saves the display and view (never
+// a document edit), and choosing "No look" again gives the earlier frame back.
+void TestUiViewport::lookComboChangesPixelAndPersists() {
+    // A saturated Rec.709 blue: what the ACES blue-light LMT exists to desaturate.
+    m_doc->setParam(ParamId::BaseColor, glm::vec3(0.0f, 0.0f, 1.0f));
+    auto* display = find<QComboBox>(QStringLiteral("displayCombo"));
+    auto* view = find<QComboBox>(QStringLiteral("viewCombo"));
+    auto* look = find<QComboBox>(QStringLiteral("lookCombo"));
+    display->setCurrentIndex(display->findText(QStringLiteral("sRGB")));
+    view->setCurrentIndex(view->findText(QStringLiteral("ACES")));
+    QVERIFY(look->isEnabled());
+    const QImage without = viewportImage();
+    const int undoCount = m_doc->undoStack()->count();
+
+    const QString name = QStringLiteral("ACES Blue Light Fix");
+    const int index = look->findData(name);
+    QVERIFY2(index > 0, "the shipped config offers the look");
+    look->setCurrentIndex(index);
+    QCOMPARE(m_window->viewport()->frameSettings().look, name.toStdString());
+    const QImage with = viewportImage();
+    const int changed = maxImageDifference(without, with);
+    QVERIFY2(changed > 5, qPrintable(QStringLiteral("largest change %1").arg(changed)));
+    QCOMPARE(QSettings().value(QStringLiteral("viewport/look")).toString(), name);
+    QCOMPARE(m_doc->undoStack()->count(), undoCount); // view state, not an edit
+
+    look->setCurrentIndex(0);
+    QVERIFY(m_window->viewport()->frameSettings().look.empty());
+    QCOMPARE(QSettings().value(QStringLiteral("viewport/look")).toString(), QString());
+    QVERIFY(maxImageDifference(without, viewportImage()) <= 1);
 }
 
 int main(int argc, char** argv) {
