@@ -1,6 +1,6 @@
 // The velvet executable as a process: `pack` / `unpack` round trips with real files and their
-// refusals. Runs under xvfb (XVFB in CMakeLists.txt); the cases that need no display remove
-// DISPLAY themselves.
+// refusals, and a bad VELVET_MAX_IMAGE_* value stopping the process. Runs under xvfb (XVFB in
+// CMakeLists.txt); the cases that need no display remove DISPLAY themselves.
 #include "core/image.h"
 
 #include <QDir>
@@ -142,6 +142,31 @@ private slots:
             QCOMPARE(r.exitCode, 0);
             QVERIFY(r.out.contains("unreal-orm") && r.out.contains("--out"));
         }
+    }
+
+    // VELVET_MAX_IMAGE_SIDE / _BYTES: a bad value stops the process with exit 2 and names the
+    // variable; a valid one applies (a 20-pixel-wide map over a limit of 16 is refused).
+    void imageLimitsFromEnvironment() {
+        Result r = runVelvet({"info"}, Display::None, {{"VELVET_MAX_IMAGE_SIDE", "lots"}});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("VELVET_MAX_IMAGE_SIDE") && r.err.contains("lots"),
+                 qPrintable(r.err));
+        r = runVelvet({"info"}, Display::None, {{"VELVET_MAX_IMAGE_BYTES", "12Q"}});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("VELVET_MAX_IMAGE_BYTES"), qPrintable(r.err));
+
+        QTemporaryDir dir;
+        const QString in = dir.filePath("wide.png");
+        std::string error;
+        QVERIFY(velvet::writeImage(in.toStdString(), greyPattern(20, 4, 0),
+                                   velvet::PixelFormat::UInt8, &error));
+        const QStringList args{
+            "pack", "--layout", "unreal-orm", "--out", dir.filePath("o.png"), "--roughness", in};
+        r = runVelvet(args, Display::None, {{"VELVET_MAX_IMAGE_SIDE", "16"}});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("limit of 16 pixels"), qPrintable(r.err));
+        r = runVelvet(args, Display::None, {{"VELVET_MAX_IMAGE_SIDE", "20"}});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
     }
 };
 
