@@ -1,6 +1,9 @@
-// The velvet executable as a process: `pack` / `unpack` round trips with real files and their
-// refusals, and a bad VELVET_MAX_IMAGE_* value stopping the process. Runs under xvfb (XVFB in
-// CMakeLists.txt); the cases that need no display remove DISPLAY themselves.
+// The velvet executable as a process (issue 2 foundations, issues 3 and 6): the editor's
+// --screenshot under xvfb, its refusal without a display, `render -o x.exr` writing linear half
+// float, `info` reporting the GL context, `pack` / `unpack` round trips with real files, and a bad
+// VELVET_MAX_IMAGE_* value stopping the process. Runs under xvfb (XVFB in CMakeLists.txt); the
+// cases that need no display remove DISPLAY themselves.
+#include "core/color_management.h"
 #include "core/image.h"
 
 #include <QDir>
@@ -49,6 +52,23 @@ Result runVelvet(const QStringList& args, Display display = Display::None,
     return r;
 }
 
+/// Khronos PBR Neutral (the default built-in curve), clamped to [0, 1].
+glm::vec3 pbrNeutral(glm::vec3 c) {
+    c = glm::max(c, glm::vec3(0.0f));
+    const float start = 0.76f, desaturation = 0.15f;
+    const float x = std::min(c.r, std::min(c.g, c.b));
+    c -= x < 0.08f ? x - 6.25f * x * x : 0.04f;
+    const float peak = std::max(c.r, std::max(c.g, c.b));
+    if (peak >= start) {
+        const float d = 1.0f - start;
+        const float newPeak = 1.0f - d * d / (peak + d - start);
+        c *= newPeak / peak;
+        const float g = 1.0f - 1.0f / (desaturation * (peak - newPeak) + 1.0f);
+        c = glm::mix(c, glm::vec3(newPeak), g);
+    }
+    return glm::clamp(c, 0.0f, 1.0f);
+}
+
 /// A grey 8-bit PNG whose pixel (x, y) is ((x * 7 + y * 13 + seed) mod 256) / 255.
 velvet::Image greyPattern(int w, int h, int seed) {
     velvet::Image img(w, h, 1);
@@ -63,6 +83,103 @@ velvet::Image greyPattern(int w, int h, int seed) {
 class TestAppProcess : public QObject {
     Q_OBJECT
 private slots:
+    // The editor under xvfb renders its first frame, saves the window and exits 0.
+    void screenshotUnderXvfb() {
+        if (qEnvironmentVariableIsEmpty("DISPLAY"))
+            QSKIP("needs a display (run through ctest: xvfb-run)");
+        QTemporaryDir dir; // also HOME and XDG folders: the user's settings stay untouched
+        const QString out = dir.filePath("window.png");
+        const Result r = runVelvet({"--screenshot", out}, Display::Keep,
+                                   {{"QT_QPA_PLATFORM", "xcb"},
+                                    {"HOME", dir.path()},
+                                    {"XDG_CONFIG_HOME", dir.filePath("config")},
+                                    {"XDG_CACHE_HOME", dir.filePath("cache")}});
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        velvet::ImageInfo info;
+        std::string error;
+        QVERIFY2(velvet::readImageInfo(out.toStdString(), info, &error), error.c_str());
+        // The editor's fixed screenshot size (ui/editor.cpp), allowing for window decorations.
+        QVERIFY2(info.width >= 800 && info.width <= 1600 && info.height >= 500 &&
+                     info.height <= 1000,
+                 qPrintable(QString("%1x%2").arg(info.width).arg(info.height)));
+        velvet::Image image;
+        QVERIFY2(velvet::readImage(out.toStdString(), image, &error), error.c_str());
+        // Not blank: many distinct values over the window (panels, viewport, text).
+        float lo = 1.0f, hi = 0.0f;
+        for (int y = 0; y < image.height; y += 7)
+            for (int x = 0; x < image.width; x += 7) {
+                const glm::vec4 c = image.rgba(x, y);
+                lo = std::min(lo, c.g);
+                hi = std::max(hi, c.g);
+            }
+        QVERIFY2(hi - lo > 0.3f, qPrintable(QString("range %1..%2").arg(lo).arg(hi)));
+    }
+
+    // Without any display the editor says so in one line pointing at `velvet render`.
+    void noDisplayPointsAtRender() {
+        const Result r = runVelvet({}, Display::None);
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QVERIFY(r.exitCode != 0);
+        const QStringList lines = r.err.trimmed().split('\n');
+        QCOMPARE(lines.size(), 1);
+        QVERIFY2(lines[0].contains("velvet render"), qPrintable(r.err));
+    }
+
+    // EXR output is half float and scene-linear: the PNG of the same render is the built-in
+    // curve and OCIO's sRGB encoding of the EXR's values (within 8-bit rounding, half precision
+    // and the curve).
+    void renderExrIsLinearHalf() {
+        QTemporaryDir dir;
+        const QString exr = dir.filePath("x.exr"), png = dir.filePath("x.png");
+        for (const QString& out : {exr, png}) {
+            const Result r = runVelvet({"render", "-o", out, "--size", "48x48"});
+            QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        }
+        velvet::ImageInfo info;
+        std::string error;
+        QVERIFY2(velvet::readImageInfo(exr.toStdString(), info, &error), error.c_str());
+        QCOMPARE(info.format, std::string("openexr"));
+        QVERIFY(info.isFloat);
+        QCOMPARE(info.bitsPerSample, 16);
+        velvet::Image linear, display;
+        QVERIFY2(velvet::readImage(exr.toStdString(), linear, &error), error.c_str());
+        QVERIFY2(velvet::readImage(png.toStdString(), display, &error), error.c_str());
+        velvet::ColorManagement cm;
+        QVERIFY2(cm.loadFile(VELVET_SOURCE_DIR "/resources/ocio/config.ocio", &error),
+                 error.c_str());
+        velvet::Image expected = linear;
+        float brightest = 0.0f;
+        for (int y = 0; y < linear.height; ++y)
+            for (int x = 0; x < linear.width; ++x) {
+                float* p = expected.at(x, y);
+                brightest = std::max({brightest, p[0], p[1], p[2]});
+                const glm::vec3 t = pbrNeutral({p[0], p[1], p[2]});
+                p[0] = t.r, p[1] = t.g, p[2] = t.b;
+            }
+        QVERIFY2(cm.applyDisplay(expected, {"sRGB", "Standard", "", 0.0f}, &error), error.c_str());
+        float worst = 0.0f;
+        for (int y = 0; y < linear.height; ++y)
+            for (int x = 0; x < linear.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    worst = std::max(worst, std::abs(display.rgba(x, y)[c] -
+                                                     std::clamp(expected.rgba(x, y)[c], 0.f, 1.f)));
+        qInfo("max |PNG - encode(curve(EXR))| = %.2f/255; brightest linear value %.3f",
+              double(worst * 255.0f), double(brightest));
+        QVERIFY2(worst <= 2.5f / 255.0f, qPrintable(QString::number(worst * 255.0f)));
+        QVERIFY(brightest > 0.05f); // not an empty frame
+    }
+
+    void infoPrintsGlLines() {
+        const Result r = runVelvet({"info"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err + r.out));
+        for (const char* key : {"vendor:", "renderer:", "version:"}) {
+            const QStringList lines = r.out.split('\n').filter(key);
+            QVERIFY2(!lines.isEmpty(), key);
+            QVERIFY2(lines[0].section(':', 1).trimmed().size() > 0, qPrintable(lines[0]));
+        }
+    }
+
     // pack then unpack gives back the pixel values of every map, for every layout.
     void packUnpackRoundTrips_data() {
         QTest::addColumn<QString>("layout");
