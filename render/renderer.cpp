@@ -356,13 +356,6 @@ struct Renderer::Impl {
             if (t.texture && t.generation == tex.generation)
                 continue;
             const Image& image = *tex.image;
-            std::vector<float> rgba(size_t(image.width) * image.height * 4);
-            for (int y = 0; y < image.height; ++y)
-                for (int x = 0; x < image.width; ++x) {
-                    const glm::vec4 c = image.rgba(x, y);
-                    float* o = rgba.data() + (size_t(y) * image.width + x) * 4;
-                    o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
-                }
             if (!t.texture || t.width != image.width || t.height != image.height) {
                 if (t.texture)
                     glDeleteTextures(1, &t.texture);
@@ -378,11 +371,8 @@ struct Renderer::Impl {
                 t.width = image.width;
                 t.height = image.height;
             }
-            glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-            glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-            glTextureSubImage2D(t.texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
-                                rgba.data());
-            glGenerateTextureMipmap(t.texture);
+            // The levels of core::mipChain, as for material slots (render/texture_set.h).
+            uploadMipChain(t.texture, image);
             t.generation = tex.generation;
             ++graph.uploads;
         }
