@@ -51,11 +51,12 @@ const char* kHelp =
     "Usage: velvet render [FILE] -o OUT [--size WxH] [--display NAME] [--view NAME] [--look NAME]\n"
     "Renders FILE (a scene, or a material preset shown in the default scene; no FILE: the default\n"
     "scene) off screen through the deferred renderer. Needs no display.\n\n"
-    "Colour: by default the image goes through the built-in Khronos PBR Neutral tone mapper and\n"
-    "the sRGB curve (--tonemap picks another). --display, --view or --look instead apply the\n"
-    "OpenColorIO display transform (exposure, look, display/view) of the config named by $OCIO,\n"
-    "or of the shipped one; a missing --display is the config's default display, a missing --view\n"
-    "that display's default view. EXR output is scene-linear either way.\n\n";
+    "Colour: by default the image goes through the built-in Khronos PBR Neutral tone mapper\n"
+    "(--tonemap picks another), then OpenColorIO's encoding for the display (--display, default\n"
+    "the config's default display) from the config named by $OCIO or the shipped one. A\n"
+    "tone-mapping --view (ACES, AgX, Raw) or a --look instead applies OCIO's whole display\n"
+    "transform (exposure, look, display/view); a missing --view is the display's default view.\n"
+    "EXR output is scene-linear either way.\n\n";
 
 bool parseSize(const std::string& text, int& w, int& h) {
     auto x = text.find_first_of("xX");
@@ -168,9 +169,6 @@ int resolveColorManagement(const Arguments& args, render::FrameSettings& setting
                            std::shared_ptr<const ColorManagement>& out) {
     if (!args.has("display") && !args.has("view") && !args.has("look"))
         return Ok;
-    if (args.has("tonemap"))
-        return usage("--tonemap picks the built-in tone mapper; it cannot be combined with "
-                     "--display, --view or --look (OpenColorIO's display transform)");
     auto cm = std::make_shared<ColorManagement>();
     std::string error;
     if (!cm->loadDefault(&error)) {
@@ -199,6 +197,15 @@ int resolveColorManagement(const Arguments& args, render::FrameSettings& setting
             return usage("--look: unknown look \"" + look + "\" in " + config +
                          "; valid looks: " + quotedList(cm->looks()));
     }
+    // A tone-mapping view (ACES, AgX, Raw) or a look is OCIO's whole transform; an encoding-only
+    // view (Standard) follows the built-in curve.
+    if (args.has("tonemap") &&
+        (!looks.empty() || !cm->isEncodingView(display, view, nullptr).value_or(false)))
+        return usage("--tonemap picks the built-in tone mapper; it cannot be combined with a "
+                     "tone-mapping --view (\"" +
+                     view +
+                     "\") or --look, which OpenColorIO "
+                     "applies instead");
     settings.display = display;
     settings.displayView = view;
     settings.look = looks;

@@ -1,6 +1,7 @@
 // velvet: the editor when run alone (or with a FILE), a headless CLI with a subcommand.
 #include "app/cli.h"
 #include "app/resource_root.h"
+#include "core/image.h"
 #include "core/mesh_import.h"
 #include "ui/editor.h"
 
@@ -21,6 +22,12 @@ int main(int argc, char** argv) {
             velvet::setMeshImportHelper(self);
     }
     std::vector<std::string> args(argv + 1, argv + argc);
+    // VELVET_MAX_IMAGE_SIDE / VELVET_MAX_IMAGE_BYTES (core/image.h): a bad value stops here,
+    // before anything reads an image under limits the user did not mean.
+    if (const std::string problem = velvet::imageLimitsProblem(); !problem.empty()) {
+        std::cerr << "velvet: " << problem << "\n";
+        return velvet::cli::BadInput;
+    }
 
     if (!args.empty() && velvet::cli::isSubcommand(args[0]))
         return velvet::cli::run(args);

@@ -133,6 +133,11 @@ struct ColorManagement::Impl {
         }
     }
 
+    /// OCIO's GLSL 4.0 shader, LUTs and uniforms of @p processor as plain data.
+    std::optional<GpuDisplayTransform> extractGpu(const OCIO::ConstProcessorRcPtr& processor,
+                                                  const GpuTransformOptions& options,
+                                                  std::string* error) const;
+
     /// Runs @p processor on the image's colour channels. Grey images go through as RRR and come
     /// back as the luma of the result (the config's luma coefficients), so a neutral stays itself
     /// and a tinting view still gives a sensible grey. Alpha is never touched.
@@ -352,12 +357,74 @@ bool containsNoCase(std::string haystack, std::string needle) {
 
 } // namespace
 
+std::string ColorManagement::encodingView(const std::string& display) const {
+    const auto& config = m_impl->config;
+    if (!config)
+        return {};
+    const std::string d = display.empty() ? config->getDefaultDisplay() : display;
+    const std::string encoding = config->getDefaultViewTransformName();
+    if (encoding.empty() || !m_impl->hasDisplay(d))
+        return {};
+    const int n = config->getNumViews(d.c_str());
+    for (int i = 0; i < n; ++i) {
+        const char* view = config->getView(d.c_str(), i);
+        if (encoding == config->getDisplayViewTransformName(d.c_str(), view))
+            return view;
+    }
+    return {};
+}
+
+std::optional<bool> ColorManagement::isEncodingView(const std::string& display,
+                                                    const std::string& view,
+                                                    std::string* error) const {
+    const auto& config = m_impl->config;
+    if (!config) {
+        m_impl->fail(error, "no OpenColorIO config is loaded");
+        return std::nullopt;
+    }
+    const std::string d = display.empty() ? config->getDefaultDisplay() : display;
+    if (!m_impl->hasDisplay(d)) {
+        m_impl->fail(error, m_impl->where("unknown display \"" + d + "\""));
+        return std::nullopt;
+    }
+    const std::string v = view.empty() ? config->getDefaultView(d.c_str()) : view;
+    if (!m_impl->hasView(d, v)) {
+        m_impl->fail(error, m_impl->where("display \"" + d + "\" has no view \"" + v + "\""));
+        return std::nullopt;
+    }
+    return v == encodingView(d);
+}
+
+std::optional<GpuDisplayTransform>
+ColorManagement::gpuDisplayEncoding(const std::string& display, std::string* error,
+                                    const GpuTransformOptions& options) const {
+    const std::string view = encodingView(display);
+    if (view.empty()) {
+        if (!isEncodingView(display, {}, error))
+            return std::nullopt; // unknown display (or no config): the message is set
+        m_impl->fail(error, m_impl->where("display \"" + display +
+                                          "\" has no view using the default view transform \"" +
+                                          m_impl->config->getDefaultViewTransformName() + "\""));
+        return std::nullopt;
+    }
+    auto processor = m_impl->displayProcessor({display, view, {}, 0.0f}, false, error);
+    if (!processor)
+        return std::nullopt;
+    return m_impl->extractGpu(processor, options, error);
+}
+
 std::optional<GpuDisplayTransform>
 ColorManagement::gpuDisplayTransform(const DisplaySettings& settings, std::string* error,
                                      const GpuTransformOptions& options) const {
     auto processor = m_impl->displayProcessor(settings, true, error);
     if (!processor)
         return std::nullopt;
+    return m_impl->extractGpu(processor, options, error);
+}
+
+std::optional<GpuDisplayTransform>
+ColorManagement::Impl::extractGpu(const OCIO::ConstProcessorRcPtr& processor,
+                                  const GpuTransformOptions& options, std::string* error) const {
     try {
         // GLSL 4.0 is the newest language OCIO 2.1 writes; the renderer's GLSL 4.50 core accepts
         // it. The default GPU processor is exact (analytic ops, LUTs only where the transform
@@ -456,7 +523,7 @@ ColorManagement::gpuDisplayTransform(const DisplaySettings& settings, std::strin
         }
         return out;
     } catch (const OCIO::Exception& e) {
-        m_impl->fail(error, m_impl->where(std::string("GPU shader: ") + e.what()));
+        fail(error, where(std::string("GPU shader: ") + e.what()));
         return std::nullopt;
     }
 }

@@ -130,6 +130,16 @@ public:
     bool isData(const std::string& colorSpace) const;
     /// The config's file rules' colour space for an image path (e.g. EXR -> scene-linear).
     std::string colorSpaceForFile(const std::filesystem::path& file) const;
+    /// The view of @p display (empty: the default display) that only encodes for the display: the
+    /// first whose view transform is the config's default view transform (in the shipped config
+    /// "Standard", whose "Un-tone-mapped" transform is a primaries matrix). "" when none.
+    std::string encodingView(const std::string& display) const;
+    /// Whether @p view of @p display (empty names: the defaults) only encodes, i.e. is
+    /// encodingView(display); nullopt + message naming the config on an unknown display or view.
+    /// The renderer applies its built-in tone-mapping curve before such a view and none before a
+    /// tone-mapping one (ACES, AgX) or a view without a view transform (Raw).
+    std::optional<bool> isEncodingView(const std::string& display, const std::string& view,
+                                       std::string* error) const;
     /// @}
 
     /// @name CPU conversions of float images in place (1 to 4 channels: grey is converted as
@@ -153,6 +163,14 @@ public:
     std::optional<GpuDisplayTransform>
     gpuDisplayTransform(const DisplaySettings& settings, std::string* error,
                         const GpuTransformOptions& options = {}) const;
+    /// The display encoding of @p display (empty: the default display) as OCIO's GLSL: the
+    /// display's encodingView() with no exposure and no look, for display-linear Rec.709 values
+    /// a built-in tone-mapping curve produced (sRGB: the piecewise IEC 61966-2-1 curve; Display
+    /// P3: the primaries matrix and that curve). nullopt + message on an unknown display or when
+    /// the display has no encoding view.
+    std::optional<GpuDisplayTransform>
+    gpuDisplayEncoding(const std::string& display, std::string* error,
+                       const GpuTransformOptions& options = {}) const;
     /// @}
 
 private:

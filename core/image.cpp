@@ -46,6 +46,12 @@ OIIO::TypeDesc toTypeDesc(PixelFormat format) {
     return OIIO::TypeDesc::FLOAT;
 }
 
+/// "1536 MiB", or KiB below one MiB (small limits still give a useful message).
+std::string formatBytes(std::uint64_t bytes) {
+    return bytes >= (std::uint64_t(1) << 20) ? std::to_string(bytes >> 20) + " MiB"
+                                             : std::to_string((bytes + 1023) >> 10) + " KiB";
+}
+
 std::string lowerExtension(const std::filesystem::path& file) {
     std::string ext = file.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -122,16 +128,16 @@ std::unique_ptr<OIIO::ImageInput> openChecked(const std::filesystem::path& file,
         return fail(error, file,
                     "image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                         ", larger than the limit of " + std::to_string(limits.maxSide) +
-                        " pixels a side"),
+                        " pixels a side (VELVET_MAX_IMAGE_SIDE raises it)"),
                nullptr;
     const std::uint64_t decodedBytes =
         std::uint64_t(spec.width) * std::uint64_t(spec.height) * 4u * sizeof(float);
     if (decodedBytes > limits.maxDecodedBytes)
         return fail(error, file,
                     "image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                        " and would need " + std::to_string(decodedBytes >> 20) +
-                        " MiB decoded, more than the limit of " +
-                        std::to_string(limits.maxDecodedBytes >> 20) + " MiB"),
+                        " and would need " + formatBytes(decodedBytes) +
+                        " decoded, more than the limit of " + formatBytes(limits.maxDecodedBytes) +
+                        " (VELVET_MAX_IMAGE_BYTES raises it)"),
                nullptr;
     return in;
 }

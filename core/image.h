@@ -28,10 +28,33 @@ struct Image {
     glm::vec4 rgba(int x, int y) const;
 };
 
+/// @name Image decode limits
+/// Built in: 16384 pixels a side and 1 GiB decoded (as float RGBA). The environment variables
+/// VELVET_MAX_IMAGE_SIDE (pixels, 1 to 1048576) and VELVET_MAX_IMAGE_BYTES (bytes, with an
+/// optional K, M or G suffix meaning KiB, MiB, GiB; 1 KiB to 1 TiB) replace them for every read
+/// that does not pass limits of its own. They are read once, on first use
+/// (configuredImageReadLimits); a bad value is ignored (the built-in limit stays) and described by
+/// imageLimitsProblem(), which the application prints at startup. docs/file-formats.md.
+/// @{
+inline constexpr int kDefaultMaxImageSide = 16384;
+inline constexpr std::uint64_t kDefaultMaxImageBytes = std::uint64_t(1) << 30;
+struct ImageReadLimits;
+/// The limits in effect: the environment's where set and valid, else the built-in ones.
+const ImageReadLimits& configuredImageReadLimits();
+/// "" when both variables are unset or valid; otherwise one line per bad variable naming it,
+/// the value and what is expected.
+std::string imageLimitsProblem();
+/// Parses the two variables' values (null: unset) into @p out, starting from the built-in
+/// limits. False + message (naming the variable) when a value is not valid; @p out then keeps
+/// the built-in value for that variable.
+bool parseImageLimits(const char* maxSide, const char* maxBytes, ImageReadLimits& out,
+                      std::string* error);
+/// @}
+
 /// Limits checked against a file's header before any pixel is decoded.
 struct ImageReadLimits {
-    int maxSide = 16384;
-    std::uint64_t maxDecodedBytes = std::uint64_t(1) << 30; ///< as float RGBA
+    int maxSide = configuredImageReadLimits().maxSide;
+    std::uint64_t maxDecodedBytes = configuredImageReadLimits().maxDecodedBytes; ///< float RGBA
 };
 
 /// Sample type written to a file.

@@ -1,5 +1,6 @@
 #include "render/display_transform.h"
 
+#include "render/ocio_gpu.h"
 #include "render/shader_program.h"
 
 #include <algorithm>
@@ -16,10 +17,12 @@ GLenum textureTarget(int dimensions) {
     return dimensions == 1 ? GL_TEXTURE_1D : dimensions == 2 ? GL_TEXTURE_2D : GL_TEXTURE_3D;
 }
 
+} // namespace
+
 /// One LUT as OCIO's own OpenGL helper (OpenColorIO/src/libutils/oglapphelpers/oglapp.cpp,
 /// AllocateTexture2D / AllocateTexture3D) makes it: 32-bit float, R or RGB, clamp to edge,
 /// GL_NEAREST for nearest LUTs and GL_LINEAR otherwise (tetrahedral blending happens in the GLSL).
-GLuint uploadLut(const GpuLutTexture& lut) {
+unsigned uploadOcioLut(const GpuLutTexture& lut) {
     const GLenum target = textureTarget(lut.dimensions);
     const GLenum internalFormat = lut.channels == 1 ? GL_R32F : GL_RGB32F;
     const GLenum format = lut.channels == 1 ? GL_RED : GL_RGB;
@@ -49,7 +52,7 @@ GLuint uploadLut(const GpuLutTexture& lut) {
 
 /// Sets a uniform's extraction-time value (all but the exposure keep it for the program's life:
 /// Velvet makes only the exposure dynamic).
-void setUniform(GLuint program, const GpuUniform& u) {
+void setOcioUniform(unsigned program, const GpuUniform& u) {
     const GLint loc = glGetUniformLocation(program, u.name.c_str());
     if (loc < 0)
         return; // declared but unused: the GLSL compiler removed it
@@ -76,6 +79,8 @@ void setUniform(GLuint program, const GpuUniform& u) {
         break;
     }
 }
+
+namespace {
 
 bool fail(std::string* error, const std::string& message) {
     if (error)
@@ -127,7 +132,7 @@ struct DisplayTransform::Impl {
         glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
         glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
         for (const GpuLutTexture& lut : t.textures)
-            p.luts.push_back(uploadLut(lut));
+            p.luts.push_back(uploadOcioLut(lut));
         setUniforms(t, p);
         p.source = t;
         for (GpuLutTexture& lut : p.source.textures)
@@ -156,7 +161,7 @@ struct DisplayTransform::Impl {
         }
         p.exposureLocation = -1;
         for (const GpuUniform& u : t.uniforms) {
-            setUniform(program, u);
+            setOcioUniform(program, u);
             if (u.isExposure)
                 p.exposureLocation = glGetUniformLocation(program, u.name.c_str());
         }

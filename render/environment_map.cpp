@@ -44,6 +44,11 @@ GpuEnvironment upload(const Image& radiance, std::string key) {
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     glTextureSubImage2D(e.texture, 0, 0, 0, rgb.width, rgb.height, GL_RGB, GL_FLOAT,
                         rgb.pixels.data());
+    // GPU-generated levels here, unlike material textures (uploadMipChain, core::mipChain): an
+    // HDRI is large (2k-8k wide), so CPU filtering would stall loading for seconds; its levels
+    // only feed the approximate lighting until the IBL bake (GPU prefiltering) is done; and the
+    // Blackman-Harris filter's negative lobes would ring around the sun's HDR peaks (values in the
+    // thousands) into negative radiance, which a box filter cannot produce.
     glGenerateTextureMipmap(e.texture);
     glTextureParameteri(e.texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(e.texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

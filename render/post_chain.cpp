@@ -1,6 +1,7 @@
 #include "render/post_chain.h"
 
 #include "core/post_effects.h"
+#include "render/display_encoding.h"
 #include "render/gbuffer_layout.h"
 #include "render/post_effect.h"
 
@@ -25,6 +26,13 @@ struct PostFrameBlock {
 struct Step {
     std::vector<const EffectInstance*> fused;
     std::vector<const FusableEffect*> fusedEffects; ///< the classes of `fused`
+    /// The display encoding the fused pass is built with ("" fallback; unused unless one of
+    /// fusedEffects displayEncodes()).
+    std::string encodingId;
+    bool encodes() const {
+        return std::any_of(fusedEffects.begin(), fusedEffects.end(),
+                           [](const FusableEffect* f) { return f->displayEncodes(); });
+    }
     const EffectInstance* single = nullptr;
     PostEffect* singleEffect = nullptr;
     bool displayToneMap = false; ///< a tone map drawn by the OCIO display transform
@@ -73,7 +81,20 @@ struct PostChainRenderer::Impl {
     struct FusedProgram {
         std::unique_ptr<ShaderProgram> program;
         std::vector<const FusableEffect*> effects;
+        bool encodes = false;
+        std::string encodingId;
     };
+    /// The display encoding of the current run (null: the fallback; PostChainRenderer::apply).
+    const DisplayEncoding* encoding = nullptr;
+
+    GeneratedSources fusedSources(const std::vector<const FusableEffect*>& effects, bool encodes,
+                                  const std::string& encodingId) const {
+        GeneratedSources sources{{"post_fused.frag", fusedPassSource(effects)}};
+        if (encodes && encoding)
+            for (auto& s : encoding->sources(encodingId))
+                sources.push_back(std::move(s));
+        return sources;
+    }
     std::map<std::string, FusedProgram> fusedPrograms;
     int compiles = 0;
     GLuint ubo = 0, vao = 0, sampler = 0;
@@ -157,17 +178,24 @@ struct PostChainRenderer::Impl {
     }
 
     ShaderProgram* fused(const Step& step, std::string* error) {
-        const std::string key = step.name();
+        const bool encodes = step.encodes();
+        // One program per display encoding for passes that tone map (switching display compiles
+        // once per encoding; exposure is a uniform and compiles nothing).
+        const std::string key = step.name() + (encodes ? "@" + step.encodingId : "");
         if (auto it = fusedPrograms.find(key); it != fusedPrograms.end())
             return it->second.program.get();
         auto program = std::make_unique<ShaderProgram>();
         if (!buildPostProgram(*program, "post_fused.frag",
-                              {{"post_fused.frag", fusedPassSource(step.fusedEffects)}}, error,
+                              fusedSources(step.fusedEffects, encodes, step.encodingId), error,
                               &compiles))
             return nullptr;
+        if (encodes && encoding)
+            encoding->setUniforms(program->id(), step.encodingId);
         FusedProgram& f = fusedPrograms[key];
         f.program = std::move(program);
         f.effects = step.fusedEffects;
+        f.encodes = encodes;
+        f.encodingId = step.encodingId;
         return f.program.get();
     }
 
@@ -185,10 +213,12 @@ struct PostChainRenderer::Impl {
         }
         for (auto& [key, f] : fusedPrograms) {
             std::string message;
-            collect(buildPostProgram(*f.program, "post_fused.frag",
-                                     {{"post_fused.frag", fusedPassSource(f.effects)}}, &message,
-                                     &compiles),
-                    message);
+            const bool ok = buildPostProgram(*f.program, "post_fused.frag",
+                                             fusedSources(f.effects, f.encodes, f.encodingId),
+                                             &message, &compiles);
+            if (ok && f.encodes && encoding)
+                encoding->setUniforms(f.program->id(), f.encodingId);
+            collect(ok, message);
         }
         if (!errors.empty() && error)
             *error = errors;
@@ -230,7 +260,12 @@ struct PostChainRenderer::Impl {
             step.fusedEffects[k]->upload(program->id(), *step.fused[k], base);
             base += step.fusedEffects[k]->slotCount();
         }
+        const bool encodes = step.encodes() && encoding;
+        if (encodes)
+            encoding->bindLuts();
         drawPostPass(ctx, program->id(), input, output, 0);
+        if (encodes)
+            encoding->unbindLuts();
         return true;
     }
 };
@@ -250,6 +285,8 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
     endFrame();
     result = {};
     d.timings.clear();
+    d.encoding = in.encoding;
+    const std::string encodingId = in.encoding ? in.encoding->cacheId() : std::string();
 
     // The effective list: enabled, known effects; an implicit tone map before the first LDR
     // effect when the chain has none (validation keeps explicit ones in stage order).
@@ -293,6 +330,7 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
                 Step step;
                 step.fused = {e};
                 step.fusedEffects = {fusable};
+                step.encodingId = encodingId;
                 steps.push_back(std::move(step));
             }
         } else {
@@ -439,6 +477,7 @@ bool PostChainRenderer::apply(const PostChain& chain, const PostTestInput& input
     in.prevViewProj = input.prevViewProj;
     in.proj = input.proj;
     in.time = input.time;
+    in.encoding = input.encoding;
     in.finalFbo = outFbo;
     PostRunResult result;
     const bool ok = run(chain, in, result, error);

@@ -22,6 +22,8 @@
 
 namespace velvet::render {
 
+class DisplayEncoding;
+
 /// Inputs of one chain run.
 struct PostRunInputs {
     unsigned hdrTexture = 0; ///< scene-linear colour (GL texture name), width x height
@@ -39,7 +41,12 @@ struct PostRunInputs {
     /// chose a display/view/look) every tone map of the chain uses it; otherwise only the
     /// "display" operator does, and fails without it.
     std::function<bool(unsigned texture, float exposureEv, std::string* error)> displayTransform;
+    /// True when the frame's OCIO view tone maps itself (ACES, AgX, Raw, or a look is chosen):
+    /// every tone map of the chain is then the full display transform above.
     bool forceDisplayTransform = false;
+    /// The display encoding composed after a built-in curve in fused tone-map passes (OCIO's
+    /// shader, render/display_encoding.h). Null: the hand-written sRGB fallback (test inputs).
+    const DisplayEncoding* encoding = nullptr;
     unsigned finalFbo = 0; ///< display-encoded output goes here (when the chain tone maps)
 };
 
@@ -64,6 +71,8 @@ struct PostTestInput {
     Image normals; ///< 3 channels world normals; empty: +Z
     glm::mat4 viewProj{1.0f}, prevViewProj{1.0f}, proj{1.0f};
     float time = 0.0f;
+    /// The display encoding after built-in tone curves (null: the hand-written sRGB fallback).
+    const DisplayEncoding* encoding = nullptr;
 };
 
 class PostChainRenderer {

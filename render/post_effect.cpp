@@ -1,5 +1,7 @@
 #include "render/post_effect.h"
 
+#include "render/display_encoding.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -142,6 +144,10 @@ bool buildPostProgram(ShaderProgram& program, const std::string& fragment,
                       int pass) {
     GeneratedSources sources = extra;
     sources.emplace_back("post_params.glsl", postParamsGlsl());
+    if (std::none_of(sources.begin(), sources.end(),
+                     [](const auto& s) { return s.first == DisplayEncoding::kInclude; }))
+        for (auto& fallback : DisplayEncoding().sources(""))
+            sources.push_back(std::move(fallback));
     std::vector<std::string> defines;
     if (pass >= 0)
         defines.push_back("POST_PASS " + std::to_string(pass));

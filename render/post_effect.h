@@ -99,7 +99,9 @@ void setEffectParams(unsigned program, const EffectMeta& meta, const EffectInsta
 void drawPostPass(const PostContext& ctx, unsigned program, const PostTarget& input,
                   const PostTarget& output, int pass, int level = 0, unsigned aux = 0);
 /// Builds @p program from fullscreen.vert + @p fragment with the post includes.
-/// @p pass >= 0 defines POST_PASS (one program per pass of a multi-pass effect).
+/// @p pass >= 0 defines POST_PASS (one program per pass of a multi-pass effect). When @p extra
+/// has no "display_encode.glsl", the hand-written sRGB fallback of render/display_encoding.h is
+/// supplied.
 bool buildPostProgram(ShaderProgram& program, const std::string& fragment,
                       const GeneratedSources& extra, std::string* error, int* compileCount,
                       int pass = -1);
@@ -190,6 +192,10 @@ public:
     virtual bool fuses(const EffectInstance& /*effect*/, bool /*forceDisplayTransform*/) const {
         return true;
     }
+    /// Whether the function calls displayEncode() (the generated include
+    /// "display_encode.glsl", render/display_encoding.h): a fused pass containing it is built
+    /// per display encoding.
+    virtual bool displayEncodes() const { return false; }
     /// Uploads @p effect's parameters at uParams[base …] of @p program.
     virtual void upload(unsigned program, const EffectInstance& effect, int base) const;
 

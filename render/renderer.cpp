@@ -6,6 +6,7 @@
 #include "core/mesh_import.h"
 #include "core/texture_cache.h"
 #include "render/camera.h"
+#include "render/display_encoding.h"
 #include "render/display_transform.h"
 #include "render/environment_map.h"
 #include "render/gbuffer.h"
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <epoxy/gl.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/trigonometric.hpp>
@@ -167,7 +169,10 @@ struct Renderer::Impl {
         int uploads = 0;
     } graph;
 
-    ShaderProgram gbufferProgram, tonemapProgram;
+    ShaderProgram gbufferProgram;
+    /// post_tonemap.frag (exposure, built-in curve, display encoding), one per display encoding
+    /// (keyed by its OCIO cache id; "" is the hand-written fallback).
+    std::map<std::string, std::unique_ptr<ShaderProgram>> tonemapPrograms;
     /// lighting.frag in variants (its header): the surfaces per debug-view family, and the
     /// background per BackgroundMode. Final and the backgrounds are built with the other programs
     /// (a scene edit never compiles); the two debug families the first time a frame asks for them
@@ -220,6 +225,12 @@ struct Renderer::Impl {
     DisplayTransform displayTransform;
     std::map<std::string, std::string> displayCacheIds;
     std::string displayKey;
+    // The display encoding after a built-in curve (OCIO's shader for the display's un-tone-mapped
+    // view): which display maps to which encoding, and whether the config failed to load (the
+    // hand-written sRGB OETF then encodes; warned once).
+    DisplayEncoding encoding;
+    std::map<std::string, std::string> encodingIds;
+    bool configFailed = false;
 
     Scene scene;
     bool haveScene = false;
@@ -345,13 +356,6 @@ struct Renderer::Impl {
             if (t.texture && t.generation == tex.generation)
                 continue;
             const Image& image = *tex.image;
-            std::vector<float> rgba(size_t(image.width) * image.height * 4);
-            for (int y = 0; y < image.height; ++y)
-                for (int x = 0; x < image.width; ++x) {
-                    const glm::vec4 c = image.rgba(x, y);
-                    float* o = rgba.data() + (size_t(y) * image.width + x) * 4;
-                    o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
-                }
             if (!t.texture || t.width != image.width || t.height != image.height) {
                 if (t.texture)
                     glDeleteTextures(1, &t.texture);
@@ -367,11 +371,8 @@ struct Renderer::Impl {
                 t.width = image.width;
                 t.height = image.height;
             }
-            glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-            glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-            glTextureSubImage2D(t.texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
-                                rgba.data());
-            glGenerateTextureMipmap(t.texture);
+            // The levels of core::mipChain, as for material slots (render/texture_set.h).
+            uploadMipChain(t.texture, image);
             t.generation = tex.generation;
             ++graph.uploads;
         }
@@ -446,8 +447,7 @@ struct Renderer::Impl {
             ShaderProgram& program;
             const char* vs;
             const char* fs;
-        } programs[] = {{gbufferProgram, "gbuffer.vert", "gbuffer.frag"},
-                        {tonemapProgram, "fullscreen.vert", "post_tonemap.frag"}};
+        } programs[] = {{gbufferProgram, "gbuffer.vert", "gbuffer.frag"}};
         std::string errors;
         for (auto& p : programs) {
             std::string message;
@@ -475,6 +475,85 @@ struct Renderer::Impl {
         return errors.empty();
     }
 
+    /// The config, loading ColorManagement::defaultConfigPath() the first time; null when it
+    /// cannot be loaded (warned once on stderr: frames then use the hand-written sRGB OETF).
+    const ColorManagement* config() {
+        if (!colorManagement && !configFailed) {
+            auto loaded = std::make_shared<ColorManagement>();
+            std::string message;
+            if (loaded->loadDefault(&message)) {
+                colorManagement = std::move(loaded);
+            } else {
+                configFailed = true;
+                std::fprintf(stderr,
+                             "velvet: warning: no OpenColorIO config could be loaded (%s); the "
+                             "display is encoded with the built-in sRGB curve instead of OCIO\n",
+                             message.c_str());
+            }
+        }
+        return colorManagement.get();
+    }
+
+    /// Whether the frame's display goes through OCIO alone (a tone-mapping view such as ACES or
+    /// AgX, a view without a view transform such as Raw, or a look, which must act on
+    /// scene-linear values before any curve) rather than the built-in curve followed by OCIO's
+    /// encoding. False + message on an unknown display or view.
+    bool ocioToneMaps(const FrameSettings& fs, bool& toneMaps, std::string* error) {
+        toneMaps = false;
+        if (!fs.usesColorManagement())
+            return true;
+        const ColorManagement* cm = config();
+        if (!cm)
+            return fail(error, "a display/view was chosen but no OpenColorIO config could be "
+                               "loaded from " +
+                                   ColorManagement::defaultConfigPath().string());
+        const std::optional<bool> encodes = cm->isEncodingView(fs.display, fs.displayView, error);
+        if (!encodes)
+            return false;
+        toneMaps = !*encodes || !fs.look.empty();
+        return true;
+    }
+
+    /// Selects the encoding of @p display for the built-in curves (the fallback without a config).
+    bool selectEncoding(const std::string& display, std::string* error) {
+        const ColorManagement* cm = config();
+        if (!cm) {
+            encoding.selectFallback();
+            return true;
+        }
+        if (const auto it = encodingIds.find(display);
+            it != encodingIds.end() && encoding.selectCached(it->second))
+            return true;
+        const std::optional<GpuDisplayTransform> t =
+            cm->gpuDisplayEncoding(display, error, DisplayEncoding::options());
+        if (!t || !encoding.select(*t, error))
+            return false;
+        encodingIds[display] = t->cacheId;
+        return true;
+    }
+
+    /// post_tonemap.frag for the selected encoding, compiled the first time it is used.
+    ShaderProgram* tonemapProgram(std::string* error) {
+        auto& program = tonemapPrograms[encoding.cacheId()];
+        if (program)
+            return program.get();
+        auto built = std::make_unique<ShaderProgram>();
+        if (!buildTonemap(*built, encoding.cacheId(), error)) {
+            tonemapPrograms.erase(encoding.cacheId());
+            return nullptr;
+        }
+        return (program = std::move(built)).get();
+    }
+
+    bool buildTonemap(ShaderProgram& program, const std::string& encodingId, std::string* error) {
+        if (!program.build("fullscreen.vert", "post_tonemap.frag", {}, encoding.sources(encodingId),
+                           error))
+            return false;
+        encoding.setUniforms(program.id(), encodingId);
+        ++compileCount;
+        return true;
+    }
+
     /// Selects the display transform @p fs names, building it the first time. Exposure is left
     /// out of the key and extracted as 0: it is a dynamic uniform set at every draw.
     bool selectDisplayTransform(const FrameSettings& fs, std::string* error) {
@@ -486,12 +565,9 @@ struct Renderer::Impl {
             displayKey = key;
             return true;
         }
-        if (!colorManagement) {
-            auto loaded = std::make_shared<ColorManagement>();
-            if (!loaded->loadDefault(error))
-                return false;
-            colorManagement = std::move(loaded);
-        }
+        if (!config())
+            return fail(error, "no OpenColorIO config could be loaded from " +
+                                   ColorManagement::defaultConfigPath().string());
         const DisplaySettings settings{fs.display, fs.displayView, fs.look, 0.0f};
         const std::optional<GpuDisplayTransform> transform =
             colorManagement->gpuDisplayTransform(settings, error);
@@ -551,7 +627,7 @@ struct Renderer::Impl {
     }
 
     /// Runs scene.post on the lit HDR target (render/post_chain.h).
-    bool runPost(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
+    bool runPost(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo, bool ocioAll,
                  unsigned& finalInput, bool& displayed, std::string* error) {
         gbuffer.bindTextures(); // depth and normals for motion blur, DoF, toon, vaporwave
         PostRunInputs in;
@@ -570,9 +646,11 @@ struct Renderer::Impl {
                                 : fs.toneMapper == ToneMapper::Reinhard ? 2
                                 : fs.toneMapper == ToneMapper::Linear   ? 5
                                                                         : 0;
-        in.forceDisplayTransform = fs.usesColorManagement();
-        in.displayTransform = [this, &fs](unsigned texture, float ev, std::string* err) {
-            if (!fs.usesColorManagement() && !selectDisplayTransform(fs, err))
+        in.forceDisplayTransform = ocioAll;
+        in.encoding = &encoding;
+        in.displayTransform = [this, &fs, ocioAll](unsigned texture, float ev, std::string* err) {
+            // The "display" operator with an encoding-only view: the full transform of fs.
+            if (!ocioAll && !selectDisplayTransform(fs, err))
                 return false;
             displayTransform.draw(texture, fs.exposureEv + ev);
             return true;
@@ -649,6 +727,10 @@ bool Renderer::initialize(std::string* error) {
     }
     if (!d.buildPrograms(error))
         return false;
+    // The default display's tone-map program too, so that the first frame and every value edit
+    // after it compile nothing (the encoding comes from the config, loaded here if none is set).
+    if (!d.selectEncoding({}, error) || !d.tonemapProgram(error))
+        return false;
     glCreateBuffers(1, &d.frameUbo);
     glNamedBufferStorage(d.frameUbo, sizeof(FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glCreateVertexArrays(1, &d.emptyVao);
@@ -694,6 +776,8 @@ bool Renderer::reloadShaders(std::string* error) {
     d.compileCount += d.lights.compileCount() - lightCompiles;
     collect(d.ibl.reload(&message, &d.compileCount), message);
     collect(d.displayTransform.reload(&message), message);
+    for (auto& [id, program] : d.tonemapPrograms)
+        collect(d.buildTonemap(*program, id, &message), message);
     collect(d.post.reload(&message), message); // counted by shaderCompileCount() through post
     if (!errors.empty())
         return fail(error, errors);
@@ -707,6 +791,8 @@ void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorMa
     // cache id, same shader).
     d.displayCacheIds.clear();
     d.displayKey.clear();
+    d.encodingIds.clear();
+    d.configFailed = false;
     // Input colour space names are looked up in the new config too.
     d.textures.setColorManagement(d.colorManagement);
     if (d.initialized) {
@@ -788,9 +874,19 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     const ShaderProgram* surfaceProgram = d.lightingVariant(fs.view, error);
     if (!surfaceProgram)
         return false;
-    // An unknown display, view or look fails here, before anything is drawn.
-    const bool ocioDisplay = fs.usesColorManagement() && fs.view == DebugView::Final;
+    // An unknown display, view or look fails here, before anything is drawn. A tone-mapping view
+    // (or a look) is OCIO's alone; otherwise the built-in curve runs and OCIO's shader for the
+    // display's un-tone-mapped view encodes (debug views use that encoding too).
+    bool ocioAll = false;
+    if (!d.ocioToneMaps(fs, ocioAll, error))
+        return false;
+    const bool ocioDisplay = ocioAll && fs.view == DebugView::Final;
     if (ocioDisplay && !d.selectDisplayTransform(fs, error))
+        return false;
+    if (!d.selectEncoding(fs.display, error))
+        return false;
+    ShaderProgram* tonemap = d.tonemapProgram(error);
+    if (!tonemap)
         return false;
     if (!d.environment)
         d.environment = &d.environments.get(d.scene.environment, nullptr);
@@ -936,7 +1032,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     unsigned finalInput = d.hdr.texture();
     bool chainDisplayed = false;
     if (fs.view == DebugView::Final && PostChainRenderer::hasEnabledEffects(d.scene.post)) {
-        if (!d.runPost(fs, block, targetFbo, finalInput, chainDisplayed, error))
+        if (!d.runPost(fs, block, targetFbo, ocioAll, finalInput, chainDisplayed, error))
             return false;
         glViewport(0, 0, fs.width, fs.height);
         glBindVertexArray(d.emptyVao);
@@ -945,7 +1041,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.haveLastViewProj = true;
 
     // 4. Into the target: OCIO's display transform (exposure, look, display/view in one generated
-    // function), or the built-in exposure, tone mapper and sRGB OETF.
+    // function), or the built-in exposure and tone-mapping curve followed by OCIO's display
+    // encoding (one pass: OCIO's function is composed into post_tonemap.frag).
     glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
     if (chainDisplayed) {
         // done by the chain's tone map and LDR effects
@@ -953,8 +1050,10 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         d.displayTransform.draw(finalInput, fs.exposureEv);
     } else {
         glBindTextureUnit(binding::kHdrTex, finalInput);
-        glUseProgram(d.tonemapProgram.id());
+        d.encoding.bindLuts();
+        glUseProgram(tonemap->id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        d.encoding.unbindLuts();
     }
     glQueryCounter(d.queries[3], GL_TIMESTAMP);
     d.queriesIssued = true;

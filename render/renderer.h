@@ -66,14 +66,16 @@ enum class DebugView {
 /// Auto: brute force up to a few lights, tiled above.
 enum class LightPath { Auto, Volumes, Tiled, Brute };
 
-/// Built-in tone-mapping operators, used when no OCIO display/view is chosen (FrameSettings).
+/// Built-in tone-mapping operators (scene-linear in, display-linear Rec.709 out), followed by
+/// OCIO's display encoding; skipped when the chosen OCIO view tone maps itself (FrameSettings).
 enum class ToneMapper { KhronosPbrNeutral, AcesFitted, Reinhard, Linear };
 
 struct FrameSettings {
     int width = 256;
     int height = 256;
     /// Exposure in stops (scene-linear x 2^EV) before the tone mapper, or fed to the OCIO display
-    /// transform's dynamic exposure uniform when an OCIO display/view is chosen.
+    /// transform's dynamic exposure uniform when a tone-mapping OCIO view is chosen. A uniform
+    /// either way: changing it compiles nothing.
     float exposureEv = 0.0f;
     ToneMapper toneMapper = ToneMapper::KhronosPbrNeutral;
     DebugView view = DebugView::Final;
@@ -88,16 +90,23 @@ struct FrameSettings {
     /// surfaces.
     bool specularMultiScatter = true;
     /// @}
-    /// @name OpenColorIO display transform (docs/color-management.md)
-    /// All three empty (the default): the built-in toneMapper and the sRGB OETF. Any of them set:
-    /// the final view goes through OCIO's own GPU shader for display / displayView / look, where
-    /// an empty display is the config's default display and an empty displayView that display's
-    /// default view. Debug views ignore these.
+    /// @name OpenColorIO display (docs/color-management.md)
+    /// The display encoding is always OCIO's own GPU shader. An empty display is the config's
+    /// default display (sRGB in the shipped config), an empty displayView that display's default
+    /// view. When the view only encodes (its view transform is the config's default, "Standard"
+    /// in the shipped config) and no look is set — the default — the built-in toneMapper runs
+    /// and OCIO's shader for that view encodes its display-linear output (one pass; sRGB: the
+    /// piecewise curve, Display P3: primaries and curve). A tone-mapping view (ACES, AgX), a view
+    /// without a view transform (Raw) or a look is OCIO's whole transform instead (exposure, look,
+    /// view) and toneMapper is not used. Only when no config can be loaded at all does the
+    /// hand-written sRGB OETF encode (a warning is printed once). Debug views use the display's
+    /// encoding or their own fixed mappings.
     /// @{
     std::string display;
     std::string displayView;
     std::string look; ///< one look name, or OCIO's comma-separated list
     /// @}
+    /// Whether any OCIO name is set (a display, view or look other than the defaults).
     bool usesColorManagement() const {
         return !display.empty() || !displayView.empty() || !look.empty();
     }
@@ -159,17 +168,17 @@ public:
     /// Problems (a missing HDRI or texture) are reported and a fallback is used.
     void setScene(const Scene& scene, Problems* problems = nullptr);
 
-    /// The OpenColorIO config the display transform comes from. Without one, the first frame that
-    /// asks for a display/view loads ColorManagement::defaultConfigPath() ($OCIO or the shipped
-    /// config).
+    /// The OpenColorIO config the display encoding and transforms come from. Without one,
+    /// initialize() loads ColorManagement::defaultConfigPath() ($OCIO or the shipped config).
     void setColorManagement(std::shared_ptr<const ColorManagement> colorManagement);
 
     /// Renders one frame into framebuffer @p targetFbo (0: the default framebuffer) at
-    /// settings.width x settings.height, display-encoded (the built-in tone mapper + sRGB, or the
-    /// chosen OCIO display/view). False + message on GL failure, or, before anything is drawn, on
-    /// an unknown display, view or look (the message names it and the config).
-    /// Each frame first stats the material's texture files (one stat each) and re-uploads the
-    /// ones changed on disk, so an image edited in another program shows without setScene.
+    /// settings.width x settings.height, display-encoded (the built-in tone mapper + OCIO's
+    /// encoding for the display, or the chosen tone-mapping OCIO view). False + message on GL
+    /// failure, or, before anything is drawn, on an unknown display, view or look (the message
+    /// names it and the config). Each frame first stats the material's texture files (one stat
+    /// each) and re-uploads the ones changed on disk, so an image edited in another program shows
+    /// without setScene.
     bool render(const FrameSettings& settings, unsigned targetFbo, std::string* error = nullptr);
 
     /// The last frame's scene-linear HDR colour (before exposure and tone mapping), RGBA float.
@@ -192,7 +201,8 @@ public:
     /// @}
 
     /// Number of shader programs compiled since construction (tests assert value edits add none;
-    /// a new OCIO display/view/look adds one, exposure none).
+    /// a new OCIO display/view/look adds one, a new display encoding one tone-map program (and
+    /// one per fused chain pass that tone maps), exposure none).
     int shaderCompileCount() const;
     /// The post-chain runner: its render-target pool and per-step timings (tests, bench).
     PostChainRenderer& postChain();

@@ -22,6 +22,35 @@ struct TextureSet::Slot {
     glm::vec4 mean{1.0f};                     ///< mean RGBA over the image or region
 };
 
+void uploadMipChain(unsigned texture, const Image& image) {
+    std::string error;
+    std::vector<Image> levels = mipChain(image, &error);
+    const int count = mipLevelCount(image.width, image.height);
+    if (int(levels.size()) != count) {
+        // mipChain refuses only empty or inconsistent images, which the cache never hands out;
+        // keep the texture complete regardless: level 0 and GPU-built levels.
+        levels.assign(1, image);
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    std::vector<float> rgba;
+    for (size_t level = 0; level < levels.size(); ++level) {
+        const Image& l = levels[level];
+        rgba.resize(size_t(l.width) * l.height * 4);
+        for (int y = 0; y < l.height; ++y)
+            for (int x = 0; x < l.width; ++x) {
+                const glm::vec4 c = l.rgba(x, y);
+                float* o = rgba.data() + (size_t(y) * l.width + x) * 4;
+                o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
+            }
+        glTextureSubImage2D(texture, GLint(level), 0, 0, l.width, l.height, GL_RGBA, GL_FLOAT,
+                            rgba.data());
+    }
+    if (int(levels.size()) != count)
+        glGenerateTextureMipmap(texture);
+}
+
 namespace {
 
 bool bit(std::uint32_t mask, TextureSlot s) {
@@ -110,14 +139,7 @@ void TextureSet::refresh(int index, Problems* problems) {
     s.generation = t.generation;
 
     // Upload as RGBA16F (scene-linear colour needs more than 8 bits in the darks) with a full
-    // mip chain generated on the GPU.
-    std::vector<float> rgba(size_t(image.width) * image.height * 4);
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const glm::vec4 c = image.rgba(x, y);
-            float* o = rgba.data() + (size_t(y) * image.width + x) * 4;
-            o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
-        }
+    // mip chain filtered on the CPU (uploadMipChain).
     if (!s.texture || s.width != image.width || s.height != image.height) {
         if (s.texture)
             glDeleteTextures(1, &s.texture);
@@ -132,12 +154,8 @@ void TextureSet::refresh(int index, Problems* problems) {
         s.height = image.height;
         ++m_allocations;
     }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     // Row 0 (the image's top) goes to t = 0, matching glTF's UV space (v = 0 at the top).
-    glTextureSubImage2D(s.texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
-                        rgba.data());
-    glGenerateTextureMipmap(s.texture);
+    uploadMipChain(s.texture, image);
     ++m_uploads;
     s.valid = true;
 
@@ -212,6 +230,11 @@ void TextureSet::bind(unsigned program) const {
 void TextureSet::unbind() const {
     for (int i = 0; i < kTextureSlotCount; ++i)
         glBindTextureUnit(GLuint(binding::kMaterialTexFirst + i), 0);
+}
+
+unsigned TextureSet::texture(TextureSlot slot) const {
+    const Slot& s = (*m_slots)[size_t(slot)];
+    return s.valid ? s.texture : 0u;
 }
 
 } // namespace velvet::render

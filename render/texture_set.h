@@ -15,6 +15,7 @@
 /// normal map (mean: flat) is not applied.
 
 #include "core/diagnostics.h"
+#include "core/image.h"
 #include "core/material.h"
 #include "core/texture_ref.h"
 
@@ -31,6 +32,14 @@ class TextureCache;
 namespace velvet::render {
 
 struct GpuMaterial;
+
+/// Uploads @p image (1 to 4 channels, RRR for grey, alpha 1 when absent) into every level of
+/// @p texture, an RGBA16F 2D texture with the full mip chain allocated
+/// (mipLevelCount(width, height) levels): the levels of core::mipChain, filtered on the CPU
+/// through OpenImageIO (Blackman-Harris, the same filter for every platform and driver) rather
+/// than glGenerateTextureMipmap's unspecified box filter. Row 0 goes to t = 0. Material slot and
+/// graph textures use it; needs a current context.
+void uploadMipChain(unsigned texture, const Image& image);
 
 class TextureSet {
 public:
@@ -65,6 +74,9 @@ public:
     int allocationCount() const { return m_allocations; }
     /// Uploads (first loads and reloads) since construction.
     int uploadCount() const { return m_uploads; }
+    /// The GL texture name of @p slot (0 when the slot is empty or its file failed; tests read
+    /// its levels back).
+    unsigned texture(TextureSlot slot) const;
     /// The texture cache behind the slots (created on first use; needs a current context), shared
     /// with the material graph's texture nodes so a file is decoded once for both.
     TextureCache& sharedCache() { return cache(); }

@@ -5,6 +5,7 @@
 #include "render/camera.h"
 #include "render/offscreen.h"
 #include "ui/commands/set_scene_command.h"
+#include "ui/texture_file_watcher.h"
 
 #include <QCoreApplication>
 #include <QDropEvent>
@@ -126,7 +127,8 @@ private:
 ViewportWidget::ViewportWidget(QWidget* parent)
     : QWidget(parent), m_surface(new Surface(this)),
       m_container(QWidget::createWindowContainer(m_surface, this)), m_flyTimer(new QTimer(this)),
-      m_refineTimer(new QTimer(this)), m_animationTimer(new QTimer(this)) {
+      m_refineTimer(new QTimer(this)), m_animationTimer(new QTimer(this)),
+      m_textureWatcher(new TextureFileWatcher(this)) {
     setObjectName(QStringLiteral("viewport"));
     m_surface->setObjectName(QStringLiteral("viewportWindow"));
     m_container->setObjectName(QStringLiteral("viewportContainer"));
@@ -140,6 +142,7 @@ ViewportWidget::ViewportWidget(QWidget* parent)
     layout->setSpacing(0);
     layout->addWidget(m_container);
 
+    connect(m_textureWatcher, &TextureFileWatcher::changed, this, &ViewportWidget::requestFrame);
     m_flyTimer->setInterval(kFlyTickMs);
     connect(m_flyTimer, &QTimer::timeout, this, &ViewportWidget::flyStep);
     m_refineTimer->setSingleShot(true);
@@ -203,6 +206,7 @@ void ViewportWidget::releaseRenderer() {
 void ViewportWidget::setScene(const Scene& scene) {
     m_scene = scene;
     m_sceneDirty = true;
+    m_textureWatcher->setScene(scene);
     noteInteraction();
     updateAnimation();
     requestFrame();

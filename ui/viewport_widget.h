@@ -49,6 +49,8 @@ class OffscreenTarget;
 
 namespace velvet::ui {
 
+class TextureFileWatcher;
+
 class ViewportWidget : public QWidget {
     Q_OBJECT
 public:
@@ -224,6 +226,9 @@ private:
     double m_animatedSeconds = 0.0; ///< time accumulated before m_animationClock started
     QElapsedTimer m_animationClock; ///< valid while animating
     QTimer* m_animationTimer;
+    /// Draws a frame when a texture file the material uses changes on disk (an idle viewport
+    /// would otherwise not notice; ui/texture_file_watcher.h).
+    TextureFileWatcher* m_textureWatcher;
 };
 
 } // namespace velvet::ui

@@ -1,7 +1,8 @@
 // Tone mapping as a chain stage: post_tonemap() in resources/shaders/post_tonemap_curve.frag
-// (exposure, a curve, the sRGB OETF), fused with its pointwise neighbours; the "display" operator
-// is instead drawn by the OpenColorIO display transform (render/display_transform.cpp) as a step
-// of its own, run by render/post_chain.cpp through PostRunInputs::displayTransform.
+// (exposure, a curve, then OCIO's display encoding), fused with its pointwise neighbours; the
+// "display" operator is instead drawn by the OpenColorIO display transform
+// (render/display_transform.cpp) as a step of its own, run by render/post_chain.cpp through
+// PostRunInputs::displayTransform.
 #include "render/post_effect.h"
 
 namespace velvet::render {
@@ -16,6 +17,7 @@ public:
     bool fuses(const EffectInstance& effect, bool forceDisplayTransform) const override {
         return !forceDisplayTransform && effectFloat(effect, "operator") != kDisplayOperator;
     }
+    bool displayEncodes() const override { return true; }
 
 private:
     static constexpr float kDisplayOperator = 6.0f; ///< "display" in the operator choices

@@ -1,8 +1,11 @@
 #version 450 core
-// Exposure, tone mapping and the sRGB OETF into the target framebuffer; debug views get a
-// display mapping of their raw values instead.
+// Exposure and a built-in tone-mapping curve (display-linear Rec.709 out), then the display
+// encoding into the target framebuffer: displayEncode() is OCIO's own GPU shader for the current
+// display's un-tone-mapped view, the generated include "display_encode.glsl"
+// (render/display_encoding.h). Debug views get a display mapping of their raw values instead.
 #include "common_frame.glsl"
 #include "common_tonemap.glsl"
+#include "display_encode.glsl"
 #include "debug_views.glsl"
 
 layout(binding = BINDING_HDR_TEX) uniform sampler2D uHdr;
@@ -13,9 +16,9 @@ void main() {
     int view = frame.modes.y;
     vec3 display;
     if (view == DEBUG_FINAL)
-        display = srgbEncode(toneMap(c * frame.post.x, frame.modes.z));
+        display = displayEncode(toneMap(c * frame.post.x, frame.modes.z));
     else if (view == DEBUG_ALBEDO)
-        display = srgbEncode(c);
+        display = displayEncode(c);
     else if (view == DEBUG_NORMAL || view == DEBUG_POSITION)
         display = c * 0.5 + 0.5;
     else if (view == DEBUG_DEPTH)

@@ -1,8 +1,12 @@
-// Tone mapping as a chain stage (pointwise, fused with the effects around it): exposure, a curve,
-// then the sRGB OETF, so later LDR effects see display-encoded values. The OCIO display transform
-// ("display") is drawn by render/display_transform.cpp instead. Included by a generated main.
+// Tone mapping as a chain stage (pointwise, fused with the effects around it): exposure, a curve
+// (display-linear Rec.709 out), then the display encoding, so later LDR effects see
+// display-encoded values. displayEncode() is OCIO's own GPU shader for the current display's
+// un-tone-mapped view, the generated include "display_encode.glsl" (render/display_encoding.h).
+// The full OCIO display transform ("display" operator, or a tone-mapping view) is drawn by
+// render/display_transform.cpp instead. Included by a generated main.
 #include "post_common.glsl"
 #include "common_tonemap.glsl"
+#include "display_encode.glsl"
 
 // Hable 2010, "Filmic Tonemapping Operators" (Uncharted 2 curve, white point 11.2)
 vec3 hableCurve(vec3 x) {
@@ -26,7 +30,7 @@ vec3 toneMapAgx(vec3 c) {
                              -0.0990297440797205, -0.0989611768448433, 1.15107367264116);
     vec3 v = clamp((log2(max(inset * c, 1e-10)) + 12.47393) / 16.5, 0.0, 1.0);
     v = agxContrast(v);
-    // agxContrast returns display-encoded values: decode so the shared sRGB encode below applies.
+    // agxContrast returns sRGB-encoded values: decode so the display encoding below applies.
     return clamp(srgbDecode(clamp(outset * v, 0.0, 1.0)), 0.0, 1.0);
 }
 
@@ -45,5 +49,5 @@ vec4 post_tonemap(vec4 color, ivec2 px, int b) {
         c = toneMapAgx(c);
     else
         c = clamp(c, 0.0, 1.0);
-    return vec4(srgbEncode(c), 1.0);
+    return vec4(displayEncode(c), 1.0);
 }

@@ -2,8 +2,12 @@
 // shader must give what OCIO's CPU processor gives, exposure must be a uniform, and a view is
 // compiled once. What each case proves is stated on the case.
 #include "core/color_management.h"
+#include "core/post_chain.h"
+#include "core/post_effects.h"
+#include "render/display_encoding.h"
 #include "render/display_transform.h"
 #include "render/offscreen.h"
+#include "render/post_chain.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
 
@@ -99,6 +103,49 @@ Image gpuDisplay(render::DisplayTransform& dt, const Image& linear, const Displa
     if (!dt.apply(linear, exposureEv, out, &error))
         qFatal("DisplayTransform::apply: %s", error.c_str());
     return out;
+}
+
+/// Khronos PBR Neutral (Khronos Group 2024, "PBR Neutral" specification), the reference formula,
+/// as the renderer's default built-in curve computes it, then clamped to [0, 1].
+glm::vec3 pbrNeutral(glm::vec3 c) {
+    c = glm::max(c, glm::vec3(0.0f));
+    const float start = 0.8f - 0.04f, desaturation = 0.15f;
+    const float x = std::min(c.r, std::min(c.g, c.b));
+    const float offset = x < 0.08f ? x - 6.25f * x * x : 0.04f;
+    c -= offset;
+    const float peak = std::max(c.r, std::max(c.g, c.b));
+    if (peak >= start) {
+        const float d = 1.0f - start;
+        const float newPeak = 1.0f - d * d / (peak + d - start);
+        c *= newPeak / peak;
+        const float g = 1.0f - 1.0f / (desaturation * (peak - newPeak) + 1.0f);
+        c = glm::mix(c, glm::vec3(newPeak), g);
+    }
+    return glm::clamp(c, 0.0f, 1.0f);
+}
+
+/// What the built-in path should show: @p curve on linear x 2^ev, then OCIO's CPU processor for
+/// @p display's un-tone-mapped view ("Standard").
+template <class Curve>
+Image cpuBuiltIn(Image linear, float ev, const std::string& display, Curve curve) {
+    for (int y = 0; y < linear.height; ++y)
+        for (int x = 0; x < linear.width; ++x) {
+            float* p = linear.at(x, y);
+            const glm::vec3 t = curve(glm::vec3(p[0], p[1], p[2]) * std::exp2(ev));
+            p[0] = t.r, p[1] = t.g, p[2] = t.b;
+        }
+    return cpuDisplay(linear, {display, "Standard", "", 0.0f});
+}
+
+/// Selects @p display's encoding in @p encoding (OCIO's shader for its un-tone-mapped view).
+void selectEncoding(render::DisplayEncoding& encoding, const std::string& display) {
+    std::string error;
+    const auto t =
+        shippedConfig()->gpuDisplayEncoding(display, &error, render::DisplayEncoding::options());
+    if (!t)
+        qFatal("gpuDisplayEncoding: %s", error.c_str());
+    if (!encoding.select(*t, &error))
+        qFatal("DisplayEncoding::select: %s", error.c_str());
 }
 
 } // namespace
@@ -269,6 +316,123 @@ private slots:
         QVERIFY2(r.render(fs, target.framebuffer(), &error), error.c_str());
         QCOMPARE(r.shaderCompileCount(), baseCompiles + 3);
         QCOMPARE(maxDifference(r.readDisplay(), builtIn), 0.0f);
+    }
+
+    // The built-in curves' display encoding is OCIO's shader: the chain's tone map with the
+    // linear curve over ramps gives OCIO's CPU processor of the clamped values for the display's
+    // Standard view within 1/255; Display P3 differs from sRGB as OCIO predicts; and for sRGB
+    // OCIO agrees with the IEC 61966-2-1 OETF the renderer used before (goldens unchanged).
+    void builtInCurveEncodedByOcioOnRamp_data() {
+        QTest::addColumn<QString>("display");
+        QTest::newRow("sRGB") << "sRGB";
+        QTest::newRow("Display P3") << "Display P3";
+    }
+    void builtInCurveEncodedByOcioOnRamp() {
+        QFETCH(QString, display);
+        const Image ramp = scaled(hdrRamp(), 1.0f / 8.0f);
+        render::DisplayEncoding encoding;
+        selectEncoding(encoding, display.toStdString());
+        QVERIFY(!encoding.isFallback());
+        render::PostChainRenderer chain;
+        PostChain c;
+        c.effects.push_back(makeEffect("tonemap"));
+        c.effects[0].params["operator"] = {5.0f}; // linear: clamp to [0, 1]
+        render::PostTestInput in;
+        in.color = ramp;
+        in.encoding = &encoding;
+        Image gpu;
+        std::string error;
+        QVERIFY2(chain.apply(c, in, gpu, &error), error.c_str());
+        const auto clamp01 = [](glm::vec3 v) { return glm::clamp(v, 0.0f, 1.0f); };
+        QString where;
+        const float worst =
+            maxDifference(gpu, cpuBuiltIn(ramp, 0.0f, display.toStdString(), clamp01), &where);
+        qInfo("%s: max |GPU - OCIO CPU| = %.4f/255 at %s", qPrintable(display),
+              double(worst * 255.0f), qPrintable(where));
+        QVERIFY2(worst <= kTolerance, qPrintable(where));
+
+        Image handWritten = ramp;
+        for (float& v : handWritten.pixels)
+            v = linearToSrgb(std::clamp(v, 0.0f, 1.0f));
+        const float fromOetf = maxDifference(gpu, handWritten);
+        if (display == "sRGB")
+            QVERIFY2(fromOetf <= kTolerance, qPrintable(QString::number(fromOetf * 255.0f)));
+        else
+            QVERIFY2(fromOetf > 0.05f, "Display P3 must re-encode saturated colours");
+    }
+
+    // The renderer's own final pass: default settings (PBR Neutral, no OCIO names) show the
+    // curve followed by OCIO's sRGB encoding; choosing Display P3 (its default view, Standard,
+    // only encodes) keeps the curve and switches the encoding; exposure compiles nothing.
+    void rendererBuiltInCurveEncodedByOcio() {
+        constexpr int kSize = 64;
+        render::Renderer r;
+        std::string error;
+        QVERIFY2(r.initialize(&error), error.c_str());
+        r.setColorManagement(shippedConfig());
+        r.setScene(test::shippedDefaultScene());
+        r.finishEnvironment();
+        render::OffscreenTarget target;
+        QVERIFY2(target.resize(kSize, kSize, &error), error.c_str());
+        render::FrameSettings fs;
+        fs.width = fs.height = kSize;
+        auto check = [&](const std::string& display, const char* what) {
+            QVERIFY2(r.render(fs, target.framebuffer(), &error), error.c_str());
+            const float worst = maxDifference(
+                r.readDisplay(), cpuBuiltIn(r.readLinear(), fs.exposureEv, display, pbrNeutral));
+            qInfo("renderer, PBR Neutral + %s encoding (%s): max |frame - CPU| = %.4f/255",
+                  display.c_str(), what, double(worst * 255.0f));
+            QVERIFY(worst <= 1.5f / 255.0f); // + half a code for the RGBA8 target
+        };
+        check("sRGB", "default settings");
+        const Image srgbFrame = r.readDisplay();
+        const int compiles = r.shaderCompileCount();
+        fs.exposureEv = 1.5f;
+        check("sRGB", "exposure");
+        QCOMPARE(r.shaderCompileCount(), compiles);
+        fs.exposureEv = 0.0f;
+        fs.display = "Display P3";
+        check("Display P3", "display chosen, default view");
+        QVERIFY(maxDifference(r.readDisplay(), srgbFrame) > 0.5f / 255.0f);
+        QCOMPARE(r.shaderCompileCount(), compiles + 1); // one tone-map program per encoding
+        fs.exposureEv = -1.0f;
+        check("Display P3", "exposure");
+        QCOMPARE(r.shaderCompileCount(), compiles + 1);
+    }
+
+    // No OCIO config can be loaded at all: the renderer still draws, encoding with the
+    // hand-written IEC 61966-2-1 OETF (and warns once on stderr); choosing a display then fails.
+    void noConfigFallsBackToBuiltInOetf() {
+        const QByteArray previous = qgetenv("OCIO");
+        qputenv("OCIO", "/nonexistent/velvet-test.ocio");
+        render::Renderer r;
+        std::string error;
+        const bool initialized = r.initialize(&error);
+        render::OffscreenTarget target;
+        render::FrameSettings fs;
+        fs.width = fs.height = 32;
+        bool rendered = initialized && target.resize(32, 32, &error) &&
+                        r.render(fs, target.framebuffer(), &error);
+        Image expected;
+        if (rendered) {
+            expected = r.readLinear();
+            for (int y = 0; y < expected.height; ++y)
+                for (int x = 0; x < expected.width; ++x) {
+                    float* p = expected.at(x, y);
+                    const glm::vec3 t = pbrNeutral({p[0], p[1], p[2]});
+                    p[0] = linearToSrgb(t.r), p[1] = linearToSrgb(t.g), p[2] = linearToSrgb(t.b);
+                }
+        }
+        const Image shown = rendered ? r.readDisplay() : Image();
+        fs.display = "sRGB";
+        const bool withDisplay = rendered && r.render(fs, target.framebuffer(), nullptr);
+        if (previous.isNull())
+            qunsetenv("OCIO");
+        else
+            qputenv("OCIO", previous);
+        QVERIFY2(rendered, error.c_str());
+        QVERIFY(maxDifference(shown, expected) <= 1.5f / 255.0f);
+        QVERIFY(!withDisplay);
     }
 
     // An unknown name fails the frame before anything is drawn, with a message naming it.

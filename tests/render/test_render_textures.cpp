@@ -2,14 +2,18 @@
 // renderer for the whole file (programs compiled once), 64x64 renders, the grey-furnace setup
 // (uniform white environment, Lambertian, no specular) so a pixel equals its albedo.
 #include "core/image.h"
+#include "core/image_ops.h"
 #include "core/mesh_import.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
+#include "render/texture_set.h"
 #include "render_test_util.h"
 
 #include <QTemporaryDir>
 #include <QtTest>
+#include <algorithm>
 #include <cmath>
+#include <epoxy/gl.h>
 #include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
@@ -210,6 +214,66 @@ private slots:
         scene.material.setTexture(TextureSlot::Occlusion, {file.string()});
         render(&scene);
         QCOMPARE(m_renderer->shaderCompileCount(), compiles);
+    }
+
+    // Material textures carry core::mipChain's levels (OpenImageIO, Blackman-Harris), not the
+    // GPU's: level 1 read back from the slot's GL texture equals mipChain(image)[1] within half
+    // float precision, and differs from a 2x2 box average (glGenerateTextureMipmap) at a step.
+    void mipLevelsComeFromMipChain() {
+        const fs::path file = path("mips.png");
+        Image img(16, 8, 4);
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                float* p = img.at(x, y);
+                p[0] = x < 8 ? 0.0f : 1.0f;                     // a step on a 2-texel boundary
+                p[1] = float((x * 37 + y * 11) % 256) / 255.0f; // texture
+                p[2] = float(y) / 7.0f;
+                p[3] = 1.0f;
+            }
+        write(file, img);
+        Image decoded;
+        std::string error;
+        QVERIFY2(readImage(file, decoded, &error), error.c_str());
+        const std::vector<Image> chain = mipChain(decoded, &error);
+        QVERIFY2(chain.size() == 5, error.c_str()); // 16x8, 8x4, 4x2, 2x1, 1x1
+
+        render::TextureSet set;
+        Material material;
+        TextureRef ref;
+        ref.file = file.string();
+        ref.colorSpace = "Raw"; // data: the file's values, unconverted
+        material.setTexture(TextureSlot::BaseColor, ref);
+        Problems problems;
+        set.setMaterial(material, &problems);
+        QVERIFY(!problems.hasErrors());
+        const unsigned tex = set.texture(TextureSlot::BaseColor);
+        QVERIFY(tex != 0);
+        GLint w = 0, h = 0;
+        glGetTextureLevelParameteriv(tex, 1, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(tex, 1, GL_TEXTURE_HEIGHT, &h);
+        QCOMPARE(w, 8);
+        QCOMPARE(h, 4);
+        std::vector<float> level(size_t(w) * h * 4);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glGetTextureImage(tex, 1, GL_RGBA, GL_FLOAT, GLsizei(level.size() * sizeof(float)),
+                          level.data());
+        float worst = 0.0f, fromBox = 0.0f;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    // Row 0 of the image is texture row 0 (t = 0, glTF's v = 0 at the top).
+                    const float got = level[(size_t(y) * w + x) * 4 + c];
+                    worst = std::max(worst, std::abs(got - chain[1].rgba(x, y)[c]));
+                    float box = 0.0f;
+                    for (int dy = 0; dy < 2; ++dy)
+                        for (int dx = 0; dx < 2; ++dx)
+                            box += decoded.rgba(2 * x + dx, 2 * y + dy)[c] / 4.0f;
+                    fromBox = std::max(fromBox, std::abs(got - box));
+                }
+        qInfo("level 1: max |GL - mipChain| = %.5f, max |GL - 2x2 box| = %.4f", double(worst),
+              double(fromBox));
+        QVERIFY2(worst <= 2e-3f, qPrintable(QString::number(worst))); // RGBA16F storage
+        QVERIFY(fromBox > 0.01f);
     }
 
     // A missing texture is a problem naming the file and the slot; the parameter value is drawn.

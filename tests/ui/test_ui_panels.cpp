@@ -13,6 +13,7 @@
 // QDragEnter/QDragMove/QDropEvent to the viewport (PostChainListView handles drops of its own
 // rows whatever the drag's source), and the keyboard alternative is tested with key clicks.
 #include "core/document_io.h"
+#include "core/image.h"
 #include "core/post_effects.h"
 #include "core/resources.h"
 #include "ui/document_controller.h"
@@ -621,7 +622,21 @@ void TestUiPanels::thumbnailsRenderThenComeFromCache() {
         const QColor centre = goldIcon.pixelColor(goldIcon.width() / 2, goldIcon.height() / 2);
         QVERIFY2(centre.red() > centre.blue() + 20,
                  qPrintable(QStringLiteral("centre %1").arg(centre.name())));
-        QCOMPARE(QDir(options.cacheDir).entryList({QStringLiteral("*.png")}).size(), 2);
+        const QStringList cached = QDir(options.cacheDir).entryList({QStringLiteral("*.png")});
+        QCOMPARE(cached.size(), 2);
+        // The cache files are written through core::writeImage (OpenImageIO): 8-bit PNGs of the
+        // thumbnail size, no temp file left beside them.
+        QCOMPARE(QDir(options.cacheDir).entryList(QDir::Files).size(), 2);
+        for (const QString& name : cached) {
+            ImageInfo info;
+            std::string error;
+            QVERIFY2(
+                readImageInfo(QDir(options.cacheDir).filePath(name).toStdString(), info, &error),
+                error.c_str());
+            QCOMPARE(info.format, std::string("png"));
+            QCOMPARE(info.bitsPerSample, 8);
+            QCOMPARE(info.width, ThumbnailRenderer::kSize);
+        }
     }
 
     LibraryPanel second(&controller, options);

@@ -488,7 +488,7 @@ void TestUiScene::ctrlOReopensSavedDocumentEqual() {
             for (QWidget* w : QApplication::topLevelWidgets())
                 if (auto* dialog = qobject_cast<QFileDialog*>(w); dialog && dialog->isVisible()) {
                     dialog->selectFile(path);
-                    dialog->accept();
+                    QMetaObject::invokeMethod(dialog, "accept", Qt::QueuedConnection);
                     return;
                 }
             QTimer::singleShot(20, answer);

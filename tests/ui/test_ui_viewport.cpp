@@ -9,6 +9,7 @@
 // reaches the main window; screenshots compose its frame (QWidget::grab leaves it out).
 #include "core/color_management.h"
 #include "core/post_effects.h"
+#include "core/image.h"
 #include "core/resources.h"
 #include "render/renderer.h"
 #include "ui/color_picking.h"
@@ -27,6 +28,7 @@
 #include <QFile>
 #include <QMimeData>
 #include <QRegularExpression>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTemporaryDir>
@@ -121,6 +123,8 @@ private slots:
     void pickerRoundTripsThroughOcioView();
     void recentFilesKeepNewestEight();
     void animationRunsOnlyWhileSceneReadsTime();
+    void editedTextureFileRedrawsIdleViewport();
+    void lookComboChangesPixelAndPersists();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -609,6 +613,100 @@ void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
     QVERIFY(!viewport->isAnimating());
     QVERIFY(settles());
     viewport->setScene(m_doc->scene());
+}
+
+namespace {
+
+/// A 16 x 16 opaque image of one colour (display-encoded sRGB values, as a PNG holds them).
+Image flatImage(glm::vec3 rgb) {
+    Image img(16, 16, 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            float* p = img.at(x, y);
+            p[0] = rgb.r, p[1] = rgb.g, p[2] = rgb.b, p[3] = 1.0f;
+        }
+    return img;
+}
+
+/// Largest channel difference between two frames of the same size, in 0..255 units.
+int maxImageDifference(const QImage& a, const QImage& b) {
+    int worst = 0;
+    for (int y = 0; y < std::min(a.height(), b.height()); ++y)
+        for (int x = 0; x < std::min(a.width(), b.width()); ++x) {
+            const QColor p = a.pixelColor(x, y), q = b.pixelColor(x, y);
+            worst = std::max({worst, std::abs(p.red() - q.red()), std::abs(p.green() - q.green()),
+                              std::abs(p.blue() - q.blue())});
+        }
+    return worst;
+}
+
+} // namespace
+
+// An image edited in another program shows in an idle viewport: the texture file watcher
+// (ui/texture_file_watcher.h) asks for a frame when the base colour's file changes on disk, and
+// that frame re-uploads it (nothing else asks for one while the test waits).
+void TestUiViewport::editedTextureFileRedrawsIdleViewport() {
+    QTemporaryDir dir;
+    const std::string file = dir.filePath(QStringLiteral("base.png")).toStdString();
+    std::string error;
+    QVERIFY2(writeImage(file, flatImage({1.0f, 0.0f, 0.0f}), PixelFormat::UInt8, &error),
+             error.c_str());
+    TextureRef ref;
+    ref.file = file;
+    m_doc->setTexture(TextureSlot::BaseColor, ref);
+    const QVector<double> red = centrePixel(viewportImage());
+    QVERIFY2(red[0] > red[2] + 20.0, qPrintable(describe(red)));
+
+    // Idle: no frame for a second (the environment bake and the refine timer are done).
+    ViewportWidget* viewport = m_window->viewport();
+    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
+    QElapsedTimer quiet;
+    quiet.start();
+    while (quiet.elapsed() < 1000) {
+        const qsizetype before = frames.count();
+        QTest::qWait(100);
+        if (frames.count() != before)
+            quiet.restart();
+        QVERIFY2(frames.count() < 2000, "the viewport never goes idle");
+    }
+    frames.clear();
+    QVERIFY2(writeImage(file, flatImage({0.0f, 0.0f, 1.0f}), PixelFormat::UInt8, &error),
+             error.c_str());
+    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), 10000); // drawn without anyone asking
+    const QVector<double> blue = centrePixel(viewportImage());
+    QVERIFY2(blue[2] > blue[0] + 20.0, qPrintable(describe(red) + " -> " + describe(blue)));
+}
+
+// The look combo: choosing a look changes the viewport (OCIO applies it in scene-linear before
+// the view), is view state saved to QSettings as the toolbar saves the display and view (never
+// a document edit), and choosing "No look" again gives the earlier frame back.
+void TestUiViewport::lookComboChangesPixelAndPersists() {
+    // A saturated Rec.709 blue: what the ACES blue-light LMT exists to desaturate.
+    m_doc->setParam(ParamId::BaseColor, glm::vec3(0.0f, 0.0f, 1.0f));
+    auto* display = find<QComboBox>(QStringLiteral("displayCombo"));
+    auto* view = find<QComboBox>(QStringLiteral("viewCombo"));
+    auto* look = find<QComboBox>(QStringLiteral("lookCombo"));
+    display->setCurrentIndex(display->findText(QStringLiteral("sRGB")));
+    view->setCurrentIndex(view->findText(QStringLiteral("ACES")));
+    QVERIFY(look->isEnabled());
+    const QImage without = viewportImage();
+    const int undoCount = m_doc->undoStack()->count();
+
+    const QString name = QStringLiteral("ACES Blue Light Fix");
+    const int index = look->findData(name);
+    QVERIFY2(index > 0, "the shipped config offers the look");
+    look->setCurrentIndex(index);
+    QCOMPARE(m_window->viewport()->frameSettings().look, name.toStdString());
+    const QImage with = viewportImage();
+    const int changed = maxImageDifference(without, with);
+    QVERIFY2(changed > 5, qPrintable(QStringLiteral("largest change %1").arg(changed)));
+    QCOMPARE(QSettings().value(QStringLiteral("viewport/look")).toString(), name);
+    QCOMPARE(m_doc->undoStack()->count(), undoCount); // view state, not an edit
+
+    look->setCurrentIndex(0);
+    QVERIFY(m_window->viewport()->frameSettings().look.empty());
+    QCOMPARE(QSettings().value(QStringLiteral("viewport/look")).toString(), QString());
+    QVERIFY(maxImageDifference(without, viewportImage()) <= 1);
 }
 
 int main(int argc, char** argv) {

@@ -1,6 +1,7 @@
 #include "ui/library/thumbnail_renderer.h"
 
 #include "core/document_io.h"
+#include "core/image.h"
 #include "render/headless_context.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
@@ -10,13 +11,31 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QMetaObject>
-#include <QSaveFile>
 #include <QStandardPaths>
 #include <algorithm>
 #include <cmath>
 #include <memory>
 
 namespace velvet::ui {
+namespace {
+
+/// A display-encoded image (values in [0, 1]) as an opaque 8-bit QImage.
+QImage toQImage(const Image& pixels) {
+    QImage image(pixels.width, pixels.height, QImage::Format_RGB32);
+    auto to8 = [](float v) {
+        return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    };
+    for (int y = 0; y < pixels.height; ++y) {
+        auto* line = reinterpret_cast<QRgb*>(image.scanLine(y));
+        for (int x = 0; x < pixels.width; ++x) {
+            const glm::vec4 c = pixels.rgba(x, y);
+            line[x] = qRgb(to8(c.r), to8(c.g), to8(c.b));
+        }
+    }
+    return image;
+}
+
+} // namespace
 
 /// Runs on the thumbnail thread. The context, renderer and target are made on the first job and
 /// destroyed in the destructor, which runs on the same thread (QThread::finished -> deleteLater).
@@ -34,13 +53,17 @@ public:
 public slots:
     void render(const QString& presetFile, const QByteArray& contents, const QString& cachePath) {
         QString error;
-        const QImage image = renderPreset(presetFile, contents, &error);
-        if (!image.isNull()) {
+        const Image pixels = renderPreset(presetFile, contents, &error);
+        QImage image;
+        if (!pixels.empty()) {
             m_renders->fetch_add(1);
+            image = toQImage(pixels);
+            // The cache goes through the project's image I/O (OpenImageIO, atomic temp + rename),
+            // as an 8-bit PNG of the display-encoded frame. A failed write only costs a re-render.
             QDir().mkpath(QFileInfo(cachePath).absolutePath());
-            QSaveFile file(cachePath);
-            if (file.open(QIODevice::WriteOnly) && image.save(&file, "PNG"))
-                file.commit();
+            std::string message;
+            if (!writeImage(cachePath.toStdString(), pixels, PixelFormat::UInt8, &message))
+                qWarning("thumbnail cache: %s", message.c_str());
         }
         emit rendered(presetFile, image, error);
     }
@@ -74,7 +97,8 @@ private:
         return true;
     }
 
-    QImage renderPreset(const QString& presetFile, const QByteArray& contents, QString* error) {
+    /// The preset's display-encoded thumbnail (RGBA in [0, 1]); empty + @p error on failure.
+    Image renderPreset(const QString& presetFile, const QByteArray& contents, QString* error) {
         Problems problems;
         const std::filesystem::path file(presetFile.toStdString());
         std::optional<Material> material =
@@ -100,23 +124,10 @@ private:
             *error = QString::fromStdString(message);
             return {};
         }
-        const Image pixels = m_renderer->readDisplay();
-        if (pixels.empty()) {
+        Image pixels = m_renderer->readDisplay();
+        if (pixels.empty())
             *error = tr("%1: the renderer returned no image").arg(presetFile);
-            return {};
-        }
-        QImage image(pixels.width, pixels.height, QImage::Format_RGB32);
-        auto to8 = [](float v) {
-            return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-        };
-        for (int y = 0; y < pixels.height; ++y) {
-            auto* line = reinterpret_cast<QRgb*>(image.scanLine(y));
-            for (int x = 0; x < pixels.width; ++x) {
-                const glm::vec4 c = pixels.rgba(x, y);
-                line[x] = qRgb(to8(c.r), to8(c.g), to8(c.b));
-            }
-        }
-        return image;
+        return pixels;
     }
 
     std::atomic<int>* m_renders;
@@ -169,9 +180,11 @@ bool ThumbnailRenderer::request(const QString& presetFile) {
     const QByteArray contents = file.readAll();
     const QString cached = cachePath(contents);
     ++m_pending;
-    QImage image;
-    if (QFileInfo::exists(cached) && image.load(cached) && !image.isNull()) {
+    Image pixels;
+    if (QFileInfo::exists(cached) && readImage(cached.toStdString(), pixels, nullptr) &&
+        !pixels.empty()) {
         ++m_cacheHits;
+        const QImage image = toQImage(pixels);
         QMetaObject::invokeMethod(
             this, [this, presetFile, image] { onRendered(presetFile, image, QString()); },
             Qt::QueuedConnection);

@@ -70,9 +70,6 @@ private:
 
 namespace {
 
-QString fromView(std::string_view text) {
-    return QString::fromUtf8(text.data(), static_cast<qsizetype>(text.size()));
-}
 
 QString typeLabel(LightType type) {
     switch (type) {
