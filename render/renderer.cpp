@@ -12,6 +12,7 @@
 #include "render/gbuffer.h"
 #include "render/gbuffer_layout.h"
 #include "render/gpu_mesh.h"
+#include "render/graph_texture.h"
 #include "render/ibl_bake.h"
 #include "render/light_passes.h"
 #include "render/material_table.h"
@@ -118,21 +119,13 @@ Image readFramebuffer(GLuint fbo, int width, int height) {
     return img;
 }
 
-/// The material graph's texture units: above the material slots (binding::kMaterialTexFirst +
-/// TextureSlot), so the G-buffer pass never rebinds a unit another pass relies on.
-/// The material graph's value block (VelvetGraphValues): UBO 0 is the frame, 3 the IBL block,
-/// 7 the post-effect frame.
-constexpr int kGraphValuesUbo = 2;
-constexpr int kGraphTexFirst = binding::kMaterialTexFirst + kTextureSlotCount;
 /// The generated include gbuffer.frag reads (graph_compiler.h's interface).
 constexpr const char* kGraphInclude = "material_graph.glsl";
 
 /// Compiles @p material's graph (an empty graph when it has none: a velvetGraph that changes
 /// nothing), with the renderer's binding points.
 graph::CompiledGraph compileMaterialGraph(const Material& material) {
-    graph::CompileOptions options;
-    options.valuesBinding = kGraphValuesUbo;
-    options.firstSamplerUnit = kGraphTexFirst;
+    const graph::CompileOptions options = graphCompileOptions();
     static const graph::Graph empty;
     return graph::compileGraph(material.graph ? *material.graph : empty, options);
 }
@@ -355,37 +348,16 @@ struct Renderer::Impl {
             }
             if (t.texture && t.generation == tex.generation)
                 continue;
-            const Image& image = *tex.image;
-            if (!t.texture || t.width != image.width || t.height != image.height) {
-                if (t.texture)
-                    glDeleteTextures(1, &t.texture);
-                glCreateTextures(GL_TEXTURE_2D, 1, &t.texture);
-                int levels = 1;
-                for (int side = std::max(image.width, image.height); side > 1; side /= 2)
-                    ++levels;
-                glTextureStorage2D(t.texture, levels, GL_RGBA16F, image.width, image.height);
-                glTextureParameteri(t.texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-                glTextureParameteri(t.texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-                glTextureParameteri(t.texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
-                glTextureParameteri(t.texture, GL_TEXTURE_WRAP_T, GL_REPEAT);
-                t.width = image.width;
-                t.height = image.height;
-            }
-            // The levels of core::mipChain, as for material slots (render/texture_set.h).
-            uploadMipChain(t.texture, image);
+            uploadGraphTexture(*tex.image, t.texture, t.width, t.height);
             t.generation = tex.generation;
             ++graph.uploads;
         }
     }
 
     void bindGraph() {
-        glBindBufferBase(GL_UNIFORM_BUFFER, kGraphValuesUbo, graph.ubo);
-        if (!graph.fallback) {
-            glCreateTextures(GL_TEXTURE_2D, 1, &graph.fallback);
-            glTextureStorage2D(graph.fallback, 1, GL_RGBA16F, 1, 1);
-            const float white[4] = {1, 1, 1, 1};
-            glTextureSubImage2D(graph.fallback, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
-        }
+        glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(graphCompileOptions().valuesBinding), graph.ubo);
+        if (!graph.fallback)
+            graph.fallback = createGraphFallbackTexture();
         for (size_t i = 0; i < graph.linked.samplers.size(); ++i) {
             const GraphTexture* t = i < graph.textures.size() ? &graph.textures[i] : nullptr;
             glBindTextureUnit(GLuint(graph.linked.samplers[i].unit),
@@ -1098,6 +1070,10 @@ const std::string& Renderer::graphError() const {
 
 bool Renderer::graphPending() const {
     return m_impl->graph.hasPending;
+}
+
+TextureCache& Renderer::graphTextureCache() {
+    return m_impl->textures.sharedCache();
 }
 
 int Renderer::shaderCompileCount() const {

@@ -16,7 +16,8 @@
 
 namespace velvet {
 class ColorManagement;
-}
+class TextureCache;
+} // namespace velvet
 
 namespace velvet::render {
 
@@ -198,6 +199,10 @@ public:
     const std::string& graphError() const;
     /// A structural graph change waits for the next render().
     bool graphPending() const;
+    /// The cache texture nodes load their files through (shared with the material's texture
+    /// slots), for node thumbnails (render/graph_preview.h) with this renderer's context current:
+    /// a file is decoded once for the frame and its thumbnail.
+    TextureCache& graphTextureCache();
     /// @}
 
     /// Number of shader programs compiled since construction (tests assert value edits add none;

@@ -234,6 +234,16 @@ void MainWindow::createDocks() {
         m_log->warning(text);
     };
     connect(graphPanel, &GraphPanel::message, this, showMessage);
+    // Node thumbnails are drawn by the GPU with the viewport's context (GraphPanel, "Node
+    // thumbnails"); a batch that came before the renderer existed runs after its first frame.
+    graphPanel->setPreviewSource([this](const graph::Graph& g,
+                                        const std::vector<render::PreviewRequest>& requests,
+                                        Problems* problems) {
+        return m_viewport->renderGraphPreviews(g, requests, problems);
+    });
+    connect(m_viewport, &ViewportWidget::frameCompleted, graphPanel,
+            &GraphPanel::previewSourceReady);
+    connect(graphPanel, &GraphPanel::previewProblems, m_log, &LogPanel::warning);
     connect(m_properties, &PropertyPanel::message, this, showMessage);
 
     // The selected effect or node shows its parameters in Properties.

@@ -199,6 +199,7 @@ void ViewportWidget::releaseRenderer() {
     // GL objects belong to our context: free them with it current (Krita's canvas does the same).
     m_surface->makeCurrent();
     m_grabTarget.reset();
+    m_graphPreview.reset();
     m_renderer.reset();
     m_surface->doneCurrent();
 }
@@ -391,6 +392,7 @@ Camera ViewportWidget::viewCamera() const {
 void ViewportWidget::initializeGL() {
     // The context may be recreated (the window was destroyed and created again): start over.
     m_grabTarget.reset();
+    m_graphPreview.reset();
     m_renderer.reset();
     m_error.clear();
     QOpenGLContext* context = m_surface->context();
@@ -464,6 +466,7 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     std::string error;
     if (!m_renderer->render(settings, fbo, &error)) {
         m_grabTarget.reset();
+        m_graphPreview.reset();
         m_renderer.reset(); // keep the viewport alive; show what went wrong instead of drawing
         fail(tr("Rendering failed: %1").arg(QString::fromStdString(error)));
         return false;
@@ -505,6 +508,21 @@ QImage ViewportWidget::grabFramebuffer() {
     }
     m_surface->doneCurrent();
     return result;
+}
+
+std::vector<Image>
+ViewportWidget::renderGraphPreviews(const graph::Graph& graph,
+                                    const std::vector<render::PreviewRequest>& requests,
+                                    Problems* problems) {
+    if (!m_renderer || !m_surface->context())
+        return {};
+    m_surface->makeCurrent();
+    if (!m_graphPreview)
+        m_graphPreview = std::make_unique<render::GraphPreview>();
+    std::vector<Image> images =
+        m_graphPreview->render(graph, requests, &m_renderer->graphTextureCache(), problems);
+    m_surface->doneCurrent();
+    return images;
 }
 
 void ViewportWidget::fail(const QString& message) {

@@ -19,6 +19,7 @@
 /// (ui/screenshot.h).
 
 #include "core/scene.h"
+#include "render/graph_preview.h"
 #include "render/renderer.h"
 
 #include <QElapsedTimer>
@@ -134,6 +135,13 @@ public:
     /// returns it as the renderer wrote it (display-encoded, RGB32; no timing overlay). A null
     /// image before the renderer exists. Counts as a frame (frameCompleted).
     QImage grabFramebuffer();
+    /// Renders material-graph node thumbnails (render/graph_preview.h) with the GL window's
+    /// context current, texture nodes loading through the renderer's cache. Empty (no thumbnail
+    /// drawn) before the renderer exists; one entry per request otherwise. Reasons a request
+    /// could not be drawn go to @p problems.
+    std::vector<Image> renderGraphPreviews(const graph::Graph& graph,
+                                           const std::vector<render::PreviewRequest>& requests,
+                                           Problems* problems = nullptr);
     /// The native window the viewport draws in (inside a window container): the target of mouse,
     /// key and drop events, and its frameSwapped signal, for tests and benchmarks.
     QOpenGLWindow* glWindow() const;
@@ -197,6 +205,7 @@ private:
     QWidget* m_container; ///< QWidget::createWindowContainer(m_surface)
     std::unique_ptr<render::Renderer> m_renderer;
     std::unique_ptr<render::OffscreenTarget> m_grabTarget; ///< grabFramebuffer's, with m_renderer
+    std::unique_ptr<render::GraphPreview> m_graphPreview;  ///< node thumbnails, with m_renderer
     Scene m_scene;
     std::optional<Camera> m_orbit; ///< view state, never part of the document or the undo stack
     render::FrameSettings m_settings;

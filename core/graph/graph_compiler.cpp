@@ -167,22 +167,23 @@ std::vector<NodeId> liveOrder(const Graph& g, NodeId output) {
     return order; // the model refuses cycles, so every live node is here
 }
 
-} // namespace
-
-CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options) {
-    CompiledGraph r;
-    const NodeId output = graph.outputNode();
-    if (output != kInvalidNodeId)
-        r.order = liveOrder(graph, output);
-
-    // Pass 1: value valueSlots and samplers, in emission order.
+/// What the compiler keeps between emitting the declarations and the node bodies.
+struct Layout {
     std::map<std::pair<NodeId, PortIndex>, int> slotOf;
     std::map<NodeId, int> samplerOf;
+};
+
+/// Assigns value slots and samplers to r.order's nodes and emits everything before the entry
+/// function: the prelude, the value block, the samplers and the helpers. False (r.error set)
+/// when @p options' limits are exceeded.
+bool emitDeclarations(const Graph& graph, const CompileOptions& options, CompiledGraph& r,
+                      Layout& layout) {
+    // Value slots and samplers, in emission order.
     for (NodeId id : r.order) {
         const Node& n = *graph.node(id);
         for (PortIndex i = 0; i < n.type->inputs.size(); ++i)
             if (n.type->inputs[i].fallback == Fallback::Value && !graph.connectionTo(id, i)) {
-                slotOf[{id, i}] = int(r.valueSlots.size());
+                layout.slotOf[{id, i}] = int(r.valueSlots.size());
                 r.valueSlots.push_back({id, i});
             }
         if (n.type->samplesTexture) {
@@ -192,19 +193,19 @@ CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options) {
             b.uniform = "u_graphTex" + std::to_string(r.samplers.size());
             b.file = n.settings[size_t(n.type->settingIndex("file"))];
             b.colorSpace = n.settings[size_t(n.type->settingIndex("colorSpace"))];
-            samplerOf[id] = int(r.samplers.size());
+            layout.samplerOf[id] = int(r.samplers.size());
             r.samplers.push_back(std::move(b));
         }
     }
     if (int(r.samplers.size()) > options.maxSamplers) {
         r.error = "the graph samples " + std::to_string(r.samplers.size()) + " textures; at most " +
                   std::to_string(options.maxSamplers) + " are allowed";
-        return r;
+        return false;
     }
     if (int(r.valueSlots.size()) > options.maxValueSlots) {
         r.error = "the graph has " + std::to_string(r.valueSlots.size()) + " values; at most " +
                   std::to_string(options.maxValueSlots) + " are allowed";
-        return r;
+        return false;
     }
     r.values = graphValues(graph, r.valueSlots);
 
@@ -225,8 +226,12 @@ CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options) {
         o += std::string(kUvTransformGlsl) + "\n";
     if (helpers & HelperNoise)
         o += std::string(kNoiseGlsl) + "\n";
+    return true;
+}
 
-    o += "void velvetGraph(in vec2 uv, inout MaterialInputs m) {\n";
+/// Emits the statements of r.order's nodes (the body of the entry function).
+void emitNodes(const Graph& graph, const Layout& layout, CompiledGraph& r) {
+    std::string& o = r.glsl;
     for (NodeId id : r.order) {
         const Node& n = *graph.node(id);
         const NodeType& type = *n.type;
@@ -243,8 +248,8 @@ CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options) {
                 if (type.isOutput)
                     r.writtenFields.emplace_back(spec.name);
             } else if (spec.fallback == Fallback::Value) {
-                args.in.push_back("u_graphValues[" + std::to_string(slotOf.at({id, i})) + "]" +
-                                  std::string(swizzle(spec.type)));
+                args.in.push_back("u_graphValues[" + std::to_string(layout.slotOf.at({id, i})) +
+                                  "]" + std::string(swizzle(spec.type)));
             } else if (spec.fallback == Fallback::MeshUv) {
                 args.in.emplace_back("uv");
             } else {
@@ -256,7 +261,7 @@ CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options) {
             args.out.push_back(varName(id, out.name));
             o += "    " + std::string(portTypeGlsl(out.type)) + " " + args.out.back() + ";\n";
         }
-        if (const auto s = samplerOf.find(id); s != samplerOf.end())
+        if (const auto s = layout.samplerOf.find(id); s != layout.samplerOf.end())
             args.sampler = r.samplers[size_t(s->second)].uniform;
         std::string body;
         type.glsl(args, body);
@@ -274,7 +279,64 @@ CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options) {
             o += "    }\n";
         }
     }
-    o += "}\n";
+}
+
+/// A value of type @p t as the RGBA a preview shows: a float as grey, a 2D vector as (x, y, 0),
+/// a normal as the usual n * 0.5 + 0.5 map colour, opaque.
+std::string previewRgba(const std::string& expr, PortType t) {
+    switch (t) {
+    case PortType::Float:
+        return "vec4(vec3(" + expr + "), 1.0)";
+    case PortType::Vec2:
+        return "vec4(" + expr + ", 0.0, 1.0)";
+    case PortType::Color:
+        return "vec4(" + expr + ", 1.0)";
+    case PortType::Normal:
+        return "vec4(" + expr + " * 0.5 + 0.5, 1.0)";
+    default:
+        return expr;
+    }
+}
+
+} // namespace
+
+CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options) {
+    CompiledGraph r;
+    const NodeId output = graph.outputNode();
+    if (output != kInvalidNodeId)
+        r.order = liveOrder(graph, output);
+    Layout layout;
+    if (!emitDeclarations(graph, options, r, layout))
+        return r;
+    r.glsl += "void velvetGraph(in vec2 uv, inout MaterialInputs m) {\n";
+    emitNodes(graph, layout, r);
+    r.glsl += "}\n";
+    r.ok = true;
+    return r;
+}
+
+CompiledGraph compileGraphPreview(const Graph& graph, NodeId node, PortIndex output,
+                                  const CompileOptions& options) {
+    CompiledGraph r;
+    const Node* n = graph.node(node);
+    if (!n) {
+        r.error = "no node " + std::to_string(node) + " to preview";
+        return r;
+    }
+    if (output >= n->type->outputs.size()) {
+        r.error = "node " + std::to_string(node) + " (" + std::string(n->type->id) +
+                  ") has no output " + std::to_string(output) + " to preview";
+        return r;
+    }
+    r.order = liveOrder(graph, node);
+    Layout layout;
+    if (!emitDeclarations(graph, options, r, layout))
+        return r;
+    const OutputSpec& out = n->type->outputs[output];
+    r.previewType = out.type;
+    r.glsl += "vec4 velvetGraphPreview(in vec2 uv) {\n";
+    emitNodes(graph, layout, r);
+    r.glsl += "    return " + previewRgba(varName(node, out.name), out.type) + ";\n}\n";
     r.ok = true;
     return r;
 }

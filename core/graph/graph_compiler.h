@@ -82,12 +82,25 @@ struct CompiledGraph {
     std::vector<SamplerBinding> samplers;
     std::vector<NodeId> order;              ///< nodes compiled, in emission (topological) order
     std::vector<std::string> writtenFields; ///< MaterialInputs fields velvetGraph overwrites
+    /// compileGraphPreview(): the type of the previewed output (Color is shown sRGB-encoded).
+    PortType previewType = PortType::Color;
 };
 
 /// Compiles the nodes that feed the material output. A graph without an output compiles to a
 /// velvetGraph that changes nothing. Fails (ok == false, with a message) only when the graph needs
 /// more samplers or value slots than @p options allow.
 CompiledGraph compileGraph(const Graph& graph, const CompileOptions& options = {});
+
+/// Compiles the nodes that feed output @p output of @p node (the node itself included) for a
+/// preview: the same declarations as compileGraph() (MaterialInputs, the value block, samplers,
+/// helpers; the same slot and sampler layout rules), then, instead of velvetGraph,
+/// `vec4 velvetGraphPreview(in vec2 uv)` returning that output's value at @p uv as RGBA: a float
+/// as grey, a Vec2 as (x, y, 0), a colour as is (scene-linear), a normal as n * 0.5 + 0.5, alpha 1.
+/// Nodes not upstream of @p node are left out, so the text depends only on that part of the
+/// structure and a value edit needs only graphValues(). Fails (with a message) for an unknown
+/// node or output and on the limits of compileGraph().
+CompiledGraph compileGraphPreview(const Graph& graph, NodeId node, PortIndex output,
+                                  const CompileOptions& options = {});
 
 /// The value block for @p valueSlots with the graph's current values: what a value edit uploads
 /// (equal to compileGraph(graph).values while the structure is unchanged).

@@ -318,6 +318,43 @@ private slots:
                 std::string::npos);
     }
 
+    // compileGraphPreview: only the previewed node's upstream is compiled, the previewed output
+    // is returned as RGBA by type, values stay uniforms (a value edit keeps the text), and an
+    // unknown node or output is refused with a reason.
+    void previewCompilesTheUpstreamOnly() {
+        Graph g;
+        const NodeId k = add(g, "constant.color");
+        const NodeId inv = add(g, "math.invert");
+        const NodeId noise = add(g, "noise.perlin");
+        const NodeId o = add(g, kOutputTypeId);
+        mustConnect(g, link(g, k, "color", inv, "value"));
+        mustConnect(g, link(g, inv, "result", o, "baseColor"));
+        const CompiledGraph r = compileGraphPreview(g, inv, 0);
+        QVERIFY2(r.ok, r.error.c_str());
+        QCOMPARE(r.order, (std::vector<NodeId>{k, inv}));
+        QCOMPARE(r.previewType, PortType::Color);
+        QVERIFY(r.glsl.find("vec4 velvetGraphPreview(in vec2 uv) {") != std::string::npos);
+        QVERIFY(r.glsl.find("return vec4(n2_result, 1.0);") != std::string::npos);
+        QVERIFY(r.glsl.find("void velvetGraph(") == std::string::npos);
+        QVERIFY(r.glsl.find("velvetGraphPerlin") == std::string::npos); // noise is not upstream
+        QCOMPARE(r.valueSlots.size(), size_t(1)); // the constant's colour (invert's is linked)
+        QVERIFY(g.setInputValue(k, 0, glm::vec4(0.3f, 0.1f, 0.2f, 0.0f)).ok);
+        const CompiledGraph edited = compileGraphPreview(g, inv, 0);
+        QCOMPARE(edited.glsl, r.glsl);
+        QCOMPARE(edited.values[0], glm::vec4(0.3f, 0.1f, 0.2f, 0.0f));
+
+        const CompiledGraph f = compileGraphPreview(g, noise, 0);
+        QVERIFY(f.ok && f.previewType == PortType::Float);
+        QVERIFY(f.glsl.find("return vec4(vec3(n3_value), 1.0);") != std::string::npos);
+        QVERIFY(f.glsl.find("velvetGraphPerlin01") != std::string::npos);
+
+        const CompiledGraph unknown = compileGraphPreview(g, 42, 0);
+        QVERIFY(!unknown.ok && unknown.error.find("no node 42") != std::string::npos);
+        const CompiledGraph noOutput = compileGraphPreview(g, o, 0);
+        QVERIFY2(!noOutput.ok && noOutput.error.find("has no output 0") != std::string::npos,
+                 noOutput.error.c_str());
+    }
+
     // ---- With a GL compiler ----
 
     void initTestCase() {

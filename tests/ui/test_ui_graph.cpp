@@ -88,6 +88,7 @@ private slots:
     void cleanupTestCase();
     void buildConnectUndoDelete();
     void nodeInputsInPropertiesAreUniformEdits();
+    void nodeThumbnailsAreLive();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -375,6 +376,75 @@ void TestUiGraph::nodeInputsInPropertiesAreUniformEdits() {
     QTest::keyClick(m_view, Qt::Key_Delete);
     QVERIFY(!model->graph().node(image->node()));
     QCOMPARE(properties->subject(), PropertyPanel::Subject::Material);
+}
+
+// Node thumbnails are rendered by the GPU through the graph compiler: a new noise node gets a
+// thumbnail that varies over the square (not a flat placeholder), and a value edit upstream
+// (a constant into Invert) changes the downstream node's thumbnail to the known answer 1 - c,
+// sRGB-encoded, in one debounced batch.
+void TestUiGraph::nodeThumbnailsAreLive() {
+    GraphModel* model = m_panel->model();
+    GraphScene* scene = m_panel->scene();
+    QUndoStack* stack = model->undoStack();
+    const int batches = m_panel->previewBatchCount();
+    const int start = stack->index();
+    auto* noise = new AddNodeCommand(model, "noise.perlin", glm::vec2(-700.0f, -300.0f));
+    stack->push(noise);
+    NodeItem* noiseItem = scene->nodeItem(noise->node());
+    QVERIFY(noiseItem && noiseItem->hasPreview());
+    QTRY_VERIFY_WITH_TIMEOUT(!noiseItem->preview().isNull(), kFrameTimeoutMs);
+    QCOMPARE(m_panel->previewBatchCount(), batches + 1);
+    const QImage n = noiseItem->preview();
+    QCOMPARE(n.size(), QSize(64, 64));
+    int lo = 255, hi = 0;
+    for (int y = 0; y < n.height(); ++y)
+        for (int x = 0; x < n.width(); ++x) {
+            const QColor c = n.pixelColor(x, y);
+            QCOMPARE(c.red(), c.green()); // a float shows as grey
+            lo = std::min(lo, c.red());
+            hi = std::max(hi, c.red());
+        }
+    qInfo("noise thumbnail range %d..%d", lo, hi);
+    QVERIFY2(hi - lo > 60, qPrintable(QStringLiteral("%1..%2").arg(lo).arg(hi)));
+
+    // constant.color -> math.invert: Invert's thumbnail is 1 - c.
+    auto* constant = new AddNodeCommand(model, "constant.color", glm::vec2(-700.0f, -100.0f));
+    stack->push(constant);
+    auto* invert = new AddNodeCommand(model, "math.invert", glm::vec2(-500.0f, -100.0f));
+    stack->push(invert);
+    QVERIFY(pushConnect(model, {constant->node(), 0, invert->node(), 0}));
+    NodeItem* invertItem = scene->nodeItem(invert->node());
+    QVERIFY(invertItem && invertItem->hasPreview());
+    QVERIFY(!scene->nodeItem(constant->node())->hasPreview());
+    const auto encode = [](float v) {
+        const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        return e * 255.0f;
+    };
+    const auto showsInverseOf = [&](float c) {
+        const QImage img = invertItem->preview();
+        if (img.isNull())
+            return false;
+        const QColor p = img.pixelColor(32, 32);
+        return std::abs(p.red() - encode(1.0f - c)) <= 1.0f &&
+               std::abs(p.blue() - encode(1.0f - c)) <= 1.0f;
+    };
+    const float before = model->graph().node(constant->node())->inputValues[0].x; // default 0.8
+    QTRY_VERIFY_WITH_TIMEOUT(showsInverseOf(before), kFrameTimeoutMs);
+    const int settled = m_panel->previewBatchCount();
+    const QImage old = invertItem->preview();
+    // Three quick edits (a slider drag) settle into one batch.
+    for (float v : {0.5f, 0.4f, 0.3f}) {
+        const glm::vec4 current = model->graph().node(constant->node())->inputValues[0];
+        stack->push(new SetNodeInputCommand(model, constant->node(), 0, current,
+                                            glm::vec4(v, v, v, 0.0f), 0));
+    }
+    QTRY_VERIFY_WITH_TIMEOUT(showsInverseOf(0.3f), kFrameTimeoutMs);
+    QVERIFY(invertItem->preview() != old);
+    QCOMPARE(m_panel->previewBatchCount(), settled + 1);
+    // The noise node's thumbnail came in the same batch and has not changed.
+    QCOMPARE(noiseItem->preview(), n);
+    stack->setIndex(start);
+    QVERIFY(!model->graph().node(noise->node()));
 }
 
 int main(int argc, char** argv) {

@@ -1,7 +1,5 @@
 #include "ui/graph/node_item.h"
 
-#include "core/image.h"
-
 #include <QGraphicsScene>
 #include <QPainter>
 #include <QStyleOptionGraphicsItem>
@@ -36,11 +34,10 @@ QColor portColor(graph::PortType t) {
     }
 }
 
-/// Scene-linear float to an 8-bit sRGB-encoded channel (IEC 61966-2-1), for the thumbnail.
-int encode(float v) {
-    v = std::clamp(v, 0.0f, 1.0f);
-    const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-    return int(std::lround(e * 255.0f));
+/// Node categories whose first output is a texture-like value worth a thumbnail.
+bool previewedCategory(std::string_view category) {
+    return category == "Texture" || category == "Noise" || category == "Math" ||
+           category == "Channels";
 }
 
 } // namespace
@@ -69,6 +66,7 @@ NodeItem::NodeItem(const graph::Node& node) : m_node(node.id) {
     m_title = qs(t.label);
     setToolTip(qs(t.tooltip));
     m_texture = t.samplesTexture;
+    m_hasPreview = previewedCategory(t.category) && !t.outputs.empty();
     size_t rows = 0;
     m_inputs.resize(t.inputs.size(), nullptr);
     for (size_t i = 0; i < t.inputs.size(); ++i) {
@@ -90,7 +88,7 @@ NodeItem::NodeItem(const graph::Node& node) : m_node(node.id) {
     }
     const size_t portRows = std::max(rows, t.outputs.size());
     m_height =
-        kTitleHeight + kRowHeight * qreal(portRows) + 6 + (m_texture ? kThumbnailSide + 6 : 0);
+        kTitleHeight + kRowHeight * qreal(portRows) + 6 + (m_hasPreview ? kThumbnailSide + 6 : 0);
     setPos(node.position.x, node.position.y);
     refresh(node);
 }
@@ -120,15 +118,18 @@ void NodeItem::paint(QPainter* painter, const QStyleOptionGraphicsItem* option, 
         painter->drawText(
             QRectF(m_width / 2, kTitleHeight + kRowHeight * qreal(i), m_width / 2 - 10, kRowHeight),
             Qt::AlignVCenter | Qt::AlignRight, m_outputLabels[i]);
-    if (m_texture) {
+    if (m_hasPreview) {
         const QRectF r((m_width - kThumbnailSide) / 2, m_height - kThumbnailSide - 6,
                        kThumbnailSide, kThumbnailSide);
-        if (m_thumbnail.isNull()) {
+        if (m_texture && !m_hasFile) {
             painter->setPen(QColor(120, 120, 120));
             painter->drawRect(r);
             painter->drawText(r, Qt::AlignCenter, QObject::tr("no image"));
+        } else if (m_preview.isNull()) {
+            painter->setPen(QColor(120, 120, 120));
+            painter->drawRect(r);
         } else {
-            painter->drawImage(r, m_thumbnail);
+            painter->drawImage(r, m_preview);
         }
     }
 }
@@ -145,28 +146,25 @@ void NodeItem::refresh(const graph::Node& node) {
     if (!m_texture)
         return;
     const int file = node.type->settingIndex("file");
-    loadThumbnail(file >= 0 ? node.settings[size_t(file)] : std::string());
+    const std::string path = file >= 0 ? node.settings[size_t(file)] : std::string();
+    m_hasFile = !path.empty();
+    setToolTip(m_hasFile ? QString::fromStdString(path) : qs(node.type->tooltip));
+    update();
 }
 
-void NodeItem::loadThumbnail(const std::string& file) {
-    if (file == m_thumbnailFile)
-        return;
-    m_thumbnailFile = file;
-    m_thumbnail = QImage();
-    setToolTip(QString::fromStdString(file));
-    if (!file.empty()) {
-        // Decoded once per file change, scaled to the thumbnail (nearest sample per cell).
-        // Values are shown as stored in the file's first channels, sRGB-encoded if linear float.
-        Image image;
-        std::string error;
-        if (readImage(file, image, &error) && !image.empty()) {
-            m_thumbnail = QImage(kThumbnailSide, kThumbnailSide, QImage::Format_RGB32);
-            for (int y = 0; y < kThumbnailSide; ++y)
-                for (int x = 0; x < kThumbnailSide; ++x) {
-                    const glm::vec4 c = image.rgba(x * image.width / kThumbnailSide,
-                                                   y * image.height / kThumbnailSide);
-                    m_thumbnail.setPixel(x, y, qRgb(encode(c.r), encode(c.g), encode(c.b)));
-                }
+void NodeItem::setPreview(const Image& image) {
+    m_preview = QImage();
+    if (!image.empty()) {
+        // The values are already display-encoded bytes / 255 (render/graph_preview.h); row 0 of
+        // the image is the top row of the thumbnail.
+        m_preview = QImage(image.width, image.height, QImage::Format_RGB32);
+        const auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+        for (int y = 0; y < image.height; ++y) {
+            auto* line = reinterpret_cast<QRgb*>(m_preview.scanLine(y));
+            for (int x = 0; x < image.width; ++x) {
+                const glm::vec4 c = image.rgba(x, y);
+                line[x] = qRgb(byte(c.r), byte(c.g), byte(c.b));
+            }
         }
     }
     update();

@@ -5,6 +5,7 @@
 /// view turns gestures into commands).
 
 #include "core/graph/graph.h"
+#include "core/image.h"
 
 #include <QGraphicsItem>
 #include <QImage>
@@ -40,7 +41,8 @@ private:
 };
 
 /// One node: a box with a title, its connectable inputs on the left, outputs on the right, and
-/// for texture nodes a thumbnail of the image.
+/// for nodes that make a texture-like value (hasPreview) a thumbnail of their first output, as the
+/// GPU renders it (GraphPanel asks for it; render/graph_preview.h draws it).
 class NodeItem : public QGraphicsItem {
 public:
     enum { Type = UserType + 0x6a2 };
@@ -53,8 +55,15 @@ public:
     /// The port item of input / output @p index, or nullptr (inputs that refuse links have none).
     PortItem* inputPort(graph::PortIndex index) const;
     PortItem* outputPort(graph::PortIndex index) const;
-    /// Re-reads settings (a texture node's file) and repaints.
+    /// Re-reads settings (a texture node's file, shown as the tooltip) and repaints.
     void refresh(const graph::Node& node);
+    /// Whether the node shows a thumbnail: the Texture, Noise, Math and Channels categories.
+    bool hasPreview() const { return m_hasPreview; }
+    /// Shows @p image (RGBA holding display values in [0, 1], render/graph_preview.h) as the
+    /// thumbnail; an empty image clears it.
+    void setPreview(const Image& image);
+    /// The thumbnail shown (null until the first preview arrives).
+    const QImage& preview() const { return m_preview; }
     /// Called when the item moved (links follow).
     std::function<void()> onMoved;
 
@@ -62,16 +71,15 @@ protected:
     QVariant itemChange(GraphicsItemChange change, const QVariant& value) override;
 
 private:
-    void loadThumbnail(const std::string& file);
-
     graph::NodeId m_node;
     QString m_title;
     std::vector<QString> m_inputLabels, m_outputLabels;
     std::vector<PortItem*> m_inputs, m_outputs; ///< indexed like the type's ports
     qreal m_width = 160, m_height = 60;
-    bool m_texture = false;
-    std::string m_thumbnailFile;
-    QImage m_thumbnail;
+    bool m_hasPreview = false;
+    bool m_texture = false; ///< samples a file: without one its thumbnail says "no image"
+    bool m_hasFile = false;
+    QImage m_preview;
 };
 
 /// One link, a cubic curve from an output port to an input port. Selectable (Delete removes it).
