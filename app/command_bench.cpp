@@ -92,6 +92,7 @@ struct Bench {
                  std::string* error) {
         // The IBL bake runs in slices across frames; its work must not land in any figure.
         renderer.finishEnvironment();
+        renderer.finishGraph(); // a structural graph change of the scene, built now
         render::FrameTimings t;
         if (!frame(fs, t, error))
             return false;
@@ -287,6 +288,7 @@ int runBench(const std::vector<std::string>& argv) {
             b.scene.lights.clear();
             b.renderer.setScene(b.scene);
             b.renderer.finishEnvironment();
+            b.renderer.finishGraph();
             render::FrameTimings ft;
             if (!b.frame(b.settings(), ft, &error))
                 return failed("rendering failed");

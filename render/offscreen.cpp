@@ -39,6 +39,7 @@ bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Ima
         if (colorManagement)
             renderer.setColorManagement(std::move(colorManagement));
         renderer.finishEnvironment(); // the whole IBL bake before the one frame
+        renderer.finishGraph();       // and the material graph's program
         ColorTarget target;
         if (!target.resize(settings.width, settings.height, GL_RGBA8, error))
             return false;

@@ -66,6 +66,7 @@ bool measurePostChain(int width, int height, int lights, int frames, PostBenchRe
         renderer.setScene(scene);
         // Neither the IBL bake's slices nor first-use shader compilation belong to the figure.
         renderer.finishEnvironment();
+        renderer.finishGraph();
         if (!renderer.render(fs, target.framebuffer(), error))
             return -1.0;
         return timeMs(frames, [&] { return renderer.render(fs, target.framebuffer(), error); });

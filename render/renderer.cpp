@@ -140,11 +140,12 @@ bool isLightView(DebugView view) {
 
 struct Renderer::Impl {
     bool initialized = false;
+    bool parallelShaderCompile = false; ///< GL_KHR_parallel_shader_compile (shader_program.h)
     int compileCount = 0;
 
     /// The material graph compiled into the G-buffer program (render/renderer.h, "Material
-    /// graph"): the interface of the linked program, and a structural edit waiting for the next
-    /// frame (the old program draws until the new one links).
+    /// graph"): the interface of the linked program, and a structural edit being built (the old
+    /// program, with linked's values and textures, draws until the new one is adopted).
     struct GraphTexture {
         GLuint texture = 0;
         std::uint64_t generation = 0;
@@ -152,8 +153,9 @@ struct Renderer::Impl {
     };
     struct GraphState {
         graph::CompiledGraph linked;  ///< what gbufferProgram was built from
-        graph::CompiledGraph pending; ///< a new structure to build at the next render()
-        bool hasPending = false;
+        graph::CompiledGraph pending; ///< a new structure, started at the next render()
+        bool hasPending = false;      ///< pending is waiting to start or being built
+        ProgramBuild build;           ///< pending's G-buffer program in flight
         std::string error; ///< the last graph that failed to compile or link ("" when fine)
         GLuint ubo = 0;
         size_t uboSlots = 0;
@@ -377,30 +379,48 @@ struct Renderer::Impl {
         if (!next.ok) {
             graph.error = next.error;
             graph.hasPending = false;
+            graph.build.abandon();
             if (problems)
                 problems->error("", "graph", next.error + "; the previous graph is kept");
             return;
         }
-        if (next.glsl == graph.linked.glsl) {
+        if (next.glsl == graph.linked.glsl) { // back to the drawn structure: drop any build
             graph.linked = std::move(next);
             graph.hasPending = false;
+            graph.build.abandon();
             uploadGraphValues();
             refreshGraphTextures(problems);
             return;
         }
+        if (graph.hasPending && next.glsl == graph.pending.glsl) {
+            // The structure in flight with new values: they are uploaded when it is adopted.
+            graph.pending = std::move(next);
+            return;
+        }
         graph.pending = std::move(next);
         graph.hasPending = true;
+        graph.build.abandon(); // an older structure in flight is no longer wanted
     }
 
-    /// Builds the G-buffer program for a pending structure. A failure keeps the old program and
-    /// its graph interface (so the frame still draws) and is reported by graphError().
-    void buildPendingGraph() {
+    /// Starts the G-buffer program for a pending structure, and adopts it once the driver has
+    /// finished (polled each frame; with @p wait, now). Until then the old program draws with
+    /// linked's interface. A failure keeps the old program and its graph interface (so the
+    /// frame still draws) and is reported by graphError().
+    void buildPendingGraph(bool wait = false) {
         if (!graph.hasPending)
             return;
-        graph.hasPending = false;
         std::string message;
-        if (!gbufferProgram.build("gbuffer.vert", "gbuffer.frag", {},
-                                  {{kGraphInclude, graph.pending.glsl}}, &message)) {
+        if (!graph.build.active() &&
+            !graph.build.start("gbuffer.vert", "gbuffer.frag", {},
+                               {{kGraphInclude, graph.pending.glsl}}, &message)) {
+            graph.hasPending = false;
+            graph.error = message;
+            return;
+        }
+        if (!wait && !graph.build.ready())
+            return; // the driver's threads are still compiling: draw the old program
+        graph.hasPending = false;
+        if (!graph.build.finish(gbufferProgram, &message)) {
             graph.error = message;
             return;
         }
@@ -692,6 +712,7 @@ bool Renderer::initialize(std::string* error) {
         return fail(error, "OpenGL 4.5 core is needed; the current context is " +
                                std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))));
     takeGlErrors();
+    d.parallelShaderCompile = enableParallelShaderCompile();
     d.graph.linked = compileMaterialGraph(d.scene.material);
     if (!d.graph.linked.ok) { // too many texture nodes: start without the graph
         d.graph.error = d.graph.linked.error;
@@ -743,6 +764,7 @@ bool Renderer::reloadShaders(std::string* error) {
     };
     std::string message;
     collect(d.buildPrograms(&message, /*keepGoing=*/true), message);
+    d.graph.build.abandon(); // a structure in flight restarts next frame, from the files on disk
     const int lightCompiles = d.lights.compileCount();
     collect(d.lights.reload(&message), message);
     d.compileCount += d.lights.compileCount() - lightCompiles;
@@ -837,9 +859,11 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // A texture file changed on disk (edited in another program): re-upload, re-pack the record.
     if (d.textures.poll())
         d.uploadMaterial();
-    // A structural graph edit: build the new G-buffer program now, before anything is drawn, so
-    // the host's previous frame stays on screen until this one completes; a failure keeps the
-    // old program (graphError()).
+    // A structural graph edit: start the new G-buffer program, or adopt it once the driver's
+    // compiler threads have finished (GL_KHR_parallel_shader_compile); meanwhile this frame
+    // draws the old program, so the window never waits for a compile. Without the extension the
+    // build completes here (the frame waits, as before). A failure keeps the old program
+    // (graphError()).
     d.buildPendingGraph();
     d.refreshGraphTextures(nullptr); // files changed on disk (polled above) re-upload
     // lighting.frag's variant for this view (built the first time a debug family is shown).
@@ -1074,6 +1098,15 @@ bool Renderer::graphPending() const {
 
 TextureCache& Renderer::graphTextureCache() {
     return m_impl->textures.sharedCache();
+}
+
+void Renderer::finishGraph() {
+    if (m_impl->initialized)
+        m_impl->buildPendingGraph(/*wait=*/true);
+}
+
+bool Renderer::parallelShaderCompile() const {
+    return m_impl->parallelShaderCompile;
 }
 
 int Renderer::shaderCompileCount() const {

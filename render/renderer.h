@@ -190,19 +190,26 @@ public:
     /// @name Material graph (core/graph/graph_compiler.h)
     /// The scene material's graph is compiled into the G-buffer program as the generated include
     /// "material_graph.glsl". setScene() with only value or texture-file changes uploads the
-    /// value block and rebinds textures (no compile); a structural change is built at the start
-    /// of the next render(), before anything is drawn, so a host keeps showing its previous
-    /// frame until the new program links. A graph that fails to compile or link leaves the last
+    /// value block and rebinds textures (no compile); a structural change starts the new
+    /// G-buffer program at the next render() without waiting for it: where the driver compiles
+    /// on its own threads (GL_KHR_parallel_shader_compile) each render() polls it and draws the
+    /// old program, with the old graph's values and textures, until the new one is adopted. A
+    /// host should keep repainting while graphPending(). Without the extension the first
+    /// render() builds it synchronously. A graph that fails to compile or link leaves the last
     /// good program drawing.
     /// @{
     /// Why the last graph was not compiled, or "" when the drawn program matches the scene.
     const std::string& graphError() const;
-    /// A structural graph change waits for the next render().
+    /// A structural graph change is waiting for its program (true until it is adopted or fails).
     bool graphPending() const;
     /// The cache texture nodes load their files through (shared with the material's texture
     /// slots), for node thumbnails (render/graph_preview.h) with this renderer's context current:
     /// a file is decoded once for the frame and its thumbnail.
     TextureCache& graphTextureCache();
+    /// Waits for a pending structure's program now (headless rendering: renderSceneOffscreen).
+    void finishGraph();
+    /// Whether the driver offers GL_KHR_parallel_shader_compile (known after initialize()).
+    bool parallelShaderCompile() const;
     /// @}
 
     /// Number of shader programs compiled since construction (tests assert value edits add none;

@@ -110,30 +110,63 @@ bool expand(const std::string& name, std::string& out, std::vector<std::string>&
     return true;
 }
 
-bool compileStage(GLenum stage, const std::string& file, const std::vector<std::string>& defines,
-                  const GeneratedSources& generated, GLuint& shader, std::string* error) {
+/// Preprocesses and compiles one stage without asking its status (the driver may still be
+/// compiling on another thread, GL_KHR_parallel_shader_compile). @p files maps its #line indices.
+bool startStage(GLenum stage, const std::string& file, const std::vector<std::string>& defines,
+                const GeneratedSources& generated, GLuint& shader, std::vector<std::string>& files,
+                std::string* error) {
     std::string source;
-    std::vector<std::string> files;
     if (!preprocessShader(file, defines, source, files, error, generated))
         return false;
     shader = glCreateShader(stage);
     const char* src = source.c_str();
     glShaderSource(shader, 1, &src, nullptr);
     glCompileShader(shader);
+    return true;
+}
+
+/// The compile status of a started stage (waits for it); false + the mapped log on failure.
+bool stageCompiled(GLuint shader, const std::string& file, const std::vector<std::string>& files,
+                   std::string* error) {
     GLint ok = GL_FALSE;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint len = 0;
-        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(std::max(len, 1)), '\0');
-        glGetShaderInfoLog(shader, len, nullptr, log.data());
-        if (error)
-            *error = "shader compile error in " + file + ":\n" + mapShaderLog(log.c_str(), files);
+    if (ok)
+        return true;
+    GLint len = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+    std::string log(size_t(std::max(len, 1)), '\0');
+    glGetShaderInfoLog(shader, len, nullptr, log.data());
+    if (error)
+        *error = "shader compile error in " + file + ":\n" + mapShaderLog(log.c_str(), files);
+    return false;
+}
+
+bool compileStage(GLenum stage, const std::string& file, const std::vector<std::string>& defines,
+                  const GeneratedSources& generated, GLuint& shader, std::string* error) {
+    std::vector<std::string> files;
+    if (!startStage(stage, file, defines, generated, shader, files, error))
+        return false;
+    if (!stageCompiled(shader, file, files, error)) {
         glDeleteShader(shader);
         shader = 0;
         return false;
     }
     return true;
+}
+
+/// The link status of @p program (waits for it); false + the driver log on failure.
+bool programLinked(GLuint program, const std::string& name, std::string* error) {
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (ok)
+        return true;
+    GLint len = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+    std::string log(size_t(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(program, len, nullptr, log.data());
+    if (error)
+        *error = "shader link error (" + name + "):\n" + log.c_str();
+    return false;
 }
 
 } // namespace
@@ -186,35 +219,84 @@ bool ShaderProgram::build(const std::string& vertexFile, const std::string& frag
 bool ShaderProgram::build(const std::string& vertexFile, const std::string& fragmentFile,
                           const std::vector<std::string>& defines,
                           const GeneratedSources& generated, std::string* error) {
-    GLuint vs = 0, fs = 0;
-    if (!compileStage(GL_VERTEX_SHADER, vertexFile, defines, generated, vs, error))
+    ProgramBuild build;
+    return build.start(vertexFile, fragmentFile, defines, generated, error) &&
+           build.finish(*this, error);
+}
+
+bool enableParallelShaderCompile() {
+    if (!epoxy_has_gl_extension("GL_KHR_parallel_shader_compile"))
         return false;
-    if (!compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines, generated, fs, error)) {
-        glDeleteShader(vs);
-        return false;
-    }
-    const GLuint program = glCreateProgram();
-    glAttachShader(program, vs);
-    glAttachShader(program, fs);
-    glLinkProgram(program);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint len = 0;
-        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(std::max(len, 1)), '\0');
-        glGetProgramInfoLog(program, len, nullptr, log.data());
-        if (error)
-            *error =
-                "shader link error (" + vertexFile + " + " + fragmentFile + "):\n" + log.c_str();
-        glDeleteProgram(program);
-        return false;
-    }
-    release();
-    m_program = program;
+    // KHR_parallel_shader_compile: 0xFFFFFFFF asks for the implementation's maximum.
+    glMaxShaderCompilerThreadsKHR(0xFFFFFFFFu);
     return true;
+}
+
+ProgramBuild::~ProgramBuild() {
+    abandon();
+}
+
+void ProgramBuild::abandon() {
+    // Deleting objects the driver is still compiling is allowed; it drops the work.
+    for (GLuint* shader : {&m_vertex, &m_fragment})
+        if (*shader) {
+            glDeleteShader(*shader);
+            *shader = 0;
+        }
+    if (m_program)
+        glDeleteProgram(m_program);
+    m_program = 0;
+}
+
+bool ProgramBuild::start(const std::string& vertexFile, const std::string& fragmentFile,
+                         const std::vector<std::string>& defines, const GeneratedSources& generated,
+                         std::string* error) {
+    abandon();
+    m_parallel = epoxy_has_gl_extension("GL_KHR_parallel_shader_compile");
+    m_vertexFile = vertexFile;
+    m_fragmentFile = fragmentFile;
+    if (!startStage(GL_VERTEX_SHADER, vertexFile, defines, generated, m_vertex, m_vertexFiles,
+                    error) ||
+        !startStage(GL_FRAGMENT_SHADER, fragmentFile, defines, generated, m_fragment,
+                    m_fragmentFiles, error)) {
+        abandon();
+        return false;
+    }
+    // Linking uncompiled stages is allowed: the link waits for them (or fails with them), and
+    // finish() reports the compile log first.
+    m_program = glCreateProgram();
+    glAttachShader(m_program, m_vertex);
+    glAttachShader(m_program, m_fragment);
+    glLinkProgram(m_program);
+    return true;
+}
+
+bool ProgramBuild::ready() const {
+    if (!m_program || !m_parallel)
+        return true;
+    // KHR_parallel_shader_compile: COMPLETION_STATUS_KHR on a program covers its link, which
+    // includes the attached stages' compiles; unlike LINK_STATUS it never blocks.
+    GLint done = GL_FALSE;
+    glGetProgramiv(m_program, GL_COMPLETION_STATUS_KHR, &done);
+    return done == GL_TRUE;
+}
+
+bool ProgramBuild::finish(ShaderProgram& target, std::string* error) {
+    if (!m_program) {
+        if (error)
+            *error = "ProgramBuild::finish without a build in flight";
+        return false;
+    }
+    const bool ok = stageCompiled(m_vertex, m_vertexFile, m_vertexFiles, error) &&
+                    stageCompiled(m_fragment, m_fragmentFile, m_fragmentFiles, error) &&
+                    programLinked(m_program, m_vertexFile + " + " + m_fragmentFile, error);
+    if (ok) {
+        target.release();
+        target.m_program = m_program;
+        m_program = 0; // the target owns it now
+    }
+    abandon(); // the stage objects (and a failed program)
+    return ok;
 }
 
 ComputeProgram::~ComputeProgram() {
@@ -236,15 +318,7 @@ bool ComputeProgram::build(const std::string& file, const std::vector<std::strin
     glAttachShader(program, cs);
     glLinkProgram(program);
     glDeleteShader(cs);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint len = 0;
-        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(std::max(len, 1)), '\0');
-        glGetProgramInfoLog(program, len, nullptr, log.data());
-        if (error)
-            *error = "shader link error (" + file + "):\n" + log.c_str();
+    if (!programLinked(program, file, error)) {
         glDeleteProgram(program);
         return false;
     }

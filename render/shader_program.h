@@ -46,6 +46,47 @@ bool preprocessShader(const std::string& file, const std::vector<std::string>& d
 /// Rewrites driver log lines "index:line(col)" (Mesa) or "index(line)" (NVIDIA) as "file:line".
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
 
+/// Asks the driver for its most shader compiler threads (GL_KHR_parallel_shader_compile) once
+/// the context is current; false where the extension is missing, and ProgramBuild::ready() is
+/// then always true (builds finish synchronously in ProgramBuild::finish, as before).
+bool enableParallelShaderCompile();
+
+class ShaderProgram;
+
+/// A vertex + fragment program build in flight. start() hands the sources to the driver and asks
+/// no status, so a driver with GL_KHR_parallel_shader_compile compiles and links on its own
+/// threads; ready() polls GL_COMPLETION_STATUS_KHR (never blocks); finish() checks the result and
+/// gives the program to a ShaderProgram. Destroying or restarting a build abandons it.
+class ProgramBuild {
+public:
+    ProgramBuild() = default;
+    ~ProgramBuild();
+    ProgramBuild(const ProgramBuild&) = delete;
+    ProgramBuild& operator=(const ProgramBuild&) = delete;
+
+    /// Preprocesses both stages, compiles them and links (any build in flight is abandoned).
+    /// False + message when a source cannot be read or included; nothing is then in flight.
+    bool start(const std::string& vertexFile, const std::string& fragmentFile,
+               const std::vector<std::string>& defines, const GeneratedSources& generated,
+               std::string* error);
+    /// A build started and not yet finished or abandoned.
+    bool active() const { return m_program != 0; }
+    /// The driver has finished compiling and linking (true without the extension: finish()
+    /// then waits in its status queries).
+    bool ready() const;
+    /// Waits if not ready, then checks compile and link status. On success @p target takes the
+    /// program (releasing its old one); on failure false + message (file:line and the driver
+    /// log, as ShaderProgram::build) and @p target keeps its program. Inactive afterwards.
+    bool finish(ShaderProgram& target, std::string* error);
+    void abandon();
+
+private:
+    unsigned m_vertex = 0, m_fragment = 0, m_program = 0;
+    bool m_parallel = false;
+    std::string m_vertexFile, m_fragmentFile;
+    std::vector<std::string> m_vertexFiles, m_fragmentFiles; ///< #line indices to names
+};
+
 /// A linked vertex + fragment program.
 class ShaderProgram {
 public:
@@ -54,7 +95,8 @@ public:
     ShaderProgram(const ShaderProgram&) = delete;
     ShaderProgram& operator=(const ShaderProgram&) = delete;
 
-    /// Compiles and links; false + message (file:line and the driver log) on failure.
+    /// Compiles and links now (a ProgramBuild finished at once); false + message (file:line and
+    /// the driver log) on failure, the previous program kept.
     bool build(const std::string& vertexFile, const std::string& fragmentFile,
                const std::vector<std::string>& defines, std::string* error);
     /// As above, with include files made at run time (see GeneratedSources).
@@ -65,6 +107,7 @@ public:
     void release();
 
 private:
+    friend class ProgramBuild;
     unsigned m_program = 0;
 };
 

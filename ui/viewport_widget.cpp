@@ -33,6 +33,7 @@ constexpr float kLookDegPerPixel = 0.2f;
 constexpr float kEnvironmentDegPerPixel = 0.5f; // a 720-pixel drag turns the HDRI once
 constexpr float kFlySpeedPerDistance = 0.8f;    // metres per second per metre of distance
 constexpr int kFlyTickMs = 16;
+constexpr int kGraphPollMs = 15; // while a graph program compiles: a frame every 15 ms
 
 /// Renderer::environmentProgress() where a colleague's renderer has it; -1 otherwise. A template,
 /// so the requires-expression is checked on the type, not as a hard error.
@@ -473,6 +474,10 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     }
     ++m_frameCount;
     m_lastRenderScale = settings.renderScale;
+    // A structural graph edit compiles on the driver's threads; the renderer adopts the new
+    // program at a later frame, so keep frames coming (a short pause each: polling, not spinning).
+    if (m_renderer->graphPending())
+        QTimer::singleShot(kGraphPollMs, this, &ViewportWidget::requestFrame);
     updateOverlay();
     emit frameCompleted(static_cast<double>(timer.nsecsElapsed()) / 1.0e6);
     return true;

@@ -129,9 +129,9 @@ private slots:
         QVERIFY(samePixels(after, render(&reference)));
     }
 
-    // A structural edit (a new link) is built at the next render(), once; the first frame after
-    // it already shows the new graph (roughness from a constant) and the old program drew until
-    // then.
+    // A structural edit (a new link) is built from the next render(), once; the first frame
+    // after graphPending() clears shows the new graph (roughness from a constant). Frames while
+    // it is pending (drivers that compile on threads) are test_render_graph_async's subject.
     void structuralEditCompilesOnce() {
         Graph g = constantIntoBaseColor(glm::vec3(0.2f, 0.5f, 0.7f));
         Scene scene = withGraph(g);
@@ -147,7 +147,9 @@ private slots:
         QCOMPARE(m_renderer->shaderCompileCount(), compiles); // nothing built in setScene
         QElapsedTimer timer;
         timer.start();
-        const glm::vec3 r = centre(render(nullptr, render::DebugView::Roughness));
+        glm::vec3 r = centre(render(nullptr, render::DebugView::Roughness));
+        for (int frames = 0; m_renderer->graphPending() && frames < 20000; ++frames)
+            r = centre(render(nullptr, render::DebugView::Roughness));
         const qint64 buildFrameMs = timer.restart();
         QVERIFY(!m_renderer->graphPending());
         QCOMPARE(m_renderer->shaderCompileCount(), compiles + 1);
@@ -155,9 +157,9 @@ private slots:
         render(nullptr, render::DebugView::Roughness);
         const qint64 nextFrameMs = timer.elapsed();
         QCOMPARE(m_renderer->shaderCompileCount(), compiles + 1);
-        // Logged, never asserted (DESIGN.md: no absolute times): what a structural edit costs the
-        // frame that builds it (glCompileShader + glLinkProgram + llvmpipe's JIT at first draw).
-        qInfo("structural edit: frame with the new program %lld ms, next frame %lld ms",
+        // Logged, never asserted (DESIGN.md: no absolute times): what a structural edit costs
+        // until its first frame (glCompileShader + glLinkProgram + llvmpipe's JIT at first draw).
+        qInfo("structural edit: frames until the new program drew %lld ms, next frame %lld ms",
               buildFrameMs, nextFrameMs);
     }
 

@@ -92,6 +92,7 @@ protected:
         }
         renderer->setScene(m_scene);
         renderer->finishEnvironment();
+        renderer->finishGraph();
     }
     void paintGL() override {
         if (!renderer)
@@ -211,6 +212,7 @@ int main(int argc, char** argv) {
     }
     bare->first.setScene(scene);
     bare->first.finishEnvironment();
+    bare->first.finishGraph();
     context.doneCurrent();
     auto bareFrames = [&](int count, std::vector<double>* times) {
         context.makeCurrent(&surface);

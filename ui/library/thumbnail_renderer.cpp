@@ -117,6 +117,7 @@ private:
         Problems sceneProblems; // a missing texture falls back; the thumbnail still helps
         m_renderer->setScene(scene, &sceneProblems);
         m_renderer->finishEnvironment();
+        m_renderer->finishGraph(); // one frame: it must show this preset's graph
         render::FrameSettings settings;
         settings.width = ThumbnailRenderer::kSize;
         settings.height = ThumbnailRenderer::kSize;
