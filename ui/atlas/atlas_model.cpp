@@ -171,6 +171,33 @@ bool AtlasModel::exportAtlas(AtlasKind kind, const QString& path, QString* error
     return true;
 }
 
+bool AtlasModel::exportMaterialAtlasPacked(PackLayout layout, const QString& path, QString* error) {
+    const AtlasDocument& a = atlas(AtlasKind::Material);
+    if (a.image.empty()) {
+        if (error)
+            *error = tr("The %1 atlas is empty").arg(kindLabel(AtlasKind::Material));
+        return false;
+    }
+    ChannelMaps maps;
+    Image packed;
+    std::string message;
+    if (!unpackChannels(PackLayout::SpecRoughMetal, a.image, maps, &message) ||
+        !packChannels(layout, maps, packed, &message)) {
+        if (error)
+            *error = QString::fromStdString(message);
+        return false;
+    }
+    const bool exr =
+        QFileInfo(path).suffix().compare(QLatin1String("exr"), Qt::CaseInsensitive) == 0;
+    if (!writeImage(path.toStdString(), packed, exr ? PixelFormat::Half : PixelFormat::UInt16,
+                    &message)) { // atomic (core/image.h)
+        if (error)
+            *error = QString::fromStdString(message);
+        return false;
+    }
+    return true;
+}
+
 bool AtlasModel::exportAll(const QString& folder, const QString& stem, const QString& extension,
                            QStringList* written, QString* error) {
     std::vector<std::filesystem::path> paths;

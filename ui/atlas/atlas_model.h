@@ -13,6 +13,7 @@
 
 #include "core/atlas_document.h"
 #include "core/atlas_packing.h"
+#include "core/channel_packing.h"
 #include "core/image.h"
 #include "core/texture_ref.h"
 
@@ -71,6 +72,11 @@ public:
     /// and "<stem>-normal.<ext>" (core exportAtlasImages, atomic). @p written gets the paths.
     bool exportAll(const QString& folder, const QString& stem, const QString& extension,
                    QStringList* written, QString* error);
+    /// Writes the material atlas (R specular, G roughness, B metallic, the seeds' packing)
+    /// repacked into an engine's layout (core/channel_packing.h: glTF metallic-roughness, Unreal
+    /// ORM, Unity HDRP mask map), 16-bit PNG or half EXR by extension, atomically. Maps the atlas
+    /// does not hold (occlusion, detail mask) get the layout's neutral value.
+    bool exportMaterialAtlasPacked(PackLayout layout, const QString& path, QString* error);
     /// The atlas's file, exporting it first to the user data folder (atlases/) when it has none
     /// yet. Empty + @p error on failure.
     QString ensureFile(AtlasKind kind, QString* error);

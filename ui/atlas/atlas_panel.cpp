@@ -8,6 +8,7 @@
 #include <QFileDialog>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QMenu>
 #include <QTabBar>
 #include <QToolButton>
 #include <QUndoStack>
@@ -41,6 +42,21 @@ AtlasPanel::AtlasPanel(DocumentController* controller, QWidget* parent)
                                        tr("Write the atlas image (PNG, EXR, …)"));
     QToolButton* exportAllButton = button(tr("Export all…"), QStringLiteral("atlasExportAllButton"),
                                           tr("Write every non-empty atlas image into a folder"));
+    // The material atlas repacked for an engine (core/channel_packing.h).
+    QToolButton* exportPacked =
+        button(tr("Export packed…"), QStringLiteral("atlasExportPackedButton"),
+               tr("Write the material atlas (R specular, G roughness, B metallic) in an engine's "
+                  "channel layout: glTF metallic-roughness, Unreal ORM or Unity HDRP mask map"));
+    exportPacked->setPopupMode(QToolButton::InstantPopup);
+    auto* packedMenu = new QMenu(exportPacked);
+    packedMenu->setObjectName(QStringLiteral("atlasExportPackedMenu"));
+    for (PackLayout layout :
+         {PackLayout::GltfMetallicRoughness, PackLayout::UnrealOrm, PackLayout::HdrpMaskMap}) {
+        const std::string_view label = packLayoutLabel(layout);
+        packedMenu->addAction(QString::fromUtf8(label.data(), qsizetype(label.size())), this,
+                              [this, layout] { exportPackedDialog(layout); });
+    }
+    exportPacked->setMenu(packedMenu);
     QToolButton* assign = button(tr("Assign"), QStringLiteral("atlasAssignButton"),
                                  tr("Use the selected region in the chosen material slot"));
     m_channel->setObjectName(QStringLiteral("atlasChannelCombo"));
@@ -63,6 +79,7 @@ AtlasPanel::AtlasPanel(DocumentController* controller, QWidget* parent)
     row->addWidget(repackButton);
     row->addWidget(exportButton);
     row->addWidget(exportAllButton);
+    row->addWidget(exportPacked);
     row->addWidget(m_channel);
     row->addStretch();
     auto* assignRow = new QHBoxLayout;
@@ -154,6 +171,22 @@ void AtlasPanel::exportCurrent() {
         return;
     QString error;
     if (m_model->exportAtlas(currentKind(), path, &error))
+        report(tr("Exported %1").arg(path));
+    else
+        report(error);
+}
+
+void AtlasPanel::exportPackedDialog(PackLayout layout) {
+    const std::string_view label = packLayoutLabel(layout);
+    const QString path = QFileDialog::getSaveFileName(
+        this,
+        tr("Export the material atlas as %1")
+            .arg(QString::fromUtf8(label.data(), qsizetype(label.size()))),
+        QString(), tr("PNG, 16 bit (*.png);;OpenEXR (*.exr)"));
+    if (path.isEmpty())
+        return;
+    QString error;
+    if (m_model->exportMaterialAtlasPacked(layout, path, &error))
         report(tr("Exported %1").arg(path));
     else
         report(error);

@@ -41,6 +41,8 @@ public slots:
     void repack();
     /// Asks for a file name and exports the current atlas.
     void exportCurrent();
+    /// Asks for a file and writes the material atlas in @p layout.
+    void exportPackedDialog(PackLayout layout);
     /// Asks for a folder and exports every non-empty atlas image into it (PNG).
     void exportAllDialog();
     void assignSelectedToChosenSlot();
