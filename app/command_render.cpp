@@ -28,7 +28,8 @@ const std::vector<OptionSpec> kOptions{
     {"tonemap", 0, true, "NAME",
      "built-in tone mapper: pbr-neutral (default), aces, reinhard or linear"},
     {"display", 0, true, "NAME", "OpenColorIO display (default: the config's default display)"},
-    {"view", 0, true, "NAME", "OpenColorIO view, e.g. Standard, ACES, AgX, Raw"},
+    {"view", 0, true, "NAME",
+     "OpenColorIO view, e.g. Standard, ACES, AgX, Raw; or a debug view name (as --debug-view)"},
     {"look", 0, true, "NAME", "OpenColorIO look applied before the view (a,b for several)"},
     {"debug-view", 0, true, "NAME",
      "final (default), albedo, normal, depth, roughness, metallic, position, specular, "
@@ -257,6 +258,12 @@ int runRender(const std::vector<std::string>& argv) {
     if (args->has("debug-view") &&
         !parseName(args->value("debug-view"), kDebugViews, settings.view))
         return usage("--debug-view: unknown debug view '" + args->value("debug-view") + "'");
+    // `--view NAME` also names a debug view (albedo, normal, …, as the renderer's debug views are
+    // asked for elsewhere): OCIO's views are capitalised (Standard, ACES, AgX, Raw), the debug
+    // views lowercase, so a name that is a debug view is one and leaves OCIO's view alone.
+    if (args->has("view") && !args->has("debug-view") &&
+        parseName(args->value("view"), kDebugViews, settings.view))
+        args->options.erase("view");
     std::shared_ptr<const ColorManagement> colorManagement;
     if (const int code = resolveColorManagement(*args, settings, colorManagement); code != Ok)
         return code;

@@ -321,6 +321,42 @@ private slots:
         QVERIFY(!QFileInfo::exists(out));
     }
 
+    void debugViewsAndLightRigsRender() {
+        QTemporaryDir dir;
+        const auto render = [&](const QString& name, const QStringList& extra) {
+            const QString out = dir.filePath(name);
+            Result r = runVelvet(QStringList{"render", "-o", out, "--size", "40x40"} + extra);
+            velvet::Image image;
+            std::string error;
+            if (r.exitCode != 0 || !velvet::readImage(out.toStdString(), image, &error))
+                qWarning("%s: %s %s", qPrintable(name), qPrintable(r.err), error.c_str());
+            return image;
+        };
+        const velvet::Image final = render("final.png", {});
+        const velvet::Image normal = render("normal.png", {"--debug-view", "normal"});
+        // `--view NAME` with a debug view's name is that debug view (the OCIO views are
+        // capitalised), the same image as --debug-view.
+        const velvet::Image viaView = render("normal_view.png", {"--view", "normal"});
+        QVERIFY(normal.width == 40 && viaView.width == 40);
+        QCOMPARE(maxDifference(normal, viaView), 0.0f);
+        QVERIFY(maxDifference(final, normal) > 0.1f);
+        // The centre of the sphere faces the camera (+Z): the normal view shows (0.5, 0.5, 1)
+        // encoded, blue highest.
+        const glm::vec4 c = normal.rgba(20, 20);
+        QVERIFY2(c.b > c.r && c.b > c.g,
+                 qPrintable(QStringLiteral("%1 %2 %3").arg(c.r).arg(c.g).arg(c.b)));
+
+        // A light rig replaces the lights: the environment alone is darker than the key light.
+        const velvet::Image envOnly = render("env.png", {"--light-rig", "environment"});
+        const velvet::Image sun = render("sun.png", {"--light-rig", "sun"});
+        QVERIFY(maxDifference(final, envOnly) > 0.05f);
+        QVERIFY(maxDifference(envOnly, sun) > 0.05f);
+        Result bad = runVelvet({"render", "-o", dir.filePath("x.png"), "--light-rig", "disco"});
+        QCOMPARE(bad.exitCode, 1);
+        QVERIFY2(bad.err.contains("--light-rig") && bad.err.contains("disco"), qPrintable(bad.err));
+        QVERIFY(!QFileInfo::exists(dir.filePath("x.png")));
+    }
+
     void infoReportsHeadlessGl() {
         Result r = runVelvet({"info"});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err + r.out));
