@@ -216,6 +216,19 @@ void TextureSet::applyTo(GpuMaterial& g) const {
         g.specularColorWeight.a *= mean(TextureSlot::SpecRoughMetal).r;
 }
 
+bool slotIsPerPixel(TextureSlot slot) {
+    switch (slot) {
+    case TextureSlot::BaseColor:
+    case TextureSlot::MetallicRoughness:
+    case TextureSlot::SpecRoughMetal: // G roughness and B metallic per pixel; R specular: mean
+    case TextureSlot::Normal:
+    case TextureSlot::Occlusion:
+        return true;
+    default:
+        return false;
+    }
+}
+
 void TextureSet::bind(unsigned program) const {
     glm::vec4 regions[kTextureSlotCount];
     for (int i = 0; i < kTextureSlotCount; ++i) {

@@ -2,6 +2,7 @@
 
 #include "core/color_management.h"
 #include "core/image.h"
+#include "render/texture_set.h"
 #include "ui/document_controller.h"
 
 #include <QComboBox>
@@ -202,7 +203,16 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
     const QString name = QStringLiteral("textureSlot:") + fromView(textureSlotMeta(slot).id);
     setObjectName(name);
     setAcceptDrops(true);
-    setToolTip(fromView(textureSlotMeta(slot).tooltip));
+    // Be honest about what the viewport does with the slot (render/texture_set.h).
+    QString viewportNote;
+    if (slot == TextureSlot::ClearcoatNormal)
+        viewportNote = tr("\nViewport: the coat shades with the base normal (the 16-byte "
+                          "G-buffer holds one normal); exports keep the file.");
+    else if (!render::slotIsPerPixel(slot))
+        viewportNote = tr("\nViewport: this texture's mean value is used for the whole material "
+                          "(the 16-byte G-buffer has no room for it per pixel); exports keep the "
+                          "file.");
+    setToolTip(fromView(textureSlotMeta(slot).tooltip) + viewportNote);
 
     auto* row = new QHBoxLayout(this);
     row->setContentsMargins(0, 0, 0, 0);
