@@ -1,5 +1,8 @@
 #include "ui/texture_file_watcher.h"
 
+#include "core/graph/graph.h"
+#include "core/graph/node_catalogue.h"
+
 #include <QFileInfo>
 #include <algorithm>
 
@@ -29,6 +32,16 @@ void TextureFileWatcher::setScene(const Scene& scene) {
         if (!ref.empty())
             files.push_back(QString::fromStdString(ref.file));
     }
+    // Image-texture nodes of the material graph (the renderer polls their files too).
+    if (const graph::Graph* g = scene.material.graph.get())
+        for (const auto& [id, node] : g->nodes()) {
+            if (!node.type || !node.type->samplesTexture)
+                continue;
+            const int file = node.type->settingIndex("file");
+            if (file >= 0 && size_t(file) < node.settings.size() &&
+                !node.settings[size_t(file)].empty())
+                files.push_back(QString::fromStdString(node.settings[size_t(file)]));
+        }
     files.removeDuplicates();
     if (files == this->files())
         return; // an edit that kept the files: keep their stamps (a change stays detectable)
