@@ -5,7 +5,8 @@
 // B (differs when B has another roughness, equal when A == B); slider-like edit streams draw at
 // reduced size and refine when idle; the dock layout (Atlas included) restores; save, reopen,
 // equal; a region dragged with the mouse survives save and reopen (the atlases are saved beside
-// the scene); the autosave is written and recovered.
+// the scene); the autosave is written and recovered; a drag of a region's corner handle resizes
+// it in one undo command.
 #include "core/document_io.h"
 #include "core/image.h"
 #include "ui/atlas/atlas_model.h"
@@ -100,6 +101,7 @@ private slots:
     void saveReopenEqual();
     void regionDragSurvivesSaveAndReopen();
     void autosaveWritesAndRecovers();
+    void cornerDragResizesRegionInOneUndoCommand();
 
 private:
     QImage frame();
@@ -485,6 +487,57 @@ void TestUiAtlasAb::autosaveWritesAndRecovers() {
     m_doc->undoStack()->setClean();
     autosave->discard();
     QVERIFY(Autosave::recoverableFor(QString()).isEmpty());
+}
+
+// A drag of a region's bottom-right handle resizes it by the drag, in atlas texels, keeping its
+// top-left corner: one undo command for the whole drag, and undo restores the size.
+void TestUiAtlasAb::cornerDragResizesRegionInOneUndoCommand() {
+    AtlasPanel* panel = m_window->atlasPanel();
+    AtlasModel* model = panel->model();
+    std::vector<AtlasEntry> images;
+    images.push_back(solid(QStringLiteral("red"), 24, 16, {1, 0, 0, 1}));
+    images.push_back(solid(QStringLiteral("green"), 16, 20, {0, 1, 0, 1}));
+    QVERIFY(model->addImages(AtlasKind::Albedo, std::move(images), nullptr));
+    panel->setCurrentKind(AtlasKind::Albedo);
+    AtlasView* view = panel->view();
+    const AtlasDocument& a = model->atlas(AtlasKind::Albedo);
+    const AtlasRegion start = a.entries[0].region;
+    const AtlasRegion other = a.entries[1].region;
+    // Grow where the atlas has room, else shrink.
+    const int dw = start.x + start.width + 7 <= a.width ? 6 : -6;
+    const int dh = start.y + start.height + 5 <= a.height ? 4 : -4;
+    const QPointF corner(start.x + start.width, start.y + start.height);
+    QWidget* vp = view->viewport();
+    QUndoStack* stack = m_doc->undoStack();
+    const int before = stack->count();
+    sendMouse(vp, QEvent::MouseButtonPress, view->viewPosition(corner), Qt::LeftButton,
+              Qt::LeftButton);
+    QCOMPARE(view->selectedRegion(), 0);
+    for (int step = 1; step <= 6; ++step)
+        sendMouse(vp, QEvent::MouseMove,
+                  view->viewPosition(corner + QPointF(dw * step / 6.0, dh * step / 6.0)),
+                  Qt::NoButton, Qt::LeftButton);
+    sendMouse(vp, QEvent::MouseButtonRelease, view->viewPosition(corner + QPointF(dw, dh)),
+              Qt::LeftButton, Qt::NoButton);
+    const AtlasRegion resized = model->atlas(AtlasKind::Albedo).entries[0].region;
+    QVERIFY2(std::abs(resized.width - (start.width + dw)) <= 1 &&
+                 std::abs(resized.height - (start.height + dh)) <= 1,
+             qPrintable(QStringLiteral("%1 x %2 from %3 x %4 (drag %5, %6)")
+                            .arg(resized.width)
+                            .arg(resized.height)
+                            .arg(start.width)
+                            .arg(start.height)
+                            .arg(dw)
+                            .arg(dh)));
+    QCOMPARE(resized.x, start.x); // a resize keeps the top-left corner
+    QCOMPARE(resized.y, start.y);
+    QCOMPARE(model->atlas(AtlasKind::Albedo).entries[1].region, other);
+    QCOMPARE(stack->count(), before + 1); // six moves, one command
+    QCOMPARE(stack->text(stack->index() - 1), QStringLiteral("Resize Albedo region"));
+    stack->undo();
+    QCOMPARE(model->atlas(AtlasKind::Albedo).entries[0].region, start);
+    stack->redo();
+    QCOMPARE(model->atlas(AtlasKind::Albedo).entries[0].region, resized);
 }
 
 int main(int argc, char** argv) {

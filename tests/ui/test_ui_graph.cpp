@@ -3,7 +3,9 @@
 // the model, on the undo stack and, for a link into base colour, in the viewport's pixels.
 // Selecting a node shows its inputs in the Properties dock: a slider drag there is one command,
 // reaches the viewport as a uniform (the renderer compiles nothing) and undo restores it; vector
-// inputs and settings (an image node's UV scale and file) are edited there too.
+// inputs and settings (an image node's UV scale and file) are edited there too. A right click on
+// the canvas opens the palette and adds at the click; Ctrl+C / Ctrl+V paste linked copies in one
+// command; F and Home frame every node; wheel zoom and middle-button pan change only the view.
 #include "core/graph/graph.h"
 #include "ui/commands/graph_commands.h"
 #include "ui/document_controller.h"
@@ -19,6 +21,7 @@
 #include "ui/viewport_widget.h"
 
 #include <QApplication>
+#include <QClipboard>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QLineEdit>
@@ -30,6 +33,7 @@
 #include <QStyleOptionSlider>
 #include <QSurfaceFormat>
 #include <QUndoStack>
+#include <QWheelEvent>
 #include <QtTest>
 #include <cmath>
 
@@ -89,6 +93,10 @@ private slots:
     void buildConnectUndoDelete();
     void nodeInputsInPropertiesAreUniformEdits();
     void nodeThumbnailsAreLive();
+    void rightClickPaletteAddsAtClick();
+    void copyPasteKeepsValuesAndLinks();
+    void frameAllShowsEveryNode();
+    void wheelZoomAndMiddlePanAreViewOnly();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -98,6 +106,12 @@ private:
     graph::NodeId addFromPalette(const QString& filter);
     /// A left-button drag on the view's viewport from @p a to @p b.
     void drag(QPoint a, QPoint b);
+    /// The part of the scene the viewport shows now.
+    QRectF visibleSceneRect() const {
+        return m_view->mapToScene(m_view->viewport()->rect()).boundingRect();
+    }
+    /// Scene rects of every node item.
+    std::vector<QRectF> nodeRects() const;
 
     std::unique_ptr<MainWindow> m_window;
     DocumentController* m_doc = nullptr;
@@ -152,6 +166,14 @@ void TestUiGraph::drag(QPoint a, QPoint b) {
     for (int i = 1; i <= 4; ++i)
         QTest::mouseMove(vp, a + (b - a) * i / 4);
     QTest::mouseRelease(vp, Qt::LeftButton, {}, b);
+}
+
+std::vector<QRectF> TestUiGraph::nodeRects() const {
+    std::vector<QRectF> rects;
+    for (const auto& [id, node] : m_panel->model()->graph().nodes())
+        if (NodeItem* item = m_panel->scene()->nodeItem(id))
+            rects.push_back(item->sceneBoundingRect());
+    return rects;
 }
 
 void TestUiGraph::buildConnectUndoDelete() {
@@ -445,6 +467,198 @@ void TestUiGraph::nodeThumbnailsAreLive() {
     QCOMPARE(noiseItem->preview(), n);
     stack->setIndex(start);
     QVERIFY(!model->graph().node(noise->node()));
+}
+
+// A right click on empty canvas opens the palette (through the window, so Qt itself turns the
+// press into a context menu event); a filter and Enter add that node where the click was, as one
+// undo command.
+void TestUiGraph::rightClickPaletteAddsAtClick() {
+    GraphModel* model = m_panel->model();
+    QUndoStack* stack = m_doc->undoStack();
+    NodePalette* palette = m_view->palette();
+    QVERIFY(!palette->isVisible());
+    m_view->setTransform(QTransform());
+    m_view->centerOn(0.0, 0.0);
+    // An empty spot: no item within 20 px of it.
+    QPoint click(-1, -1);
+    const QRect area = m_view->viewport()->rect().adjusted(30, 30, -30, -30);
+    for (int y = area.top(); y < area.bottom() && click.x() < 0; y += 25)
+        for (int x = area.left(); x < area.right() && click.x() < 0; x += 25)
+            if (m_view->items(QRect(x - 20, y - 20, 40, 40)).isEmpty())
+                click = QPoint(x, y);
+    QVERIFY2(click.x() >= 0, "no empty canvas in the view");
+    const QPointF scenePoint = m_view->mapToScene(click);
+
+    QWidget* top = m_view->window();
+    QVERIFY(top->windowHandle());
+    // The previous test undid its edits: a push now drops their redo entries, so count on the
+    // index.
+    const int before = stack->index();
+    const int countBefore = stack->count();
+    const graph::NodeId next = model->graph().nextId();
+    QTest::mouseClick(top->windowHandle(), Qt::RightButton, {},
+                      m_view->viewport()->mapTo(top, click));
+    QTRY_VERIFY(palette->isVisible());
+    QCOMPARE(stack->count(), countBefore); // opening the palette edits nothing
+    QVERIFY(palette->filter()->text().isEmpty());
+    QTest::keyClicks(palette->filter(), QStringLiteral("perlin"));
+    QTest::keyClick(palette->filter(), Qt::Key_Return);
+    QVERIFY(!palette->isVisible());
+
+    const graph::Node* node = model->graph().node(next);
+    QVERIFY(node);
+    QCOMPARE(std::string(node->type->id), std::string("noise.perlin"));
+    QVERIFY2(std::abs(node->position.x - float(scenePoint.x())) < 0.5f &&
+                 std::abs(node->position.y - float(scenePoint.y())) < 0.5f,
+             qPrintable(QStringLiteral("added at %1, %2, clicked %3, %4")
+                            .arg(node->position.x)
+                            .arg(node->position.y)
+                            .arg(scenePoint.x())
+                            .arg(scenePoint.y())));
+    QVERIFY(m_panel->scene()->nodeItem(next));
+    QCOMPARE(stack->index(), before + 1);
+    QCOMPARE(stack->count(), before + 1); // one command, on top
+    QCOMPARE(stack->text(stack->index() - 1), QStringLiteral("Add Perlin noise node"));
+    stack->undo();
+    QVERIFY(!model->graph().node(next));
+    QVERIFY(!m_panel->scene()->nodeItem(next));
+}
+
+// Ctrl+C, Ctrl+V on two linked nodes: two new ids, 30 units down and right, the same type and
+// values, the link between them copied; one command, which undo takes back whole.
+void TestUiGraph::copyPasteKeepsValuesAndLinks() {
+    GraphModel* model = m_panel->model();
+    GraphScene* scene = m_panel->scene();
+    QUndoStack* stack = m_doc->undoStack();
+    const int start = stack->index();
+    auto* constant = new AddNodeCommand(model, "constant.color", glm::vec2(-900.0f, 300.0f));
+    stack->push(constant);
+    auto* invert = new AddNodeCommand(model, "math.invert", glm::vec2(-700.0f, 300.0f));
+    stack->push(invert);
+    const graph::NodeId c = constant->node(), inv = invert->node();
+    const glm::vec4 value(0.25f, 0.5f, 0.75f, 0.0f);
+    stack->push(
+        new SetNodeInputCommand(model, c, 0, model->graph().node(c)->inputValues[0], value, 0));
+    QVERIFY(pushConnect(model, {c, 0, inv, 0}));
+    const graph::Graph before = model->graph();
+
+    scene->clearSelection();
+    scene->nodeItem(c)->setSelected(true);
+    scene->nodeItem(inv)->setSelected(true);
+    m_view->setFocus();
+    QTest::keyClick(m_view, Qt::Key_C, Qt::ControlModifier);
+    QVERIFY(model->graph() == before); // copying edits nothing
+    QVERIFY(!QApplication::clipboard()->text().isEmpty());
+    const int count = stack->count();
+    QTest::keyClick(m_view, Qt::Key_V, Qt::ControlModifier);
+    QCOMPARE(stack->count(), count + 1);
+    QCOMPARE(stack->text(stack->index() - 1), QStringLiteral("Paste nodes"));
+    QCOMPARE(model->graph().nodes().size(), before.nodes().size() + 2);
+    QCOMPARE(model->graph().connections().size(), before.connections().size() + 1);
+
+    // The selection is the pasted copies; match them to the originals by type.
+    const std::vector<graph::NodeId> pasted = scene->selectedNodes();
+    QCOMPARE(pasted.size(), size_t(2));
+    graph::NodeId c2 = graph::kInvalidNodeId, inv2 = graph::kInvalidNodeId;
+    for (graph::NodeId id : pasted) {
+        QVERIFY(!before.node(id)); // a new id
+        const std::string_view type = model->graph().node(id)->type->id;
+        (type == "constant.color" ? c2 : inv2) = id;
+    }
+    QVERIFY(c2 != graph::kInvalidNodeId && inv2 != graph::kInvalidNodeId);
+    for (auto [original, copy] : {std::pair{c, c2}, std::pair{inv, inv2}}) {
+        const graph::Node* o = model->graph().node(original);
+        const graph::Node* p = model->graph().node(copy);
+        QCOMPARE(p->type, o->type);
+        QCOMPARE(p->position, o->position + glm::vec2(30.0f));
+        QVERIFY(p->inputValues == o->inputValues);
+        QVERIFY(p->settings == o->settings);
+        QCOMPARE(scene->nodeItem(copy)->pos(),
+                 QPointF(o->position.x + 30.0f, o->position.y + 30.0f));
+    }
+    QCOMPARE(model->graph().node(c2)->inputValues[0], value);
+    const graph::Connection link{c2, 0, inv2, 0};
+    QVERIFY(model->graph().connections().count(link));
+    QVERIFY(scene->connectionItem(link));
+    QCOMPARE(m_doc->material().graph->nodes().size(), model->graph().nodes().size());
+
+    stack->undo();
+    QVERIFY(model->graph() == before);
+    QVERIFY(!scene->nodeItem(c2) && !scene->nodeItem(inv2));
+    stack->setIndex(start);
+    QVERIFY(!model->graph().node(c) && !model->graph().node(inv));
+}
+
+// F and Home fit every node into the view, from a view scrolled far away (and zoomed in).
+void TestUiGraph::frameAllShowsEveryNode() {
+    GraphModel* model = m_panel->model();
+    QUndoStack* stack = m_doc->undoStack();
+    // Two nodes far apart, so the graph is larger than the view at 1:1 whatever came before.
+    const int start = stack->index();
+    stack->push(new AddNodeCommand(model, "constant.float", glm::vec2(-1800.0f, 1100.0f)));
+    stack->push(new AddNodeCommand(model, "constant.color", glm::vec2(1500.0f, -900.0f)));
+    QVERIFY(model->graph().nodes().size() >= 2);
+    const int count = stack->count();
+    const auto outside = [this] {
+        int n = 0;
+        for (const QRectF& r : nodeRects())
+            n += visibleSceneRect().contains(r) ? 0 : 1;
+        return n;
+    };
+    m_view->setFocus();
+    for (Qt::Key key : {Qt::Key_F, Qt::Key_Home}) {
+        m_view->setTransform(QTransform::fromScale(2.0, 2.0));
+        m_view->centerOn(4500.0, -4500.0);
+        QCOMPARE(outside(), int(nodeRects().size())); // none visible
+        QTest::keyClick(m_view, key);
+        QVERIFY2(outside() == 0,
+                 qPrintable(QStringLiteral("key %1: %2 nodes outside").arg(key).arg(outside())));
+        QVERIFY(m_view->transform().m11() < 1.0); // zoomed out to fit
+        QCOMPARE(stack->count(), count);          // view state, not an edit
+    }
+    stack->setIndex(start);
+}
+
+// The wheel scales the view about the cursor and back; a middle drag scrolls the view by the
+// drag, in scene units at the current scale. Neither touches the graph or the undo stack.
+void TestUiGraph::wheelZoomAndMiddlePanAreViewOnly() {
+    GraphModel* model = m_panel->model();
+    QUndoStack* stack = m_doc->undoStack();
+    const graph::Graph before = model->graph();
+    const int count = stack->count();
+    m_view->setTransform(QTransform());
+    m_view->centerOn(0.0, 0.0);
+    QWidget* vp = m_view->viewport();
+    const QPoint centre = vp->rect().center();
+    const auto wheel = [&](int delta) {
+        QWheelEvent e(QPointF(centre), QPointF(vp->mapToGlobal(centre)), QPoint(), QPoint(0, delta),
+                      Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+        QApplication::sendEvent(vp, &e);
+    };
+    wheel(120);
+    const double zoomed = m_view->transform().m11();
+    QVERIFY2(std::abs(zoomed - std::pow(1.0015, 120)) < 1e-6, qPrintable(QString::number(zoomed)));
+    QCOMPARE(m_view->transform().m22(), zoomed);
+    wheel(-120);
+    QVERIFY2(std::abs(m_view->transform().m11() - 1.0) < 1e-9,
+             qPrintable(QString::number(m_view->transform().m11())));
+    QCOMPARE(stack->count(), count);
+
+    // Pan at scale 0.8: 120 x 80 px of drag is 150 x 100 scene units.
+    m_view->setTransform(QTransform::fromScale(0.8, 0.8));
+    m_view->centerOn(0.0, 0.0);
+    const QRectF start = visibleSceneRect();
+    const QPoint a = centre, b = centre + QPoint(-120, -80);
+    QTest::mousePress(vp, Qt::MiddleButton, {}, a);
+    for (int i = 1; i <= 4; ++i)
+        QTest::mouseMove(vp, a + (b - a) * i / 4);
+    QTest::mouseRelease(vp, Qt::MiddleButton, {}, b);
+    const QPointF moved = visibleSceneRect().topLeft() - start.topLeft();
+    QVERIFY2(std::abs(moved.x() - 150.0) < 1.5 && std::abs(moved.y() - 100.0) < 1.5,
+             qPrintable(QStringLiteral("moved %1, %2").arg(moved.x()).arg(moved.y())));
+    QCOMPARE(visibleSceneRect().size(), start.size()); // a pan does not zoom
+    QCOMPARE(stack->count(), count);
+    QVERIFY(model->graph() == before); // no node moved with it
 }
 
 int main(int argc, char** argv) {
