@@ -11,6 +11,7 @@
 #include <QContextMenuEvent>
 #include <QGraphicsPathItem>
 #include <QKeyEvent>
+#include <QPainter>
 #include <QScrollBar>
 #include <QUndoStack>
 #include <QWheelEvent>
@@ -269,6 +270,21 @@ void GraphView::pushMoves() {
 void GraphView::contextMenuEvent(QContextMenuEvent* event) {
     openPalette(mapToScene(event->pos()));
     event->accept();
+}
+
+void GraphView::drawForeground(QPainter* painter, const QRectF& rect) {
+    QGraphicsView::drawForeground(painter, rect);
+    if (!scene() || !scene()->items().isEmpty())
+        return;
+    painter->save();
+    painter->resetTransform(); // viewport coordinates: the hint stays put while panning
+    painter->setPen(QColor(170, 170, 178)); // readable on the canvas's dark background
+    painter->drawText(viewport()->rect().adjusted(16, 16, -16, -16),
+                      Qt::AlignCenter | Qt::TextWordWrap,
+                      tr("No material graph: the Properties values apply.\nTab or right-click "
+                         "to add a node; connect it to the Material output to drive a "
+                         "parameter."));
+    painter->restore();
 }
 
 } // namespace velvet::ui

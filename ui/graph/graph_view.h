@@ -42,6 +42,8 @@ protected:
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void contextMenuEvent(QContextMenuEvent* event) override;
+    /// An empty graph says how to start one (and that the parameters apply until then).
+    void drawForeground(QPainter* painter, const QRectF& rect) override;
 
 private:
     void pasteText(const std::string& text, const QString& commandText);
