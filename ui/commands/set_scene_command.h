@@ -4,37 +4,60 @@
 /// rotation), the preview mesh and the lights.
 
 #include "core/scene.h"
+#include "ui/document_controller.h"
 
 #include <QUndoCommand>
 
 namespace velvet::ui {
 
-class DocumentController;
-
-/// Replaces the scene's Environment through DocumentController::setEnvironment. Commands with
-/// the same non-zero merge key (one rotation drag, one slider drag) merge; a merge back to the
-/// old value makes the command obsolete.
-class SetEnvironmentCommand : public QUndoCommand {
+/// Replaces one value of the scene through a DocumentController setter (@p Apply). Commands of
+/// the same kind (@p Id) with the same non-zero merge key (one drag, one typing session) merge; a
+/// merge back to the old value makes the command obsolete, so the gesture leaves nothing behind.
+template <class T, void (DocumentController::*Apply)(const T&), int Id>
+class MergingSceneCommand : public QUndoCommand {
 public:
-    static constexpr int kId = 0x5e8;
-    /// A merge key no other environment gesture has used (one per drag).
-    static int nextMergeKey();
+    static constexpr int kId = Id;
+    /// A merge key no other gesture of this kind has used (one per drag).
+    static int nextMergeKey() {
+        static int key = 0;
+        return ++key;
+    }
 
-    SetEnvironmentCommand(DocumentController* controller, Environment oldValue,
-                          Environment newValue, const QString& text, int mergeKey,
-                          QUndoCommand* parent = nullptr);
+    MergingSceneCommand(DocumentController* controller, T oldValue, T newValue, const QString& text,
+                        int mergeKey, QUndoCommand* parent = nullptr)
+        : QUndoCommand(text, parent), m_controller(controller), m_oldValue(std::move(oldValue)),
+          m_newValue(std::move(newValue)), m_mergeKey(mergeKey) {}
 
-    void undo() override;
-    void redo() override;
+    void undo() override { (m_controller->*Apply)(m_oldValue); }
+    void redo() override { (m_controller->*Apply)(m_newValue); }
     int id() const override { return kId; }
-    bool mergeWith(const QUndoCommand* other) override;
+    bool mergeWith(const QUndoCommand* other) override {
+        if (other->id() != id())
+            return false;
+        const auto* next = static_cast<const MergingSceneCommand*>(other);
+        if (m_mergeKey == 0 || next->m_mergeKey != m_mergeKey)
+            return false;
+        m_newValue = next->m_newValue;
+        setObsolete(m_newValue == m_oldValue);
+        return true;
+    }
 
 private:
     DocumentController* m_controller;
-    Environment m_oldValue;
-    Environment m_newValue;
+    T m_oldValue;
+    T m_newValue;
     int m_mergeKey;
 };
+
+/// Replaces the scene's Environment (HDRI, intensity, rotation, background); rotation and slider
+/// drags merge.
+using SetEnvironmentCommand =
+    MergingSceneCommand<Environment, &DocumentController::setEnvironment, 0x5e8>;
+
+/// Replaces the scene's lights (the whole list: an add, remove, edit or rig is one command);
+/// spin-box gestures merge.
+using SetLightsCommand =
+    MergingSceneCommand<std::vector<Light>, &DocumentController::setLights, 0x5e9>;
 
 /// Replaces the scene's preview mesh (a built-in kind or a custom file).
 class SetMeshCommand : public QUndoCommand {
@@ -49,31 +72,6 @@ private:
     DocumentController* m_controller;
     MeshRef m_oldValue;
     MeshRef m_newValue;
-};
-
-/// Replaces the scene's lights (the whole list: an add, remove, edit or rig is one command).
-/// Commands with the same non-zero merge key (one spin-box or slider gesture) merge; a merge
-/// back to the old lights makes the command obsolete.
-class SetLightsCommand : public QUndoCommand {
-public:
-    static constexpr int kId = 0x5e9;
-    /// A merge key no other light gesture has used.
-    static int nextMergeKey();
-
-    SetLightsCommand(DocumentController* controller, std::vector<Light> oldValue,
-                     std::vector<Light> newValue, const QString& text, int mergeKey,
-                     QUndoCommand* parent = nullptr);
-
-    void undo() override;
-    void redo() override;
-    int id() const override { return kId; }
-    bool mergeWith(const QUndoCommand* other) override;
-
-private:
-    DocumentController* m_controller;
-    std::vector<Light> m_oldValue;
-    std::vector<Light> m_newValue;
-    int m_mergeKey;
 };
 
 } // namespace velvet::ui
