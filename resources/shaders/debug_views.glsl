@@ -33,7 +33,11 @@ vec3 heatMap(float count) {
 }
 
 // Display mapping of the views above (post_tonemap.frag); false for the views it leaves alone.
-bool debugDisplay(int view, vec3 c, float exposure, out vec3 display) {
+// Colour-like views come back display-linear with @p encode set: the caller encodes them with
+// the display's OCIO encoding (displayEncode), as the final view; the false-colour maps (heat
+// map, material id hues) are already display values.
+bool debugDisplay(int view, vec3 c, float exposure, out vec3 display, out bool encode) {
+    encode = false;
     if (view == DEBUG_LIGHTS_PER_PIXEL) {
         display = heatMap(c.x);
     } else if (view == DEBUG_MATERIAL_ID) {
@@ -42,9 +46,11 @@ bool debugDisplay(int view, vec3 c, float exposure, out vec3 display) {
         display = c.x < 0.5 ? vec3(0.25)
                             : clamp(abs(fract(h + vec3(0.0, 2.0, 1.0) / 3.0) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
     } else if (view == DEBUG_SPECULAR || view == DEBUG_SHEEN || view == DEBUG_EMISSIVE) {
-        display = srgbEncode(c);
+        display = c;
+        encode = true;
     } else if (isLobeView(view)) {
-        display = srgbEncode(c * exposure / (1.0 + c * exposure)); // Reinhard: comparable lobes
+        display = c * exposure / (1.0 + c * exposure); // Reinhard: comparable lobes
+        encode = true;
     } else {
         return false;
     }

@@ -23,7 +23,12 @@ void main() {
         display = c * 0.5 + 0.5;
     else if (view == DEBUG_DEPTH)
         display = vec3(c.x > 0.0 ? 1.0 - saturate(c.x / frame.post.y) : 0.0);
-    else if (!debugDisplay(view, c, frame.post.x, display))
-        display = c;
+    else {
+        bool encode;
+        if (!debugDisplay(view, c, frame.post.x, display, encode))
+            display = c;
+        else if (encode)
+            display = displayEncode(display);
+    }
     outColor = vec4(clamp(display, 0.0, 1.0), 1.0);
 }
