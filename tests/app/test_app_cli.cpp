@@ -2,6 +2,7 @@
 // problem on stderr, nothing written), 3 rendering failure; no crash and no hang on any input.
 // Runs the real `velvet` binary on real files.
 #include "core/image.h"
+#include "run_velvet.h"
 
 #include <QDir>
 #include <QFile>
@@ -15,36 +16,17 @@
 
 namespace {
 
-struct Result {
-    int exitCode = -1;
-    QProcess::ExitStatus status = QProcess::CrashExit;
-    QString out, err;
-};
+using velvet::test::Result;
 
 /// Runs velvet with no display (the CLI must not need one) and a time limit (no hang).
 Result runVelvet(const QStringList& args, const QString& workingDir = {},
                  const QString& resources = {}) {
-    QProcess p;
-    if (!workingDir.isEmpty())
-        p.setWorkingDirectory(workingDir);
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    velvet::test::RunOptions options;
+    options.workingDir = workingDir;
+    options.timeoutMs = 120000;
     if (!resources.isEmpty())
-        env.insert("VELVET_RESOURCES", resources);
-    env.remove("DISPLAY");
-    env.remove("WAYLAND_DISPLAY");
-    p.setProcessEnvironment(env);
-    p.start(VELVET_BINARY, args);
-    Result r;
-    if (!p.waitForFinished(120000)) {
-        p.kill();
-        p.waitForFinished();
-        return r;
-    }
-    r.exitCode = p.exitCode();
-    r.status = p.exitStatus();
-    r.out = QString::fromUtf8(p.readAllStandardOutput());
-    r.err = QString::fromUtf8(p.readAllStandardError());
-    return r;
+        options.extraEnv.insert("VELVET_RESOURCES", resources);
+    return velvet::test::runVelvet(args, options);
 }
 
 QString data(const QString& rel) {

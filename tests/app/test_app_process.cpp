@@ -5,6 +5,7 @@
 // cases that need no display remove DISPLAY themselves.
 #include "core/color_management.h"
 #include "core/image.h"
+#include "run_velvet.h"
 
 #include <QDir>
 #include <QFileInfo>
@@ -18,38 +19,15 @@
 
 namespace {
 
-struct Result {
-    int exitCode = -1;
-    QProcess::ExitStatus status = QProcess::CrashExit;
-    QString out, err;
-};
-
-enum class Display { Keep, None };
+using velvet::test::Display;
+using velvet::test::Result;
 
 Result runVelvet(const QStringList& args, Display display = Display::None,
                  const QMap<QString, QString>& extraEnv = {}) {
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    if (display == Display::None) {
-        env.remove("DISPLAY");
-        env.remove("WAYLAND_DISPLAY");
-        env.remove("QT_QPA_PLATFORM");
-    }
-    for (auto it = extraEnv.begin(); it != extraEnv.end(); ++it)
-        env.insert(it.key(), it.value());
-    p.setProcessEnvironment(env);
-    p.start(VELVET_BINARY, args);
-    Result r;
-    if (!p.waitForFinished(180000)) {
-        p.kill();
-        p.waitForFinished();
-        return r;
-    }
-    r.exitCode = p.exitCode();
-    r.status = p.exitStatus();
-    r.out = QString::fromUtf8(p.readAllStandardOutput());
-    r.err = QString::fromUtf8(p.readAllStandardError());
-    return r;
+    velvet::test::RunOptions options;
+    options.display = display;
+    options.extraEnv = extraEnv;
+    return velvet::test::runVelvet(args, options);
 }
 
 /// Khronos PBR Neutral (the default built-in curve), clamped to [0, 1].
