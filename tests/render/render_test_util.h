@@ -6,7 +6,10 @@
 #include "render/headless_context.h"
 
 #include <QtTest>
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 namespace velvet::test {
@@ -31,6 +34,18 @@ inline Scene shippedDefaultScene() {
     if (!problems.items.empty())
         QTest::qFail("the default scene reported problems", __FILE__, __LINE__);
     return scene;
+}
+
+/// A whole text file (shader sources the reload tests break and mend); empty when unreadable.
+inline std::string readText(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+inline void writeText(const std::filesystem::path& p, const std::string& text) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out << text;
 }
 
 } // namespace velvet::test

@@ -84,16 +84,8 @@ Scene withGraph(const Graph& g) {
     return scene;
 }
 
-std::string readText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-void writeText(const fs::path& p, const std::string& text) {
-    std::ofstream out(p, std::ios::binary | std::ios::trunc);
-    out << text;
-}
+using velvet::test::readText;
+using velvet::test::writeText;
 
 } // namespace
 

@@ -25,16 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string readText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-void writeText(const fs::path& p, const std::string& text) {
-    std::ofstream out(p, std::ios::binary | std::ios::trunc);
-    out << text;
-}
+using velvet::test::readText;
+using velvet::test::writeText;
 
 } // namespace
 
