@@ -58,6 +58,10 @@ std::string gbufferGlsl() {
              std::string(glslOutType(a.format)) + " " + std::string(a.glslName) + "; // " +
              std::string(a.contents) + "\n";
     }
+    // The geometry pass also writes emission straight into the HDR target, bound after the
+    // G-buffer's colour attachments (renderer.cpp, "1. G-buffer"): no G-buffer byte.
+    s += "layout(location = " + std::to_string(gbufferColorAttachmentCount()) +
+         ") out vec4 gEmission; // rgb emitted radiance, a 1 (the HDR target)\n";
     s += "#else\n";
     for (size_t i = 0; i < kAttachments.size(); ++i) {
         const auto& a = kAttachments[i];

@@ -14,8 +14,7 @@ GpuMaterial packMaterial(const Material& m) {
     g.roughIorOcclusionNormal =
         glm::vec4(m.scalar(ParamId::Roughness), m.scalar(ParamId::Ior),
                   m.scalar(ParamId::OcclusionStrength), m.scalar(ParamId::NormalScale));
-    g.emissive =
-        glm::vec4(m.color(ParamId::EmissiveColor) * m.scalar(ParamId::EmissiveStrength), 0.0f);
+    g.emissive = glm::vec4(m.color(ParamId::EmissiveColor), m.scalar(ParamId::EmissiveStrength));
     g.sheenColorRoughness = glm::vec4(m.scalar(ParamId::SheenWeight) * m.color(ParamId::SheenColor),
                                       m.scalar(ParamId::SheenRoughness));
     g.clearcoat =

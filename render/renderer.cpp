@@ -185,6 +185,10 @@ struct Renderer::Impl {
     /// background only the others.
     GLuint litFbo = 0;
     GLuint litFboColor = 0, litFboDepth = 0;
+    /// The geometry pass's target: the G-buffer's attachments plus the HDR colour after them,
+    /// which receives each pixel's emission (gbuffer.frag's gEmission).
+    GLuint geometryFbo = 0;
+    GLuint geometryFboHdr = 0, geometryFboDepth = 0;
     GBuffer gbuffer;
     ColorTarget hdr;
     // Preview meshes, uploaded once per kind / custom file; a failed custom import is
@@ -249,6 +253,8 @@ struct Renderer::Impl {
             glDeleteQueries(1, &lightsQuery);
         if (litFbo)
             glDeleteFramebuffers(1, &litFbo);
+        if (geometryFbo)
+            glDeleteFramebuffers(1, &geometryFbo);
         releaseGraph();
     }
 
@@ -922,8 +928,41 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glViewport(0, 0, fs.width, fs.height);
     glQueryCounter(d.queries[0], GL_TIMESTAMP);
 
-    // 1. G-buffer.
-    glBindFramebuffer(GL_FRAMEBUFFER, d.gbuffer.framebuffer());
+    // 1. G-buffer, and emission into the HDR target (attachment gbufferColorAttachmentCount()).
+    {
+        GLint depthTexture = 0;
+        glGetNamedFramebufferAttachmentParameteriv(d.gbuffer.framebuffer(), GL_DEPTH_ATTACHMENT,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
+                                                   &depthTexture);
+        if (!d.geometryFbo)
+            glCreateFramebuffers(1, &d.geometryFbo);
+        if (d.geometryFboHdr != d.hdr.texture() || d.geometryFboDepth != GLuint(depthTexture)) {
+            const int n = gbufferColorAttachmentCount();
+            std::vector<GLenum> drawBuffers;
+            for (int i = 0; i < n; ++i) {
+                GLint texture = 0;
+                glGetNamedFramebufferAttachmentParameteriv(
+                    d.gbuffer.framebuffer(), GLenum(GL_COLOR_ATTACHMENT0 + i),
+                    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &texture);
+                glNamedFramebufferTexture(d.geometryFbo, GLenum(GL_COLOR_ATTACHMENT0 + i),
+                                          GLuint(texture), 0);
+                drawBuffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+            }
+            glNamedFramebufferTexture(d.geometryFbo, GLenum(GL_COLOR_ATTACHMENT0 + n),
+                                      d.hdr.texture(), 0);
+            drawBuffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + n));
+            glNamedFramebufferTexture(d.geometryFbo, GL_DEPTH_ATTACHMENT, GLuint(depthTexture), 0);
+            glNamedFramebufferDrawBuffers(d.geometryFbo, GLsizei(drawBuffers.size()),
+                                          drawBuffers.data());
+            const GLenum status = glCheckNamedFramebufferStatus(d.geometryFbo, GL_FRAMEBUFFER);
+            if (status != GL_FRAMEBUFFER_COMPLETE)
+                return fail(error,
+                            "geometry framebuffer incomplete: " + framebufferStatusName(status));
+            d.geometryFboHdr = d.hdr.texture();
+            d.geometryFboDepth = GLuint(depthTexture);
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, d.geometryFbo);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -931,8 +970,13 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
     const float zeros[4] = {0, 0, 0, 0};
-    for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
-        glClearBufferfv(GL_COLOR, i, zeros);
+    const float noEmission[4] = {0, 0, 0, 1}; // the HDR target: black, opaque
+    const auto clearGeometry = [&] {
+        for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
+            glClearBufferfv(GL_COLOR, i, zeros);
+        glClearBufferfv(GL_COLOR, gbufferColorAttachmentCount(), noEmission);
+    };
+    clearGeometry();
     const float farDepth = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &farDepth);
     glUseProgram(d.gbufferProgram.id());
@@ -948,8 +992,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
             int(std::lround(std::clamp(fs.splitPosition, 0.0f, 1.0f) * fs.width)), 0, fs.width);
         glEnable(GL_SCISSOR_TEST);
         glScissor(seam, 0, fs.width - seam, fs.height);
-        for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
-            glClearBufferfv(GL_COLOR, i, zeros);
+        clearGeometry();
         glClearBufferfv(GL_DEPTH, 0, &farDepth);
         glProgramUniform1i(d.gbufferProgram.id(), 0, 1);
         d.mesh->gpu.draw();
@@ -1007,13 +1050,16 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         const int m = int(mode) >= 0 && int(mode) <= 3 ? int(mode) : 0; // unknown: Sharp (as GLSL)
         glUseProgram(d.lightingPrograms[Impl::kLitBackground + m].id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
-    } else {
-        const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f}; // debug views: no background
-        glClearBufferfv(GL_COLOR, 0, black);
-    }
+    } // debug views: no background (the geometry pass cleared the HDR target to black)
     glDepthFunc(GL_GREATER);
+    // result = surface + emission x alpha (lighting.frag's header); the target's alpha stays 1.
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
     glUseProgram(surfaceProgram->id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
     glDisable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
@@ -1157,6 +1203,17 @@ Renderer::EnvironmentBakeStats Renderer::environmentBakeStats() const {
             m_impl->ibl.warmUpMs(),
             m_impl->ibl.warmUpFrames(),
             m_impl->ibl.worstWarmUpFrameMs()};
+}
+
+bool graphOutputIsPerPixel(std::string_view field) {
+    // What gbuffer.frag reads back from velvetGraph(): keep in step with it.
+    static constexpr std::string_view kPerPixel[] = {
+        "baseColor", "metallic",          "roughness",     "normal",          "normalScale",
+        "occlusion", "occlusionStrength", "emissionColor", "emissionStrength"};
+    for (std::string_view f : kPerPixel)
+        if (f == field)
+            return true;
+    return false;
 }
 
 } // namespace velvet::render

@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace velvet {
@@ -248,5 +249,11 @@ private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };
+
+/// Whether the geometry pass draws the material graph's Material output input @p field
+/// ("baseColor", "roughness", "emissionColor", …) per pixel. The others (sheen, clearcoat,
+/// specular, IOR) have no room in the 16-byte G-buffer: in the viewport their parameter's value
+/// applies whatever the graph feeds them (docs/architecture.md, "G-buffer").
+bool graphOutputIsPerPixel(std::string_view field);
 
 } // namespace velvet::render

@@ -198,8 +198,6 @@ void TextureSet::applyTo(GpuMaterial& g) const {
     const auto mean = [&](TextureSlot slot) { return (*m_slots)[size_t(slot)].mean; };
     // Slots the G-buffer cannot carry per pixel: their mean, times the parameter (glTF: factor
     // times texture), in the material table.
-    if (bit(present, TextureSlot::Emissive))
-        g.emissive *= glm::vec4(glm::vec3(mean(TextureSlot::Emissive)), 1.0f);
     if (bit(present, TextureSlot::Clearcoat))
         g.clearcoat.x *= mean(TextureSlot::Clearcoat).r;
     if (bit(present, TextureSlot::ClearcoatRoughness))
@@ -223,6 +221,7 @@ bool slotIsPerPixel(TextureSlot slot) {
     case TextureSlot::SpecRoughMetal: // G roughness and B metallic per pixel; R specular: mean
     case TextureSlot::Normal:
     case TextureSlot::Occlusion:
+    case TextureSlot::Emissive: // drawn into the HDR target by the geometry pass, no G-buffer byte
         return true;
     default:
         return false;

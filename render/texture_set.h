@@ -41,10 +41,11 @@ struct GpuMaterial;
 /// graph textures use it; needs a current context.
 void uploadMipChain(unsigned texture, const Image& image);
 
-/// True when the G-buffer pass reads slot @p slot per pixel (base colour, metallic / roughness,
-/// the material atlas's roughness and metallic, normal, occlusion). The other slots (emissive,
-/// clearcoat, sheen, specular) have no room in the 16-byte G-buffer: their image's mean, times
-/// the parameter, goes to the material table (docs/architecture.md, "G-buffer").
+/// True when the geometry pass reads slot @p slot per pixel (base colour, metallic / roughness,
+/// the material atlas's roughness and metallic, normal, occlusion, and emissive, which it writes
+/// straight into the HDR target). The other slots (clearcoat, sheen, specular) have no room in
+/// the 16-byte G-buffer: their image's mean, times the parameter, goes to the material table
+/// (docs/architecture.md, "G-buffer").
 bool slotIsPerPixel(TextureSlot slot);
 
 class TextureSet {

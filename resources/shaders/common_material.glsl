@@ -6,7 +6,7 @@ struct GpuMaterial {
     vec4 baseColorMetallic;      // rgb base colour (linear), a metallic
     vec4 specularColorWeight;    // rgb specular colour, a specular weight
     vec4 roughIorOcclusionNormal;// roughness, IOR, occlusion strength, normal scale
-    vec4 emissive;               // rgb colour x strength
+    vec4 emissive;               // rgb colour, a strength (nits); drawn per pixel by gbuffer.frag
     vec4 sheenColorRoughness;    // rgb sheen weight x colour, a sheen roughness
     vec4 clearcoat;              // weight, roughness, normal scale, unused
     ivec4 terms;                 // distribution, visibility, fresnel, diffuse

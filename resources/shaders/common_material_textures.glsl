@@ -10,6 +10,7 @@
 #define TEX_SPEC_ROUGH_METAL 2
 #define TEX_NORMAL 3
 #define TEX_OCCLUSION 4
+#define TEX_EMISSIVE 5
 #define TEX_SLOT_COUNT 13
 
 layout(binding = BINDING_MATERIAL_TEX_FIRST) uniform sampler2D uMaterialTex[TEX_SLOT_COUNT];

@@ -11,6 +11,7 @@
 in vec3 vNormal;
 in vec4 vTangent;
 in vec2 vUv;
+in vec3 vWorldPosition;
 
 layout(location = 0) uniform int uMaterialId;
 
@@ -46,6 +47,9 @@ void main() {
     inputs.normalScale = m.roughIorOcclusionNormal.w;
     inputs.occlusionStrength = m.roughIorOcclusionNormal.z;
     inputs.occlusion = hasTexture(m, TEX_OCCLUSION) ? sampleSlot(m, TEX_OCCLUSION, vUv).r : 1.0;
+    inputs.emissionColor =
+        m.emissive.rgb * (hasTexture(m, TEX_EMISSIVE) ? sampleSlot(m, TEX_EMISSIVE, vUv).rgb : vec3(1.0));
+    inputs.emissionStrength = m.emissive.a;
     bool normalMapped = hasTexture(m, TEX_NORMAL);
     if (normalMapped)
         inputs.normal = sampleSlot(m, TEX_NORMAL, vUv).xyz * 2.0 - 1.0;
@@ -72,4 +76,9 @@ void main() {
     gBaseColorOcclusion = vec4(encodeBaseColor(baseColor), occlusion);
     gNormal = octEncodeUnorm16(n);
     gMaterial = vec4(metallic, clamp(roughness, 0.0, 1.0), float(uMaterialId) / 255.0, 0.0);
+    // Emission per pixel (texture x colour x strength, or the graph's), into the HDR target the
+    // lighting pass then adds to, as Killzone 2 wrote emissive into its light accumulation buffer
+    // during the geometry pass; KHR_materials_clearcoat's attenuation of it by the coat's Fresnel
+    // is applied there (lighting.frag's alpha).
+    gEmission = vec4(max(inputs.emissionColor * inputs.emissionStrength, vec3(0.0)), 1.0);
 }

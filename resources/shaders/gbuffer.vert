@@ -9,11 +9,13 @@ layout(location = 3) in vec2 aUv;
 out vec3 vNormal;
 out vec4 vTangent;
 out vec2 vUv;
+out vec3 vWorldPosition;
 
 void main() {
     // The preview mesh sits at the origin (model matrix = identity for now).
     vNormal = aNormal;
     vTangent = aTangent;
     vUv = aUv;
+    vWorldPosition = aPosition;
     gl_Position = frame.viewProjMatrix * vec4(aPosition, 1.0);
 }

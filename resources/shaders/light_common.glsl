@@ -101,7 +101,7 @@ bool loadShadingPoint(ivec2 pixel, out ShadingPoint p) {
     p.s.sheenRoughness = m.sheenColorRoughness.a;
     p.s.clearcoat = m.clearcoat.x;
     p.s.clearcoatRoughness = m.clearcoat.y;
-    p.s.emissive = m.emissive.rgb;
+    p.s.emissive = m.emissive.rgb * m.emissive.a;
     p.s.terms = m.terms;
     p.s.sheenModel = m.terms2.x;
     p.n = octDecodeUnorm16(rt1);

@@ -11,6 +11,10 @@
 //   (none of them)          surfaces, the final image
 // The surface variants are drawn only where there is geometry (depth test against the G-buffer
 // depth, the full-screen triangle at the far plane: fullscreen.vert's FULLSCREEN_FAR_PLANE).
+// Emission is already in the HDR target (gbuffer.frag writes it per pixel): the surface variants
+// blend as result = outColor.rgb + target.rgb * outColor.a (glBlendFuncSeparate(ONE, SRC_ALPHA,
+// ZERO, ONE) in renderer.cpp), so alpha is how much of the emission stays: 1 - the clearcoat's
+// Fresnel in the final image, 0 in debug views (their value replaces it), 1 in the emissive view.
 #include "common_frame.glsl"
 #include "common_gbuffer.glsl"
 #include "common_material.glsl"
@@ -63,7 +67,7 @@ void main() {
     s.sheenRoughness = m.sheenColorRoughness.a;
     s.clearcoat = m.clearcoat.x;
     s.clearcoatRoughness = m.clearcoat.y;
-    s.emissive = m.emissive.rgb;
+    s.emissive = m.emissive.rgb * m.emissive.a; // the emissive debug view's fallback
     s.terms = m.terms;
     s.sheenModel = m.terms2.x;
     float occlusion = rt0.a;
@@ -82,7 +86,7 @@ void main() {
             vec3 l = frame.lightDirection[i].xyz;
             lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb;
         }
-        outColor = vec4(lobes, 1.0);
+        outColor = vec4(lobes, 0.0); // alpha 0: replaces the emission (see the header)
     }
 #elif defined(LIGHTING_GBUFFER_VIEWS)
     {
@@ -96,9 +100,11 @@ void main() {
                      : view == DEBUG_CLEARCOAT ? vec3(s.clearcoat, s.clearcoatRoughness, 0.0)
                      : view == DEBUG_SHEEN     ? s.sheenColor
                      : view == DEBUG_OCCLUSION ? vec3(occlusion)
-                     : view == DEBUG_EMISSIVE  ? s.emissive
+                     : view == DEBUG_EMISSIVE  ? vec3(0.0)
                                                : vec3(float(decodeMaterialId(rt2.b)));
-        outColor = vec4(value, 1.0);
+        // Alpha 0 replaces the emission the geometry pass wrote; the emissive view keeps it
+        // (alpha 1, nothing added): the per-pixel emission itself.
+        outColor = vec4(value, view == DEBUG_EMISSIVE ? 1.0 : 0.0);
     }
 #else
 
@@ -128,17 +134,17 @@ void main() {
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
                   s.sheenColor * e * specularRadiance(r, s.sheenRoughness);
     }
-    vec3 emissive = s.emissive;
+    float keepEmission = 1.0; // KHR_materials_clearcoat: emission seen through the coat's Fresnel
     if (s.clearcoat > 0.0) {
         float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
         vec2 abc = environmentDfg(NdotV, cr);
         float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotV);
         ambient = ambient * (1.0 - fc) +
                   s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(r, cr);
-        emissive *= 1.0 - fc;
+        keepEmission = 1.0 - fc;
     }
-    color += ambient * occlusion + emissive;
-    outColor = vec4(color, 1.0);
+    color += ambient * occlusion;
+    outColor = vec4(color, keepEmission); // + emission x alpha, by the blend (see the header)
 #endif
 }
 #endif // LIGHTING_BACKGROUND

@@ -2,6 +2,7 @@
 // proves is stated on it. One renderer for the whole file, 64x64 renders of the Albedo and
 // Roughness debug views, which show the G-buffer's values unlit.
 #include "core/graph/graph.h"
+#include "core/graph/node_catalogue.h"
 #include "core/image.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
@@ -12,6 +13,7 @@
 #include <QtTest>
 #include <cmath>
 #include <filesystem>
+#include <regex>
 
 using namespace velvet;
 using namespace velvet::graph;
@@ -82,6 +84,32 @@ class TestRenderGraph : public QObject {
     }
 
 private slots:
+    // render::graphOutputIsPerPixel (what the editor dims on the Material output) says exactly
+    // which of the output's inputs gbuffer.frag reads back from the graph.
+    void perPixelOutputsMatchTheGeometryShader() {
+        const std::string shader = test::readText(std::filesystem::path(VELVET_SOURCE_DIR) /
+                                                  "resources/shaders/gbuffer.frag");
+        QVERIFY(!shader.empty());
+        const graph::NodeType* output = graph::findNodeType(graph::kOutputTypeId);
+        QVERIFY(output);
+        // What the shader reads after velvetGraph() has run: "inputs.<field>" not followed by
+        // an identifier character and not assigned to.
+        const size_t after = shader.find("velvetGraph(vUv, inputs);");
+        QVERIFY(after != std::string::npos);
+        const std::string tail = shader.substr(after);
+        int perPixel = 0;
+        for (const graph::InputSpec& in : output->inputs) {
+            const std::string field(in.name);
+            const std::regex read("inputs\\." + field + "(?![A-Za-z0-9_])(?!\\s*=[^=])");
+            const bool isRead = std::regex_search(tail, read);
+            QVERIFY2(isRead == render::graphOutputIsPerPixel(field), field.c_str());
+            perPixel += isRead;
+        }
+        QCOMPARE(perPixel, 9);
+        QVERIFY(!render::graphOutputIsPerPixel("sheenColor"));
+        QVERIFY(render::graphOutputIsPerPixel("emissionColor"));
+    }
+
     void initTestCase() {
         std::string error;
         QVERIFY2(test::headlessContext(&error), error.c_str());

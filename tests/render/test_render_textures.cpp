@@ -166,6 +166,61 @@ private slots:
         }
     }
 
+    // Emission is drawn per pixel (gbuffer.frag writes it into the HDR target): an emissive map
+    // of a white and a black half lights exactly the sphere pixels whose UV falls in the white
+    // half, at colour x strength, and leaves the others black (averaging the map, as slots
+    // without room in the G-buffer are, would give every pixel half of it). A clearcoat dims
+    // emission by its Fresnel (KHR_materials_clearcoat), which the emissive debug view leaves out.
+    void emissiveMapIsPerPixel() {
+        Image halves(16, 8, 4);
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 16; ++x)
+                for (int k = 0; k < 4; ++k)
+                    halves.at(x, y)[k] = k == 3 ? 1.0f : (x < 8 ? 1.0f : 0.0f);
+        write(path("emissive_halves.png"), halves);
+        const glm::vec3 emission(2.0f, 1.0f, 0.5f); // colour (1, 0.5, 0.25) x 2 nits
+        Scene dark = furnace();
+        dark.environment.color = glm::vec3(0.0f); // nothing but emission lights the image
+        dark.material.setColor(ParamId::BaseColor, glm::vec3(0.0f));
+        dark.material.setColor(ParamId::EmissiveColor, glm::vec3(1.0f, 0.5f, 0.25f));
+        dark.material.setScalar(ParamId::EmissiveStrength, 2.0f);
+
+        const Image uniform = render(&dark); // no map: every sphere pixel emits fully
+        Scene mapped = dark;
+        TextureRef ref;
+        ref.file = path("emissive_halves.png").string();
+        ref.colorSpace = "Raw";
+        mapped.material.setTexture(TextureSlot::Emissive, ref);
+        Problems problems;
+        const Image image = render(&mapped, &problems);
+        QVERIFY(!problems.hasErrors());
+        int sphere = 0, full = 0, black = 0;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                if (glm::length(glm::vec3(uniform.rgba(x, y)) - emission) > 0.01f)
+                    continue; // background
+                ++sphere;
+                const glm::vec3 c(image.rgba(x, y));
+                full += glm::length(c - emission) < 0.01f;
+                black += glm::length(c) < 0.01f;
+            }
+        qInfo("sphere pixels %d: full emission %d, none %d", sphere, full, black);
+        QVERIFY(sphere > kSize * kSize / 8);
+        QVERIFY2(full > sphere / 5 && black > sphere / 5, "both halves of the map show");
+        // The rest lie along the two seams and near the poles, where the map is minified.
+        QVERIFY2(full + black > sphere * 6 / 10, "only seams and poles are filtered");
+
+        Scene coated = dark;
+        coated.material.setScalar(ParamId::ClearcoatWeight, 1.0f);
+        const glm::vec3 c = centre(render(&coated));
+        // Schlick at normal incidence: the coat reflects F0 = 0.04, so 0.96 of the emission.
+        QVERIFY2(glm::length(c - emission * 0.96f) < 0.02f,
+                 qPrintable(QStringLiteral("%1 %2 %3").arg(c.x).arg(c.y).arg(c.z)));
+        const glm::vec3 view = centre(render(&coated, nullptr, render::DebugView::Emissive));
+        QVERIFY2(glm::length(view - emission) < 0.01f,
+                 qPrintable(QStringLiteral("%1 %2 %3").arg(view.x).arg(view.y).arg(view.z)));
+    }
+
     // A flat normal map (0.5, 0.5, 1) leaves the lit image as without one (8-bit 128 is 0.502,
     // a tilt of 0.3 degrees); a tilted map does change it.
     void flatNormalMapChangesNothing() {

@@ -74,6 +74,7 @@ private:
     graph::NodeId m_node;
     QString m_title;
     std::vector<QString> m_inputLabels, m_outputLabels;
+    std::vector<bool> m_inputDimmed; ///< per input label: the viewport does not draw it per pixel
     std::vector<PortItem*> m_inputs, m_outputs; ///< indexed like the type's ports
     qreal m_width = 160, m_height = 60;
     bool m_hasPreview = false;
