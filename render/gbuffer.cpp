@@ -67,10 +67,18 @@ void GBuffer::release() {
     m_width = m_height = 0;
 }
 
+namespace {
+unsigned nextTargetGeneration() {
+    static unsigned generation = 0;
+    return ++generation;
+}
+} // namespace
+
 bool GBuffer::resize(int width, int height, std::string* error) {
     if (m_fbo && width == m_width && height == m_height)
         return true;
     release();
+    m_generation = nextTargetGeneration();
     const auto attachments = gbufferAttachments();
     m_count = int(attachments.size());
     glCreateFramebuffers(1, &m_fbo);
@@ -123,6 +131,7 @@ bool ColorTarget::resize(int width, int height, unsigned internalFormat, std::st
     if (m_fbo && width == m_width && height == m_height && internalFormat == m_format)
         return true;
     release();
+    m_generation = nextTargetGeneration();
     glCreateTextures(GL_TEXTURE_2D, 1, &m_texture);
     glTextureStorage2D(m_texture, 1, internalFormat, width, height);
     setNearest(m_texture);

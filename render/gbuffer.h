@@ -20,9 +20,13 @@ public:
     void bindTextures() const;
     int width() const { return m_width; }
     int height() const { return m_height; }
+    /// Changes whenever resize() reallocates, unique across targets: framebuffers built over
+    /// these textures compare it, not the GL names, which a driver may hand out again.
+    unsigned generation() const { return m_generation; }
 
 private:
     void release();
+    unsigned m_generation = 0;
     unsigned m_fbo = 0;
     unsigned m_textures[8] = {};
     int m_count = 0;
@@ -43,9 +47,12 @@ public:
     unsigned texture() const { return m_texture; }
     int width() const { return m_width; }
     int height() const { return m_height; }
+    /// As GBuffer::generation().
+    unsigned generation() const { return m_generation; }
 
 private:
     void release();
+    unsigned m_generation = 0;
     unsigned m_fbo = 0, m_texture = 0, m_format = 0;
     int m_width = 0, m_height = 0;
 };

@@ -310,12 +310,10 @@ void LightPasses::draw(LightPath requested, int width, int height, unsigned gbuf
         GLint depthTexture = 0;
         glGetNamedFramebufferAttachmentParameteriv(
             gbufferFbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depthTexture);
-        if (m_volumeFboColor != hdrTexture || m_volumeFboDepth != unsigned(depthTexture)) {
-            glNamedFramebufferTexture(m_volumeFbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
-            glNamedFramebufferTexture(m_volumeFbo, GL_DEPTH_ATTACHMENT, GLuint(depthTexture), 0);
-            m_volumeFboColor = hdrTexture;
-            m_volumeFboDepth = unsigned(depthTexture);
-        }
+        // Attached every frame (two calls): after a resize the driver may hand out the old
+        // texture names again, so a cache keyed by name would keep the deleted textures.
+        glNamedFramebufferTexture(m_volumeFbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
+        glNamedFramebufferTexture(m_volumeFbo, GL_DEPTH_ATTACHMENT, GLuint(depthTexture), 0);
         glBindFramebuffer(GL_FRAMEBUFFER, m_volumeFbo);
         // Back faces of the proxy behind the surface: pixels in front of the light's far side.
         // Depth clamp keeps far sides beyond the far plane; the fragment shader then keeps only

@@ -74,7 +74,7 @@ private:
     int m_proxyIndexCount = 0; ///< the sphere's indices, first in m_proxyIbo
     int m_coneIndexCount = 0;  ///< the cone's, after them
     int m_coneBaseVertex = 0;  ///< the cone's first vertex in m_proxyVbo
-    unsigned m_volumeFbo = 0, m_volumeFboColor = 0, m_volumeFboDepth = 0;
+    unsigned m_volumeFbo = 0;
     int m_compileCount = 0;
 };
 

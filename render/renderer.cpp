@@ -185,11 +185,11 @@ struct Renderer::Impl {
     /// full-screen triangles (at the far plane) so surfaces shade only geometry pixels and the
     /// background only the others.
     GLuint litFbo = 0;
-    GLuint litFboColor = 0, litFboDepth = 0;
+    unsigned litFboHdrGeneration = 0, litFboGbufferGeneration = 0;
     /// The geometry pass's target: the G-buffer's attachments plus the HDR colour after them,
     /// which receives each pixel's emission (gbuffer.frag's gEmission).
     GLuint geometryFbo = 0;
-    GLuint geometryFboHdr = 0, geometryFboDepth = 0;
+    unsigned geometryFboHdrGeneration = 0, geometryFboGbufferGeneration = 0;
     int geometryFboEmission = -1; ///< whether the HDR draw buffer is on (-1: not set yet)
     GBuffer gbuffer;
     ColorTarget hdr;
@@ -956,7 +956,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
                                                    &depthTexture);
         if (!d.geometryFbo)
             glCreateFramebuffers(1, &d.geometryFbo);
-        if (d.geometryFboHdr != d.hdr.texture() || d.geometryFboDepth != GLuint(depthTexture)) {
+        if (d.geometryFboHdrGeneration != d.hdr.generation() ||
+            d.geometryFboGbufferGeneration != d.gbuffer.generation()) {
             const int n = gbufferColorAttachmentCount();
             std::vector<GLenum> drawBuffers;
             for (int i = 0; i < n; ++i) {
@@ -978,8 +979,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
             if (status != GL_FRAMEBUFFER_COMPLETE)
                 return fail(error,
                             "geometry framebuffer incomplete: " + framebufferStatusName(status));
-            d.geometryFboHdr = d.hdr.texture();
-            d.geometryFboDepth = GLuint(depthTexture);
+            d.geometryFboHdrGeneration = d.hdr.generation();
+            d.geometryFboGbufferGeneration = d.gbuffer.generation();
             d.geometryFboEmission = -1;
         }
         // Writing emission costs a 16-bit RGBA store per pixel and a blend in the lighting pass
@@ -1047,11 +1048,12 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
                                                    &depthTexture);
         if (!d.litFbo)
             glCreateFramebuffers(1, &d.litFbo);
-        if (d.litFboColor != d.hdr.texture() || d.litFboDepth != GLuint(depthTexture)) {
+        if (d.litFboHdrGeneration != d.hdr.generation() ||
+            d.litFboGbufferGeneration != d.gbuffer.generation()) {
             glNamedFramebufferTexture(d.litFbo, GL_COLOR_ATTACHMENT0, d.hdr.texture(), 0);
             glNamedFramebufferTexture(d.litFbo, GL_DEPTH_ATTACHMENT, GLuint(depthTexture), 0);
-            d.litFboColor = d.hdr.texture();
-            d.litFboDepth = GLuint(depthTexture);
+            d.litFboHdrGeneration = d.hdr.generation();
+            d.litFboGbufferGeneration = d.gbuffer.generation();
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, d.litFbo);

@@ -188,6 +188,38 @@ private slots:
 
     // (c) Octahedral normals in 2 x 16 bits (precise variant): worst angular error over 10^6
     // random unit vectors (CPU twin of the GLSL; the encode/decode code is the same line for line).
+    // One renderer through size changes (the editor resizes at every reduced-resolution frame and
+    // window resize): each size gives the furnace's known answer, albedo on the sphere and the
+    // environment behind it. ctest runs this with Mesa's force_gl_names_reuse, so a framebuffer
+    // cached by texture name instead of allocation would keep drawing into deleted textures.
+    void resizingKeepsTheKnownAnswer() {
+        Scene scene;
+        scene.material = greyLambert();
+        scene.lights.clear();
+        scene.environment.hdri.clear();
+        scene.environment.color = glm::vec3(1.0f);
+        render::Renderer renderer;
+        std::string error;
+        QVERIFY2(renderer.initialize(&error), error.c_str());
+        renderer.setScene(scene);
+        for (const int size : {64, 32, 96, 64}) {
+            render::OffscreenTarget target;
+            QVERIFY2(target.resize(size, size, &error), error.c_str());
+            render::FrameSettings fs;
+            fs.width = fs.height = size;
+            QVERIFY2(renderer.render(fs, target.framebuffer(), &error), error.c_str());
+            const Image linear = renderer.readLinear();
+            QCOMPARE(linear.width, size);
+            const glm::vec4 centre = linear.rgba(size / 2, size / 2);
+            const glm::vec4 corner = linear.rgba(1, 1);
+            QVERIFY2(std::abs(centre.x - 0.5f) < 0.01f && std::abs(corner.x - 1.0f) < 0.01f,
+                     qPrintable(QStringLiteral("%1: centre %2, corner %3")
+                                    .arg(size)
+                                    .arg(double(centre.x))
+                                    .arg(double(corner.x))));
+        }
+    }
+
     void octahedralEncodingError() {
         std::mt19937 rng(12345);
         std::normal_distribution<float> g;
