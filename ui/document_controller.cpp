@@ -107,7 +107,6 @@ void DocumentController::setMesh(const MeshRef& mesh) {
 
 void DocumentController::setLights(const std::vector<Light>& lights) {
     m_scene.lights = lights;
-    emit lightsChanged();
     emit sceneChanged();
 }
 
@@ -236,7 +235,6 @@ void DocumentController::setDocument(Scene scene, const QString& filePath, Atlas
     emit fileChanged(m_filePath);
     emit documentReplaced();
     emit postChainChanged();
-    emit lightsChanged();
     for (int k = 0; k < kAtlasKindCount; ++k)
         emit atlasChanged(AtlasKind(k));
     emit materialReplaced();

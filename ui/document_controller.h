@@ -67,7 +67,7 @@ public:
     void setEnvironment(const Environment& environment);
     /// Sets the preview mesh and notifies (sceneChanged).
     void setMesh(const MeshRef& mesh);
-    /// Sets the lights and notifies (lightsChanged, sceneChanged).
+    /// Sets the lights and notifies (sceneChanged).
     void setLights(const std::vector<Light>& lights);
     /// Sets the material's node graph and notifies (sceneChanged only: the graph editor's model,
     /// ui/graph/graph_model.h, is the one caller and already knows).
@@ -107,8 +107,6 @@ signals:
     void sceneChanged();
     /// One material parameter changed (undo, redo or edit).
     void paramChanged(velvet::ParamId id);
-    /// The lights changed (an edit, a rig, undo, redo; also on new and open).
-    void lightsChanged();
     /// The post chain changed (an effect added, removed, moved, toggled or edited; undo, redo).
     void postChainChanged();
     /// One atlas changed (an edit, undo, redo; every kind on new and open).

@@ -303,10 +303,22 @@ SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
 }
 
 void SceneToolbar::refresh() {
-    m_updating = true;
     const Scene& scene = m_controller->scene();
-    fillMeshCombo(m_mesh, scene);
-    fillHdriCombo(m_hdri, scene);
+    // sceneChanged comes with every material edit too: refill only what changed.
+    if (m_shownMesh == scene.mesh && m_shownEnvironment == scene.environment &&
+        m_shownLights == scene.lights)
+        return;
+    const bool meshChanged = m_shownMesh != scene.mesh;
+    const bool environmentChanged = m_shownEnvironment != scene.environment;
+    const bool lightsChanged = m_shownLights != scene.lights;
+    m_shownMesh = scene.mesh;
+    m_shownEnvironment = scene.environment;
+    m_shownLights = scene.lights;
+    m_updating = true;
+    if (meshChanged)
+        fillMeshCombo(m_mesh, scene);
+    if (environmentChanged)
+        fillHdriCombo(m_hdri, scene);
     {
         const QSignalBlocker block(m_intensity);
         m_intensity->setValue(scene.environment.intensity);
@@ -318,7 +330,8 @@ void SceneToolbar::refresh() {
             degrees += 360.0f;
         m_rotation->setValue(int(std::lround(degrees)));
     }
-    fillLightRigCombo(m_lightRig, scene);
+    if (lightsChanged)
+        fillLightRigCombo(m_lightRig, scene);
     m_updating = false;
 }
 

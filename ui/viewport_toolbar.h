@@ -15,6 +15,7 @@
 
 #include <QToolBar>
 #include <memory>
+#include <optional>
 #include <span>
 
 class QAction;
@@ -97,6 +98,10 @@ private:
     QDoubleSpinBox* m_intensity;
     QSlider* m_rotation;
     QComboBox* m_lightRig;
+    /// What the combos last showed (refilled only when their part of the scene changes).
+    std::optional<MeshRef> m_shownMesh;
+    std::optional<Environment> m_shownEnvironment;
+    std::optional<std::vector<Light>> m_shownLights;
     int m_intensityKey = 0;
     int m_rotationKey = 0;
     bool m_updating = false;

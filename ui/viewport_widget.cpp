@@ -446,12 +446,14 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
         Problems problems;
         m_renderer->setScene(scene, &problems);
         m_sceneDirty = false;
-        if (!problems.items.empty()) {
-            QStringList lines;
-            for (const Problem& p : problems.items)
-                lines << QString::fromStdString(p.toString());
+        QStringList lines;
+        for (const Problem& p : problems.items)
+            lines << QString::fromStdString(p.toString());
+        // setScene runs on every scene change (each slider tick): report a problem list once,
+        // not again while it stays the same.
+        if (lines != m_lastSceneProblems && !lines.isEmpty())
             emit sceneProblems(lines);
-        }
+        m_lastSceneProblems = lines;
     }
     render::FrameSettings settings = m_settings;
     const QSize size = frameSize();

@@ -237,6 +237,7 @@ private:
     QTimer* m_animationTimer;
     /// Draws a frame when a texture file the material uses changes on disk (an idle viewport
     /// would otherwise not notice; ui/texture_file_watcher.h).
+    QStringList m_lastSceneProblems; ///< the problems setScene reported last (no repeats)
     TextureFileWatcher* m_textureWatcher;
 };
 

@@ -19,10 +19,11 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QDockWidget>
-#include <QFileDialog>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QFileDialog>
 #include <QLabel>
+#include <QLineEdit>
 #include <QListView>
 #include <QListWidget>
 #include <QMenu>
@@ -115,6 +116,10 @@ private slots:
     void libraryDoubleClickAppliesAndCtrlZUndoes();
     void postChainDragInWindowReordersAndRedraws();
     void ctrlOReopensSavedDocumentEqual();
+    void lightFieldsTakeDecimalsAndEditOnlyThemselves();
+    void conesStayOrderedAndDirectionNeverZero();
+    void discreteLightEditsAreSeparateCommands();
+    void repeatedSceneProblemsAreReportedOnce();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -501,6 +506,110 @@ void TestUiScene::ctrlOReopensSavedDocumentEqual() {
     QTRY_COMPARE(m_doc->filePath(), QFileInfo(path).absoluteFilePath());
     QVERIFY(m_doc->scene() == saved);
     QVERIFY(!m_doc->isDirty());
+}
+
+void TestUiScene::lightFieldsTakeDecimalsAndEditOnlyThemselves() {
+    m_window->findChild<QDockWidget*>(QStringLiteral("sceneDock"))->raise();
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "stage-spot");
+    m_scene->selectLight(0);
+    // A direction the boxes could not show exactly (y beyond their +-1 range).
+    auto lights = m_doc->scene().lights;
+    lights[0].direction = {1.0f, -3.0f, 1.0f};
+    m_doc->editLights(lights, QStringLiteral("Aim"));
+    auto* intensity = find<QDoubleSpinBox>(QStringLiteral("lightIntensity"));
+    intensity->setFocus();
+    intensity->selectAll();
+    QTest::keyClicks(intensity, QStringLiteral("2.5"));
+    QTest::keyClick(intensity, Qt::Key_Return);
+    QCOMPARE(m_doc->scene().lights[0].intensity, 2.5f);
+    // Editing x of the direction leaves y and z exactly as they were.
+    auto* dx = find<QDoubleSpinBox>(QStringLiteral("lightDirection.x"));
+    dx->setFocus();
+    dx->selectAll();
+    QTest::keyClicks(dx, QStringLiteral("0.25"));
+    QTest::keyClick(dx, Qt::Key_Return);
+    QCOMPARE(m_doc->scene().lights[0].direction, glm::vec3(0.25f, -3.0f, 1.0f));
+
+    // The environment's rotation box keeps an intensity beyond its own box's range.
+    Environment env = m_doc->scene().environment;
+    env.intensity = 123.456f;
+    m_doc->editEnvironment(env, QStringLiteral("Bright"));
+    auto* rotation = find<QDoubleSpinBox>(QStringLiteral("sceneEnvironmentRotation"));
+    rotation->setFocus();
+    rotation->selectAll();
+    QTest::keyClicks(rotation, QStringLiteral("45.5"));
+    QTest::keyClick(rotation, Qt::Key_Return);
+    QCOMPARE(m_doc->scene().environment.rotationDeg, 45.5f);
+    QCOMPARE(m_doc->scene().environment.intensity, 123.456f);
+}
+
+void TestUiScene::conesStayOrderedAndDirectionNeverZero() {
+    m_window->findChild<QDockWidget*>(QStringLiteral("sceneDock"))->raise();
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "stage-spot");
+    m_scene->selectLight(0);
+    const Light spot = m_doc->scene().lights[0];
+    QCOMPARE(spot.type, LightType::Spot);
+    // The inner cone past the outer one pushes the outer along (the loader refuses inner > outer).
+    find<QDoubleSpinBox>(QStringLiteral("lightInnerCone"))->setValue(40.0);
+    QCOMPARE(m_doc->scene().lights[0].innerConeDeg, 40.0f);
+    QCOMPARE(m_doc->scene().lights[0].outerConeDeg, 40.0f);
+    find<QDoubleSpinBox>(QStringLiteral("lightOuterCone"))->setValue(10.0);
+    QCOMPARE(m_doc->scene().lights[0].innerConeDeg, 10.0f);
+    QCOMPARE(m_doc->scene().lights[0].outerConeDeg, 10.0f);
+    // A direction of (0, 0, 0) is refused: the light keeps aiming somewhere.
+    auto lights = m_doc->scene().lights;
+    lights[0].direction = {0.0f, -1.0f, 0.0f};
+    m_doc->editLights(lights, QStringLiteral("Aim down"));
+    find<QDoubleSpinBox>(QStringLiteral("lightDirection.y"))->setValue(0.0);
+    QCOMPARE(m_doc->scene().lights[0].direction, glm::vec3(0.0f, -1.0f, 0.0f));
+    QCOMPARE(find<QDoubleSpinBox>(QStringLiteral("lightDirection.y"))->value(), -1.0);
+    // What the panel leaves is a scene the loader takes back.
+    Problems problems;
+    QVERIFY(parseScene(sceneToJson(m_doc->scene()), "panel.json", {}, problems));
+    QVERIFY(!problems.hasErrors());
+}
+
+void TestUiScene::discreteLightEditsAreSeparateCommands() {
+    m_window->findChild<QDockWidget*>(QStringLiteral("sceneDock"))->raise();
+    chooseRig(find<QComboBox>(QStringLiteral("sceneLightRig")), "softboxes");
+    m_scene->selectLight(0);
+    const int before = m_doc->undoStack()->count();
+    auto* shape = find<QComboBox>(QStringLiteral("lightShape"));
+    const int sphere = shape->findData(int(AreaShape::Sphere));
+    shape->setCurrentIndex(sphere);
+    emit shape->activated(sphere);
+    auto* type = find<QComboBox>(QStringLiteral("lightType"));
+    const int point = type->findData(int(LightType::Point));
+    type->setCurrentIndex(point);
+    emit type->activated(point);
+    QCOMPARE(m_doc->undoStack()->count(), before + 2); // two edits, two undo steps
+    m_doc->undoStack()->undo();
+    QCOMPARE(m_doc->scene().lights[0].type, LightType::Area);
+    QCOMPARE(m_doc->scene().lights[0].shape, AreaShape::Sphere);
+    // A rename shows in the list, and selecting another light shows that light's name.
+    auto* name = find<QLineEdit>(QStringLiteral("lightName"));
+    name->setFocus();
+    name->selectAll();
+    QTest::keyClicks(name, QStringLiteral("Key box"));
+    QTest::keyClick(name, Qt::Key_Return);
+    QCOMPARE(m_doc->scene().lights[0].name, std::string("Key box"));
+    m_scene->selectLight(1);
+    QCOMPARE(name->text(), QString::fromStdString(m_doc->scene().lights[1].name));
+}
+
+void TestUiScene::repeatedSceneProblemsAreReportedOnce() {
+    // 17 directional lights: the 17th is not drawn (render/renderer.h), which is reported once,
+    // not again at every later edit while it stays so.
+    QSignalSpy problems(m_window->viewport(), &ViewportWidget::sceneProblems);
+    std::vector<Light> lights(17, lightRigLights("sun")->front());
+    m_doc->editLights(lights, QStringLiteral("Many suns"));
+    viewportImage();
+    QCOMPARE(problems.count(), 1);
+    for (float r : {0.3f, 0.4f, 0.5f}) {
+        m_doc->editParam(ParamId::Roughness, glm::vec3(r));
+        viewportImage();
+    }
+    QCOMPARE(problems.count(), 1);
 }
 
 int main(int argc, char** argv) {

@@ -41,10 +41,11 @@ public:
             m_boxes[i]->setDecimals(2);
             m_boxes[i]->setSingleStep(0.1);
             m_boxes[i]->setPrefix(QLatin1String(axes[i]) + QLatin1Char(' '));
+            m_boxes[i]->setKeyboardTracking(false); // a typed "2.5" is one value, not 2 then 25
             row->addWidget(m_boxes[i]);
-            connect(m_boxes[i], &QDoubleSpinBox::valueChanged, this, [this] {
+            connect(m_boxes[i], &QDoubleSpinBox::valueChanged, this, [this, i](double v) {
                 if (onChanged)
-                    onChanged(value());
+                    onChanged(i, float(v));
             });
             connect(m_boxes[i], &QDoubleSpinBox::editingFinished, this, [this] {
                 if (onFinished)
@@ -61,7 +62,9 @@ public:
             m_boxes[i]->setValue(double(v[i]));
         }
     }
-    std::function<void(glm::vec3)> onChanged;
+    /// One component changed (@p axis 0..2): the others keep the light's own values (the boxes
+    /// round to two decimals and clamp to their range).
+    std::function<void(int axis, float value)> onChanged;
     std::function<void()> onFinished;
 
 private:
@@ -69,7 +72,6 @@ private:
 };
 
 namespace {
-
 
 QString typeLabel(LightType type) {
     switch (type) {
@@ -135,6 +137,9 @@ QDoubleSpinBox* makeSpin(const QString& name, double min, double max, double ste
     spin->setSingleStep(step);
     spin->setDecimals(decimals);
     spin->setToolTip(tip);
+    // Edits on Return, focus loss, arrows and wheel, not per keystroke: a refresh between
+    // keystrokes would rewrite the text being typed.
+    spin->setKeyboardTracking(false);
     return spin;
 }
 
@@ -273,23 +278,24 @@ void ScenePanel::buildEnvironmentGroup(QFormLayout* form) {
             [this](int index) { applyMeshChoice(m_controller, m_mesh, index, this); });
     connect(m_hdri, &QComboBox::activated, this,
             [this](int index) { applyHdriChoice(m_controller, m_hdri, index, this); });
-    const auto editEnv = [this](const QString& text) {
+    // Each box changes its own field only (the other keeps the scene's exact value).
+    connect(m_envIntensity, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (m_updating)
+            return;
         Environment env = m_controller->scene().environment;
-        env.intensity = float(m_envIntensity->value());
-        env.rotationDeg = float(m_envRotation->value());
-        m_controller->editEnvironment(env, text, m_gestureKey);
-    };
-    connect(m_envIntensity, &QDoubleSpinBox::valueChanged, this, [this, editEnv] {
-        if (!m_updating)
-            editEnv(tr("Environment intensity"));
+        env.intensity = float(v);
+        m_controller->editEnvironment(env, tr("Environment intensity"), m_envKey);
     });
-    connect(m_envRotation, &QDoubleSpinBox::valueChanged, this, [this, editEnv] {
-        if (!m_updating)
-            editEnv(tr("Rotate environment"));
+    connect(m_envRotation, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (m_updating)
+            return;
+        Environment env = m_controller->scene().environment;
+        env.rotationDeg = float(v);
+        m_controller->editEnvironment(env, tr("Rotate environment"), m_envKey);
     });
     for (QDoubleSpinBox* spin : {m_envIntensity, m_envRotation})
         connect(spin, &QDoubleSpinBox::editingFinished, this,
-                [this] { m_gestureKey = SetEnvironmentCommand::nextMergeKey(); });
+                [this] { m_envKey = SetEnvironmentCommand::nextMergeKey(); });
     connect(m_background, &QComboBox::activated, this, [this](int index) {
         editBackground(BackgroundMode(m_background->itemData(index).toInt()),
                        m_controller->scene().environment.backgroundColor);
@@ -299,7 +305,7 @@ void ScenePanel::buildEnvironmentGroup(QFormLayout* form) {
         if (auto color = pickLinearColor(this, env.backgroundColor, tr("Background colour")))
             editBackground(BackgroundMode::SolidColor, *color);
     });
-    m_gestureKey = SetEnvironmentCommand::nextMergeKey();
+    m_envKey = SetEnvironmentCommand::nextMergeKey();
 }
 
 void ScenePanel::buildLightEditor(QFormLayout* form) {
@@ -350,15 +356,24 @@ void ScenePanel::buildLightEditor(QFormLayout* form) {
 
     // Every field edits a copy of the selected light; one gesture (typing, arrows, a wheel
     // session) is one command.
-    const auto edit = [this](const QString& text, const std::function<void(Light&)>& change) {
+    // Spin-box gestures merge by m_lightKey; discrete edits (rename, type, shape, colour) are one
+    // command each (key 0).
+    const auto edit = [this](const QString& text, const std::function<void(Light&)>& change,
+                             int mergeKey = 0) {
         if (m_updating || selectedLight() < 0)
             return;
         Light light = m_controller->scene().lights[size_t(selectedLight())];
         change(light);
-        editSelected(light, text, m_gestureKey);
+        editSelected(light, text, mergeKey);
     };
+    const auto gesture = [this, edit](const QString& text,
+                                      const std::function<void(Light&)>& change) {
+        edit(text, change, m_lightKey);
+    };
+    const auto nextGesture = [this] { m_lightKey = SetLightsCommand::nextMergeKey(); };
     connect(m_name, &QLineEdit::editingFinished, this, [this, edit] {
         edit(tr("Rename light"), [this](Light& l) { l.name = m_name->text().toStdString(); });
+        m_name->setModified(false);
     });
     connect(m_type, &QComboBox::activated, this, [this, edit](int index) {
         edit(tr("Light type"),
@@ -375,35 +390,53 @@ void ScenePanel::buildLightEditor(QFormLayout* form) {
         if (auto color = pickLinearColor(this, old, tr("Light colour")))
             edit(tr("Light colour"), [color](Light& l) { l.color = *color; });
     });
-    const auto spinEdit = [this, edit](QDoubleSpinBox* spin, const QString& text,
-                                       float Light::*field) {
-        connect(spin, &QDoubleSpinBox::valueChanged, this, [edit, text, field](double v) {
-            edit(text, [field, v](Light& l) { l.*field = float(v); });
+    const auto spinEdit = [this, gesture, nextGesture](QDoubleSpinBox* spin, const QString& text,
+                                                       float Light::*field) {
+        connect(spin, &QDoubleSpinBox::valueChanged, this, [gesture, text, field](double v) {
+            gesture(text, [field, v](Light& l) { l.*field = float(v); });
         });
-        connect(spin, &QDoubleSpinBox::editingFinished, this,
-                [this] { m_gestureKey = SetLightsCommand::nextMergeKey(); });
+        connect(spin, &QDoubleSpinBox::editingFinished, this, nextGesture);
     };
     spinEdit(m_intensity, tr("Light intensity"), &Light::intensity);
     spinEdit(m_range, tr("Light range"), &Light::range);
-    spinEdit(m_inner, tr("Spot inner cone"), &Light::innerConeDeg);
-    spinEdit(m_outer, tr("Spot outer cone"), &Light::outerConeDeg);
-    connect(m_sizeX, &QDoubleSpinBox::valueChanged, this, [edit](double v) {
-        edit(tr("Area light size"), [v](Light& l) { l.size.x = float(v); });
+    // The cones stay ordered (the loader refuses inner > outer): moving one past the other
+    // pushes the other along.
+    connect(m_inner, &QDoubleSpinBox::valueChanged, this, [gesture](double v) {
+        gesture(tr("Spot inner cone"), [v](Light& l) {
+            l.innerConeDeg = float(v);
+            l.outerConeDeg = std::max(l.outerConeDeg, l.innerConeDeg);
+        });
     });
-    connect(m_sizeY, &QDoubleSpinBox::valueChanged, this, [edit](double v) {
-        edit(tr("Area light size"), [v](Light& l) { l.size.y = float(v); });
+    connect(m_outer, &QDoubleSpinBox::valueChanged, this, [gesture](double v) {
+        gesture(tr("Spot outer cone"), [v](Light& l) {
+            l.outerConeDeg = float(v);
+            l.innerConeDeg = std::min(l.innerConeDeg, l.outerConeDeg);
+        });
+    });
+    for (QDoubleSpinBox* spin : {m_inner, m_outer})
+        connect(spin, &QDoubleSpinBox::editingFinished, this, nextGesture);
+    connect(m_sizeX, &QDoubleSpinBox::valueChanged, this, [gesture](double v) {
+        gesture(tr("Area light size"), [v](Light& l) { l.size.x = float(v); });
+    });
+    connect(m_sizeY, &QDoubleSpinBox::valueChanged, this, [gesture](double v) {
+        gesture(tr("Area light size"), [v](Light& l) { l.size.y = float(v); });
     });
     for (QDoubleSpinBox* spin : {m_sizeX, m_sizeY})
-        connect(spin, &QDoubleSpinBox::editingFinished, this,
-                [this] { m_gestureKey = SetLightsCommand::nextMergeKey(); });
-    m_position->onChanged = [edit](glm::vec3 v) {
-        edit(tr("Move light"), [v](Light& l) { l.position = v; });
+        connect(spin, &QDoubleSpinBox::editingFinished, this, nextGesture);
+    m_position->onChanged = [gesture](int axis, float v) {
+        gesture(tr("Move light"), [axis, v](Light& l) { l.position[axis] = v; });
     };
-    m_direction->onChanged = [edit](glm::vec3 v) {
-        edit(tr("Aim light"), [v](Light& l) { l.direction = v; });
+    m_direction->onChanged = [this, gesture](int axis, float v) {
+        gesture(tr("Aim light"), [axis, v](Light& l) {
+            glm::vec3 d = l.direction;
+            d[axis] = v;
+            if (glm::dot(d, d) > 1e-12f) // a zero direction aims nowhere (the loader refuses it)
+                l.direction = d;
+        });
+        refreshLightEditor(); // a refused zero shows the kept direction again
     };
-    m_position->onFinished =
-        m_direction->onFinished = [this] { m_gestureKey = SetLightsCommand::nextMergeKey(); };
+    m_position->onFinished = m_direction->onFinished = nextGesture;
+    connect(m_lights, &QListWidget::currentRowChanged, this, nextGesture);
 }
 
 int ScenePanel::selectedLight() const {
@@ -473,11 +506,23 @@ bool ScenePanel::eventFilter(QObject* watched, QEvent* event) {
 }
 
 void ScenePanel::refresh() {
-    m_updating = true;
     const Scene& scene = m_controller->scene();
-    fillMeshCombo(m_mesh, scene);
-    fillHdriCombo(m_hdri, scene);
-    fillLightRigCombo(m_rig, scene);
+    // sceneChanged comes with every material edit too: refill only what changed.
+    const bool meshChanged = m_shownMesh != scene.mesh;
+    const bool environmentChanged = m_shownEnvironment != scene.environment;
+    const bool lightsChanged = m_shownLights != scene.lights;
+    if (!meshChanged && !environmentChanged && !lightsChanged)
+        return;
+    m_shownMesh = scene.mesh;
+    m_shownEnvironment = scene.environment;
+    m_shownLights = scene.lights;
+    m_updating = true;
+    if (meshChanged)
+        fillMeshCombo(m_mesh, scene);
+    if (environmentChanged)
+        fillHdriCombo(m_hdri, scene);
+    if (lightsChanged)
+        fillLightRigCombo(m_rig, scene);
     {
         const QSignalBlocker a(m_envIntensity), b(m_envRotation), c(m_background);
         m_envIntensity->setValue(double(scene.environment.intensity));
@@ -517,15 +562,19 @@ void ScenePanel::refreshLightEditor() {
     m_editor->setEnabled(index >= 0);
     m_duplicate->setEnabled(index >= 0);
     m_remove->setEnabled(index >= 0);
-    if (index < 0)
+    if (index < 0) {
+        m_shownLight = -1;
         return;
+    }
     const Light& light = m_controller->scene().lights[size_t(index)];
     m_updating = true;
     {
         const QSignalBlocker a(m_name), b(m_type), c(m_shape), d(m_intensity), e(m_range),
             f(m_inner), g(m_outer), h(m_sizeX), i(m_sizeY);
-        if (!m_name->hasFocus())
-            m_name->setText(QString::fromStdString(light.name));
+        // Keep what is being typed into the name of the light shown, never another light's.
+        if (index != m_shownLight || !m_name->isModified())
+            m_name->setText(QString::fromStdString(light.name)); // clears isModified()
+        m_shownLight = index;
         m_type->setCurrentIndex(m_type->findData(int(light.type)));
         m_shape->setCurrentIndex(m_shape->findData(int(light.shape)));
         m_intensity->setSuffix(intensityUnit(light.type));

@@ -8,6 +8,7 @@
 #include "core/scene.h"
 
 #include <QWidget>
+#include <optional>
 #include <vector>
 
 class QCheckBox;
@@ -51,7 +52,14 @@ private:
 
     DocumentController* m_controller;
     bool m_updating = false;
-    int m_gestureKey = 0; ///< merge key of the spin-box gesture in progress
+    int m_envKey = 0;      ///< merge key of the environment gesture in progress
+    int m_lightKey = 0;    ///< merge key of the light gesture in progress (new per selection)
+    int m_shownLight = -1; ///< the light the editor shows
+    /// What the combos last showed: they are refilled only when their part of the scene changes
+    /// (every material slider tick sends sceneChanged).
+    std::optional<MeshRef> m_shownMesh;
+    std::optional<Environment> m_shownEnvironment;
+    std::optional<std::vector<Light>> m_shownLights;
 
     // Mesh and environment.
     QComboBox* m_mesh;
