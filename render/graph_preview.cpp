@@ -1,6 +1,7 @@
 #include "render/graph_preview.h"
 
 #include "core/graph/graph_compiler.h"
+#include "core/image_ops.h"
 #include "core/texture_cache.h"
 #include "render/graph_texture.h"
 #include "render/shader_program.h"
@@ -47,7 +48,11 @@ struct GraphPreview::Impl {
         GLuint texture = 0;
         std::uint64_t generation = 0;
         int width = 0, height = 0;
+        bool used = false; ///< sampled by the current batch (the others are freed after it)
     };
+    /// A 64x64 thumbnail needs no more texels than this per side: a 4K map is uploaded at 256
+    /// (16 times fewer texels than the frame's own copy, mips included), not duplicated.
+    static constexpr int kMaxPreviewTextureSide = 256;
 
     int side = 64;
     GLuint colour = 0, fbo = 0, vao = 0, ubo = 0, fallback = 0;
@@ -121,8 +126,11 @@ struct GraphPreview::Impl {
         if (!tex.image || tex.image->empty())
             return fallback;
         CachedTexture& t = textures[b.file + '\n' + b.colorSpace];
+        t.used = true;
         if (!t.texture || t.generation != tex.generation) {
-            uploadGraphTexture(*tex.image, t.texture, t.width, t.height);
+            Image small = *tex.image;
+            fitToLimit(small, kMaxPreviewTextureSide, nullptr);
+            uploadGraphTexture(small, t.texture, t.width, t.height);
             t.generation = tex.generation;
         }
         return t.texture;
@@ -189,6 +197,8 @@ std::vector<Image> GraphPreview::render(const graph::Graph& graph,
     const graph::CompileOptions options = graphCompileOptions();
 
     std::vector<int> unitsUsed;
+    for (auto& [key, t] : d.textures)
+        t.used = false;
     for (size_t i = 0; i < requests.size(); ++i) {
         const graph::CompiledGraph c =
             graph::compileGraphPreview(graph, requests[i].node, requests[i].output, options);
@@ -216,6 +226,15 @@ std::vector<Image> GraphPreview::render(const graph::Graph& graph,
 
     for (int unit : unitsUsed)
         glBindTextureUnit(GLuint(unit), 0);
+    // A batch previews every node of the graph: files it did not sample left the graph.
+    for (auto it = d.textures.begin(); it != d.textures.end();) {
+        if (it->second.used) {
+            ++it;
+            continue;
+        }
+        glDeleteTextures(1, &it->second.texture);
+        it = d.textures.erase(it);
+    }
     glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(options.valuesBinding), 0);
     glBindVertexArray(GLuint(previousVao));
     glUseProgram(GLuint(previousProgram));
