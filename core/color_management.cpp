@@ -392,7 +392,11 @@ std::optional<bool> ColorManagement::isEncodingView(const std::string& display,
         m_impl->fail(error, m_impl->where("display \"" + d + "\" has no view \"" + v + "\""));
         return std::nullopt;
     }
-    return v == encodingView(d);
+    // Every view whose own view transform is the default one encodes, not only the first
+    // (encodingView()); a view without a view transform (Raw: a colour space) never does.
+    const std::string encoding = config->getDefaultViewTransformName();
+    return !encoding.empty() &&
+           encoding == config->getDisplayViewTransformName(d.c_str(), v.c_str());
 }
 
 std::optional<GpuDisplayTransform>

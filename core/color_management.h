@@ -134,8 +134,9 @@ public:
     /// first whose view transform is the config's default view transform (in the shipped config
     /// "Standard", whose "Un-tone-mapped" transform is a primaries matrix). "" when none.
     std::string encodingView(const std::string& display) const;
-    /// Whether @p view of @p display (empty names: the defaults) only encodes, i.e. is
-    /// encodingView(display); nullopt + message naming the config on an unknown display or view.
+    /// Whether @p view of @p display (empty names: the defaults) only encodes, i.e. its view
+    /// transform is the config's default view transform (any such view, not only the first one
+    /// encodingView() names); nullopt + message naming the config on an unknown display or view.
     /// The renderer applies its built-in tone-mapping curve before such a view and none before a
     /// tone-mapping one (ACES, AgX) or a view without a view transform (Raw).
     std::optional<bool> isEncodingView(const std::string& display, const std::string& view,
