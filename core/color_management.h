@@ -75,6 +75,12 @@ struct GpuDisplayTransform {
     std::string cacheId; ///< OCIO's cache id of the shader: same id, same program
     std::vector<GpuLutTexture> textures;
     std::vector<GpuUniform> uniforms;
+    /// gpuDisplayEncoding() only: set, with everything else empty, when the config has no
+    /// encoding view for the display (an OCIO v1 config, or v2 without default_view_transform).
+    /// One line naming the config file and the display; the caller encodes with the
+    /// hand-written IEC 61966-2-1 sRGB curve instead and should show this as a warning.
+    std::string fallbackWarning;
+    bool isFallback() const { return glsl.empty(); }
 };
 
 /// Options for gpuDisplayTransform().
@@ -167,8 +173,8 @@ public:
     /// The display encoding of @p display (empty: the default display) as OCIO's GLSL: the
     /// display's encodingView() with no exposure and no look, for display-linear Rec.709 values
     /// a built-in tone-mapping curve produced (sRGB: the piecewise IEC 61966-2-1 curve; Display
-    /// P3: the primaries matrix and that curve). nullopt + message on an unknown display or when
-    /// the display has no encoding view.
+    /// P3: the primaries matrix and that curve). nullopt + message on an unknown display; when
+    /// the display has no encoding view, an empty transform whose fallbackWarning says so.
     std::optional<GpuDisplayTransform>
     gpuDisplayEncoding(const std::string& display, std::string* error,
                        const GpuTransformOptions& options = {}) const;
