@@ -229,6 +229,23 @@ private slots:
         QVERIFY(!QFileInfo::exists(bad));
     }
 
+    /// --tonemap with a look (and the default, encoding-only view) blames the look, not the view;
+    /// with a tone-mapping view, the view.
+    void tonemapConflictNamesTheReason() {
+        QTemporaryDir dir;
+        Result r = runVelvet(
+            {"render", "-o", "x.png", "--tonemap", "aces", "--look", "ACES Blue Light Fix"},
+            dir.path());
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("--look (\"ACES Blue Light Fix\")"), qPrintable(r.err));
+        QVERIFY2(!r.err.contains("--view"), qPrintable(r.err));
+        r = runVelvet({"render", "-o", "x.png", "--tonemap", "aces", "--view", "AgX"}, dir.path());
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("--view (\"AgX\")") && !r.err.contains("--look"),
+                 qPrintable(r.err));
+        QVERIFY(QDir(dir.path()).isEmpty());
+    }
+
     /// A config without an encoding view (OCIO v1 has no view transforms; a v2 config may lack
     /// default_view_transform) still renders: the built-in curve is encoded with the hand-written
     /// sRGB curve, which equals the shipped config's OCIO encoding, and one warning names the
