@@ -152,6 +152,7 @@ int runPack(const std::vector<std::string>& argv) {
                                      flagList(maps));
     ChannelMaps inputs;
     bool any = false;
+    const MapFlag* first = nullptr; // the first map read, which the others must match in size
     for (const MapFlag& m : maps) {
         if (!args->has(m.flag))
             continue;
@@ -163,6 +164,20 @@ int runPack(const std::vector<std::string>& argv) {
         if (m.inverted)
             invert(image); // a smoothness file: roughness = 1 - smoothness
         any = true;
+        // Checked here, not left to packChannels, so that the message names the options the user
+        // gave (--smoothness, not the roughness channel it becomes) and their files.
+        if (!first) {
+            first = &m;
+        } else if (const Image& f = inputs.*first->member;
+                   f.width != image.width || f.height != image.height) {
+            auto size = [](const Image& i) {
+                return std::to_string(i.width) + "x" + std::to_string(i.height);
+            };
+            std::cerr << "velvet pack: all maps must have the same size: --" << first->flag << " "
+                      << args->value(first->flag) << " is " << size(f) << ", --" << m.flag << " "
+                      << args->value(m.flag) << " is " << size(image) << "\n";
+            return BadInput;
+        }
     }
     if (!any)
         return usage("pack", "give at least one map (" + flagList(maps) + ")");

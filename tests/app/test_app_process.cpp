@@ -239,6 +239,27 @@ private slots:
         }
     }
 
+    // Maps of different sizes: exit 2, nothing written, and the message names the options the
+    // user gave (HDRP's --smoothness, not the roughness channel it is stored as) and the files.
+    void packSizeMismatchNamesTheFlags() {
+        QTemporaryDir dir;
+        std::string error;
+        const QString metal = dir.filePath("metal.png"), smooth = dir.filePath("smooth.png");
+        QVERIFY(velvet::writeImage(metal.toStdString(), greyPattern(32, 32, 0),
+                                   velvet::PixelFormat::UInt8, &error));
+        QVERIFY(velvet::writeImage(smooth.toStdString(), greyPattern(16, 16, 0),
+                                   velvet::PixelFormat::UInt8, &error));
+        const QString out = dir.filePath("mask.png");
+        Result r = runVelvet({"pack", "--layout", "hdrp-mask", "--out", out, "--metallic", metal,
+                              "--smoothness", smooth});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("--metallic " + metal + " is 32x32") &&
+                     r.err.contains("--smoothness " + smooth + " is 16x16") &&
+                     !r.err.contains("roughness"),
+                 qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(out));
+    }
+
     // unpack is all or nothing: when one target cannot be written (here metallic.png, the last
     // gltf-mr map, is a folder) it exits 2 and leaves no map and no staging file behind.
     void unpackFailureWritesNothing() {
