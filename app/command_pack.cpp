@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 namespace velvet::cli {
 namespace {
@@ -151,6 +152,7 @@ int runPack(const std::vector<std::string>& argv) {
                                      flagList(maps));
     ChannelMaps inputs;
     bool any = false;
+    const MapFlag* first = nullptr; // the first map read, which the others must match in size
     for (const MapFlag& m : maps) {
         if (!args->has(m.flag))
             continue;
@@ -162,6 +164,20 @@ int runPack(const std::vector<std::string>& argv) {
         if (m.inverted)
             invert(image); // a smoothness file: roughness = 1 - smoothness
         any = true;
+        // Checked here, not left to packChannels, so that the message names the options the user
+        // gave (--smoothness, not the roughness channel it becomes) and their files.
+        if (!first) {
+            first = &m;
+        } else if (const Image& f = inputs.*first->member;
+                   f.width != image.width || f.height != image.height) {
+            auto size = [](const Image& i) {
+                return std::to_string(i.width) + "x" + std::to_string(i.height);
+            };
+            std::cerr << "velvet pack: all maps must have the same size: --" << first->flag << " "
+                      << args->value(first->flag) << " is " << size(f) << ", --" << m.flag << " "
+                      << args->value(m.flag) << " is " << size(image) << "\n";
+            return BadInput;
+        }
     }
     if (!any)
         return usage("pack", "give at least one map (" + flagList(maps) + ")");
@@ -193,13 +209,14 @@ int runUnpack(const std::vector<std::string>& argv) {
     if (!args)
         return usage("unpack", error);
     if (args->has("help")) {
-        std::cout << "Usage: velvet unpack --layout ID IN --out-dir DIR [--format EXT]\n"
-                     "Splits a packed texture into one grey image per map the layout holds,\n"
-                     "named after the map (DIR/occlusion.png, DIR/roughness.png, …; HDRP's\n"
-                     "smoothness channel as DIR/smoothness.png). Files are written atomically and\n"
-                     "only inside DIR.\n\n"
-                  << optionsHelp(options) << "\n"
-                  << layoutsHelp();
+        std::cout
+            << "Usage: velvet unpack --layout ID IN --out-dir DIR [--format EXT]\n"
+               "Splits a packed texture into one grey image per map the layout holds,\n"
+               "named after the map (DIR/occlusion.png, DIR/roughness.png, …; HDRP's\n"
+               "smoothness channel as DIR/smoothness.png). Files are written only inside DIR,\n"
+               "all or nothing: when one cannot be written, none is left behind.\n\n"
+            << optionsHelp(options) << "\n"
+            << layoutsHelp();
         return Ok;
     }
     if (args->positional.size() != 1)
@@ -228,24 +245,65 @@ int runUnpack(const std::vector<std::string>& argv) {
     }
     const std::filesystem::path dir = args->value("out-dir");
     std::error_code ec;
+    const bool dirExisted = std::filesystem::exists(dir, ec);
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir)) {
         std::cerr << "velvet unpack: " << dir.string() << ": cannot create the folder"
                   << (ec ? " (" + ec.message() + ")" : "") << "\n";
         return BadInput;
     }
-    // The names are fixed map names, never taken from the input, so every file lands in DIR.
-    for (const MapFlag& m : layoutMaps(*layout)) {
-        Image map = maps.*m.member;
-        if (m.inverted)
-            invert(map); // back to the file's smoothness
-        const std::filesystem::path file = dir / (m.flag + "." + format);
-        if (!writeImage(file, map, formatFor(file, bits), &error)) {
-            std::cerr << "velvet unpack: " << error << "\n";
+    // All or nothing ("exit 2, nothing written"): every target is checked before anything is
+    // written, every map is written under a hidden staging name first, and only when all are
+    // written are they renamed into place. Any failure removes what this run wrote. The names
+    // are fixed map names, never taken from the input, so every file lands in DIR.
+    struct Target {
+        std::filesystem::path file, staged;
+        bool existed = false;
+        bool placed = false;
+    };
+    std::vector<Target> targets;
+    const std::vector<MapFlag> held = layoutMaps(*layout);
+    for (const MapFlag& m : held) {
+        Target t;
+        t.file = dir / (m.flag + "." + format);
+        t.staged = dir / ("." + m.flag + ".unpacking." + format);
+        const auto status = std::filesystem::symlink_status(t.file, ec);
+        t.existed = std::filesystem::exists(status);
+        if (t.existed && !std::filesystem::is_regular_file(status)) {
+            std::cerr << "velvet unpack: " << t.file.string()
+                      << ": exists and is not a regular file; nothing was written\n";
+            if (!dirExisted)
+                std::filesystem::remove(dir, ec);
             return BadInput;
         }
-        std::cout << "wrote " << file.string() << "\n";
+        targets.push_back(t);
     }
+    auto undo = [&](const std::string& message) {
+        for (const Target& t : targets) {
+            std::filesystem::remove(t.staged, ec);
+            if (t.placed && !t.existed)
+                std::filesystem::remove(t.file, ec);
+        }
+        if (!dirExisted)
+            std::filesystem::remove(dir, ec); // only when empty
+        std::cerr << "velvet unpack: " << message << "\n";
+        return BadInput;
+    };
+    for (size_t i = 0; i < held.size(); ++i) {
+        Image map = maps.*held[i].member;
+        if (held[i].inverted)
+            invert(map); // back to the file's smoothness
+        if (!writeImage(targets[i].staged, map, formatFor(targets[i].file, bits), &error))
+            return undo(error + "; nothing was written");
+    }
+    for (Target& t : targets) {
+        std::filesystem::rename(t.staged, t.file, ec);
+        if (ec)
+            return undo(t.file.string() + ": " + ec.message() + "; the other maps were removed");
+        t.placed = true;
+    }
+    for (const Target& t : targets)
+        std::cout << "wrote " << t.file.string() << "\n";
     return Ok;
 }
 

@@ -199,14 +199,21 @@ int resolveColorManagement(const Arguments& args, render::FrameSettings& setting
                          "; valid looks: " + quotedList(cm->looks()));
     }
     // A tone-mapping view (ACES, AgX, Raw) or a look is OCIO's whole transform; an encoding-only
-    // view (Standard) follows the built-in curve.
-    if (args.has("tonemap") &&
-        (!looks.empty() || !cm->isEncodingView(display, view, nullptr).value_or(false)))
-        return usage("--tonemap picks the built-in tone mapper; it cannot be combined with a "
-                     "tone-mapping --view (\"" +
-                     view +
-                     "\") or --look, which OpenColorIO "
-                     "applies instead");
+    // view (Standard) follows the built-in curve. The message names what the user gave that
+    // conflicts (an implicit default view is no reason when it only encodes).
+    if (args.has("tonemap")) {
+        const bool toneMappingView = !cm->isEncodingView(display, view, nullptr).value_or(false);
+        std::string reasons;
+        if (toneMappingView)
+            reasons = args.has("view") ? "a tone-mapping --view (\"" + view + "\")"
+                                       : "display \"" + display + "\"'s default view \"" + view +
+                                             "\", which tone-maps,";
+        if (!looks.empty())
+            reasons += std::string(reasons.empty() ? "" : " and ") + "a --look (\"" + looks + "\")";
+        if (!reasons.empty())
+            return usage("--tonemap picks the built-in tone mapper; it cannot be combined with " +
+                         reasons + ", which OpenColorIO applies instead");
+    }
     settings.display = display;
     settings.displayView = view;
     settings.look = looks;

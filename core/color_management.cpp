@@ -392,7 +392,11 @@ std::optional<bool> ColorManagement::isEncodingView(const std::string& display,
         m_impl->fail(error, m_impl->where("display \"" + d + "\" has no view \"" + v + "\""));
         return std::nullopt;
     }
-    return v == encodingView(d);
+    // Every view whose own view transform is the default one encodes, not only the first
+    // (encodingView()); a view without a view transform (Raw: a colour space) never does.
+    const std::string encoding = config->getDefaultViewTransformName();
+    return !encoding.empty() &&
+           encoding == config->getDisplayViewTransformName(d.c_str(), v.c_str());
 }
 
 std::optional<GpuDisplayTransform>
@@ -402,10 +406,19 @@ ColorManagement::gpuDisplayEncoding(const std::string& display, std::string* err
     if (view.empty()) {
         if (!isEncodingView(display, {}, error))
             return std::nullopt; // unknown display (or no config): the message is set
-        m_impl->fail(error, m_impl->where("display \"" + display +
-                                          "\" has no view using the default view transform \"" +
-                                          m_impl->config->getDefaultViewTransformName() + "\""));
-        return std::nullopt;
+        // Not an error: a config without an encoding view (OCIO v1 has no view transforms at
+        // all) still renders, encoded by the caller's own sRGB curve.
+        const auto& config = m_impl->config;
+        const std::string d = display.empty() ? config->getDefaultDisplay() : display;
+        const std::string transform = config->getDefaultViewTransformName();
+        GpuDisplayTransform fallback;
+        fallback.fallbackWarning = m_impl->where(
+            "display \"" + d + "\" has no view using the default view transform" +
+            (transform.empty() ? " (the config names none: an OCIO v1 config, or v2 without "
+                                 "default_view_transform)"
+                               : " \"" + transform + "\"") +
+            "; the built-in curves are encoded with the hand-written sRGB curve instead of OCIO");
+        return fallback;
     }
     auto processor = m_impl->displayProcessor({display, view, {}, 0.0f}, false, error);
     if (!processor)

@@ -75,6 +75,12 @@ struct GpuDisplayTransform {
     std::string cacheId; ///< OCIO's cache id of the shader: same id, same program
     std::vector<GpuLutTexture> textures;
     std::vector<GpuUniform> uniforms;
+    /// gpuDisplayEncoding() only: set, with everything else empty, when the config has no
+    /// encoding view for the display (an OCIO v1 config, or v2 without default_view_transform).
+    /// One line naming the config file and the display; the caller encodes with the
+    /// hand-written IEC 61966-2-1 sRGB curve instead and should show this as a warning.
+    std::string fallbackWarning;
+    bool isFallback() const { return glsl.empty(); }
 };
 
 /// Options for gpuDisplayTransform().
@@ -134,8 +140,9 @@ public:
     /// first whose view transform is the config's default view transform (in the shipped config
     /// "Standard", whose "Un-tone-mapped" transform is a primaries matrix). "" when none.
     std::string encodingView(const std::string& display) const;
-    /// Whether @p view of @p display (empty names: the defaults) only encodes, i.e. is
-    /// encodingView(display); nullopt + message naming the config on an unknown display or view.
+    /// Whether @p view of @p display (empty names: the defaults) only encodes, i.e. its view
+    /// transform is the config's default view transform (any such view, not only the first one
+    /// encodingView() names); nullopt + message naming the config on an unknown display or view.
     /// The renderer applies its built-in tone-mapping curve before such a view and none before a
     /// tone-mapping one (ACES, AgX) or a view without a view transform (Raw).
     std::optional<bool> isEncodingView(const std::string& display, const std::string& view,
@@ -166,8 +173,8 @@ public:
     /// The display encoding of @p display (empty: the default display) as OCIO's GLSL: the
     /// display's encodingView() with no exposure and no look, for display-linear Rec.709 values
     /// a built-in tone-mapping curve produced (sRGB: the piecewise IEC 61966-2-1 curve; Display
-    /// P3: the primaries matrix and that curve). nullopt + message on an unknown display or when
-    /// the display has no encoding view.
+    /// P3: the primaries matrix and that curve). nullopt + message on an unknown display; when
+    /// the display has no encoding view, an empty transform whose fallbackWarning says so.
     std::optional<GpuDisplayTransform>
     gpuDisplayEncoding(const std::string& display, std::string* error,
                        const GpuTransformOptions& options = {}) const;

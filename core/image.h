@@ -33,8 +33,10 @@ struct Image {
 /// VELVET_MAX_IMAGE_SIDE (pixels, 1 to 1048576) and VELVET_MAX_IMAGE_BYTES (bytes, with an
 /// optional K, M or G suffix meaning KiB, MiB, GiB; 1 KiB to 1 TiB) replace them for every read
 /// that does not pass limits of its own. They are read once, on first use
-/// (configuredImageReadLimits); a bad value is ignored (the built-in limit stays) and described by
-/// imageLimitsProblem(), which the application prints at startup. docs/file-formats.md.
+/// (configuredImageReadLimits). Here a bad value leaves that variable's built-in limit in effect
+/// and is described by imageLimitsProblem(); the velvet application (app/main.cpp) checks that
+/// at startup and exits with code 2 and the message, so it never runs with a limit the user did
+/// not mean. docs/file-formats.md.
 /// @{
 inline constexpr int kDefaultMaxImageSide = 16384;
 inline constexpr std::uint64_t kDefaultMaxImageBytes = std::uint64_t(1) << 30;

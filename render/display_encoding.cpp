@@ -2,6 +2,7 @@
 
 #include "render/ocio_gpu.h"
 
+#include <cstdio>
 #include <epoxy/gl.h>
 
 namespace velvet::render {
@@ -26,6 +27,12 @@ DisplayEncoding::DisplayEncoding() = default;
 DisplayEncoding::~DisplayEncoding() = default;
 
 bool DisplayEncoding::select(const GpuDisplayTransform& encoding, std::string* error) {
+    if (encoding.isFallback()) { // the config has no encoding view for the display
+        if (!encoding.fallbackWarning.empty() && m_warned.insert(encoding.fallbackWarning).second)
+            std::fprintf(stderr, "velvet: warning: %s\n", encoding.fallbackWarning.c_str());
+        selectFallback();
+        return true;
+    }
     if (selectCached(encoding.cacheId))
         return true;
     GLint maxUnits = 0;
@@ -53,7 +60,11 @@ bool DisplayEncoding::select(const GpuDisplayTransform& encoding, std::string* e
 }
 
 bool DisplayEncoding::selectCached(const std::string& cacheId) {
-    if (cacheId.empty() || !m_entries.count(cacheId))
+    if (cacheId.empty()) {
+        selectFallback();
+        return true;
+    }
+    if (!m_entries.count(cacheId))
         return false;
     m_current = cacheId;
     return true;

@@ -8,14 +8,17 @@
 /// uploaded once); a program built for an id is valid for as long as this object lives.
 ///
 /// When no OCIO config can be loaded at all, selectFallback() gives the hand-written
-/// IEC 61966-2-1 sRGB OETF of common_math.glsl (cache id ""). Needs a current OpenGL 4.5 context
-/// from construction to destruction.
+/// IEC 61966-2-1 sRGB OETF of common_math.glsl (cache id ""); select() takes it too for the empty
+/// transform gpuDisplayEncoding() returns when the config has no encoding view (OCIO v1), and
+/// prints that transform's warning once. Needs a current OpenGL 4.5 context from construction to
+/// destruction.
 
 #include "core/color_management.h"
 #include "render/shader_program.h"
 
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace velvet::render {
@@ -33,9 +36,12 @@ public:
     DisplayEncoding& operator=(const DisplayEncoding&) = delete;
 
     /// Makes @p encoding current, uploading its LUTs the first time its cache id is seen. False +
-    /// message when the context lacks texture units for its LUTs (the selection stays).
+    /// message when the context lacks texture units for its LUTs (the selection stays). An empty
+    /// transform (GpuDisplayTransform::isFallback) selects the fallback; its fallbackWarning is
+    /// printed to stderr the first time this object sees it.
     bool select(const GpuDisplayTransform& encoding, std::string* error);
-    /// Switches to an encoding seen before; false when @p cacheId is unknown.
+    /// Switches to an encoding seen before (the fallback's id "" always); false when @p cacheId
+    /// is unknown.
     bool selectCached(const std::string& cacheId);
     /// The hand-written sRGB OETF (no OCIO config).
     void selectFallback();
@@ -56,6 +62,7 @@ private:
     struct Entry;
     std::map<std::string, std::unique_ptr<Entry>> m_entries;
     std::string m_current;
+    std::set<std::string> m_warned; ///< fallback warnings printed already
 };
 
 } // namespace velvet::render

@@ -229,6 +229,92 @@ private slots:
         QVERIFY(!QFileInfo::exists(bad));
     }
 
+    /// --tonemap with a look (and the default, encoding-only view) blames the look, not the view;
+    /// with a tone-mapping view, the view.
+    void tonemapConflictNamesTheReason() {
+        QTemporaryDir dir;
+        Result r = runVelvet(
+            {"render", "-o", "x.png", "--tonemap", "aces", "--look", "ACES Blue Light Fix"},
+            dir.path());
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("--look (\"ACES Blue Light Fix\")"), qPrintable(r.err));
+        QVERIFY2(!r.err.contains("--view"), qPrintable(r.err));
+        r = runVelvet({"render", "-o", "x.png", "--tonemap", "aces", "--view", "AgX"}, dir.path());
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("--view (\"AgX\")") && !r.err.contains("--look"),
+                 qPrintable(r.err));
+        QVERIFY(QDir(dir.path()).isEmpty());
+    }
+
+    /// A config without an encoding view (OCIO v1 has no view transforms; a v2 config may lack
+    /// default_view_transform) still renders: the built-in curve is encoded with the hand-written
+    /// sRGB curve, which equals the shipped config's OCIO encoding, and one warning names the
+    /// config file and the resolved default display.
+    void renderWithConfigWithoutEncodingView_data() {
+        QTest::addColumn<QString>("config");
+        QTest::newRow("OCIO v1") << R"(ocio_profile_version: 1
+roles:
+  default: linear
+  scene_linear: linear
+displays:
+  Monitor:
+    - !<View> {name: Gamma, colorspace: gamma}
+colorspaces:
+  - !<ColorSpace>
+    name: linear
+  - !<ColorSpace>
+    name: gamma
+    from_reference: !<ExponentTransform> {value: [0.4545, 0.4545, 0.4545, 1]}
+)";
+        QTest::newRow("v2 without default_view_transform") << R"(ocio_profile_version: 2
+roles:
+  default: linear
+  scene_linear: linear
+  data: linear
+displays:
+  Monitor:
+    - !<View> {name: Gamma, view_transform: Curve, display_colorspace: screen}
+view_transforms:
+  - !<ViewTransform>
+    name: Curve
+    from_scene_reference: !<ExponentTransform> {value: [0.4545, 0.4545, 0.4545, 1]}
+display_colorspaces:
+  - !<ColorSpace>
+    name: screen
+colorspaces:
+  - !<ColorSpace>
+    name: linear
+)";
+    }
+    void renderWithConfigWithoutEncodingView() {
+        QFETCH(QString, config);
+        QTemporaryDir dir;
+        const QString configPath = dir.filePath("no-encoding-view.ocio");
+        QFile file(configPath);
+        QVERIFY(file.open(QIODevice::WriteOnly));
+        file.write(config.toUtf8());
+        file.close();
+
+        const QString reference = dir.filePath("shipped.png");
+        Result r = runVelvet({"render", "-o", reference, "--size", "32x32"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+
+        const QString out = dir.filePath("fallback.png");
+        velvet::test::RunOptions options;
+        options.extraEnv.insert("OCIO", configPath);
+        r = velvet::test::runVelvet({"render", "-o", out, "--size", "32x32"}, options);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(r.err.count("warning"), 1);
+        QVERIFY2(r.err.contains(configPath) && r.err.contains("\"Monitor\"") &&
+                     r.err.contains("sRGB curve"),
+                 qPrintable(r.err));
+        velvet::Image expected, image;
+        std::string error;
+        QVERIFY2(velvet::readImage(reference.toStdString(), expected, &error), error.c_str());
+        QVERIFY2(velvet::readImage(out.toStdString(), image, &error), error.c_str());
+        QVERIFY(maxDifference(image, expected) <= 1.5f / 255.0f);
+    }
+
     /// A preset renders in the default scene; EXR output is linear half float.
     void renderPresetExr() {
         QTemporaryDir dir;

@@ -239,6 +239,54 @@ private slots:
         }
     }
 
+    // Maps of different sizes: exit 2, nothing written, and the message names the options the
+    // user gave (HDRP's --smoothness, not the roughness channel it is stored as) and the files.
+    void packSizeMismatchNamesTheFlags() {
+        QTemporaryDir dir;
+        std::string error;
+        const QString metal = dir.filePath("metal.png"), smooth = dir.filePath("smooth.png");
+        QVERIFY(velvet::writeImage(metal.toStdString(), greyPattern(32, 32, 0),
+                                   velvet::PixelFormat::UInt8, &error));
+        QVERIFY(velvet::writeImage(smooth.toStdString(), greyPattern(16, 16, 0),
+                                   velvet::PixelFormat::UInt8, &error));
+        const QString out = dir.filePath("mask.png");
+        Result r = runVelvet({"pack", "--layout", "hdrp-mask", "--out", out, "--metallic", metal,
+                              "--smoothness", smooth});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("--metallic " + metal + " is 32x32") &&
+                     r.err.contains("--smoothness " + smooth + " is 16x16") &&
+                     !r.err.contains("roughness"),
+                 qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(out));
+    }
+
+    // unpack is all or nothing: when one target cannot be written (here metallic.png, the last
+    // gltf-mr map, is a folder) it exits 2 and leaves no map and no staging file behind.
+    void unpackFailureWritesNothing() {
+        QTemporaryDir dir;
+        std::string error;
+        const QString rough = dir.filePath("rough.png");
+        QVERIFY(velvet::writeImage(rough.toStdString(), greyPattern(8, 8, 0),
+                                   velvet::PixelFormat::UInt8, &error));
+        const QString packed = dir.filePath("packed.png");
+        Result r =
+            runVelvet({"pack", "--layout", "gltf-mr", "--out", packed, "--roughness", rough});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QString out = dir.filePath("out");
+        QVERIFY(QDir().mkpath(out + "/metallic.png"));
+        r = runVelvet({"unpack", "--layout", "gltf-mr", packed, "--out-dir", out});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("metallic.png"), qPrintable(r.err));
+        QCOMPARE(QDir(out).entryList(QDir::Files | QDir::Hidden | QDir::System), QStringList{});
+        QVERIFY(QFileInfo(out + "/metallic.png").isDir());
+        // The same command succeeds once the folder is gone, and then holds exactly the maps.
+        QVERIFY(QDir(out + "/metallic.png").removeRecursively());
+        r = runVelvet({"unpack", "--layout", "gltf-mr", packed, "--out-dir", out});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(QDir(out).entryList(QDir::Files | QDir::Hidden, QDir::Name),
+                 (QStringList{"metallic.png", "occlusion.png", "roughness.png"}));
+    }
+
     // VELVET_MAX_IMAGE_SIDE / _BYTES: a bad value stops the process with exit 2 and names the
     // variable; a valid one applies (a 20-pixel-wide map over a limit of 16 is refused).
     void imageLimitsFromEnvironment() {

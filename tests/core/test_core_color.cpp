@@ -281,6 +281,52 @@ colorspaces:
         QVERIFY(ColorManagement::defaultConfigPath().string().ends_with("ocio/config.ocio"));
     }
 
+    void everyViewWithTheDefaultViewTransformEncodes() {
+        // Two views share the default view transform; encodingView() names the first, but the
+        // second encodes too (the renderer's built-in curve runs before it). "Film" has another
+        // view transform and "Raw" none: both are OCIO's alone.
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        const QString path = dir.filePath("two-encoding-views.ocio");
+        writeFile(path, R"(ocio_profile_version: 2
+roles:
+  default: Linear
+  scene_linear: Linear
+  data: Linear
+displays:
+  Screen:
+    - !<View> {name: Standard, view_transform: Plain, display_colorspace: Screen Space}
+    - !<View> {name: Standard Copy, view_transform: Plain, display_colorspace: Screen Space}
+    - !<View> {name: Film, view_transform: Filmic, display_colorspace: Screen Space}
+    - !<View> {name: Raw, colorspace: Linear}
+default_view_transform: Plain
+view_transforms:
+  - !<ViewTransform>
+    name: Plain
+    from_scene_reference: !<MatrixTransform> {}
+  - !<ViewTransform>
+    name: Filmic
+    from_scene_reference: !<ExponentTransform> {value: [0.5, 0.5, 0.5, 1]}
+display_colorspaces:
+  - !<ColorSpace>
+    name: Screen Space
+colorspaces:
+  - !<ColorSpace>
+    name: Linear
+)");
+        ColorManagement cm;
+        std::string error;
+        QVERIFY2(cm.loadFile(path.toStdString(), &error), error.c_str());
+        QCOMPARE(cm.encodingView("Screen"), std::string("Standard"));
+        QCOMPARE(cm.isEncodingView("Screen", "Standard", &error), std::optional<bool>(true));
+        QCOMPARE(cm.isEncodingView("Screen", "Standard Copy", &error), std::optional<bool>(true));
+        QCOMPARE(cm.isEncodingView("Screen", "Film", &error), std::optional<bool>(false));
+        QCOMPARE(cm.isEncodingView("Screen", "Raw", &error), std::optional<bool>(false));
+        QCOMPARE(cm.isEncodingView("", "", &error), std::optional<bool>(true)); // the defaults
+        QCOMPARE(cm.isEncodingView("Screen", "Nope", &error), std::optional<bool>());
+        QVERIFY2(error.find("Nope") != std::string::npos, error.c_str());
+    }
+
     void brokenConfigNamesTheFile() {
         QTemporaryDir dir;
         QVERIFY(dir.isValid());
