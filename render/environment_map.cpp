@@ -6,11 +6,24 @@
 #include <cmath>
 #include <cstdio>
 #include <epoxy/gl.h>
+#include <filesystem>
+#include <string>
 
 namespace velvet::render {
 namespace {
 
 constexpr size_t kMaxEntries = 4;
+
+/// The file's modification time and size: part of an HDRI's cache key, so a file edited in another
+/// program is read again, and, its key being new, prefiltered again by the IBL baker.
+std::string fileStamp(const std::string& path) {
+    std::error_code ec;
+    const auto time = std::filesystem::last_write_time(path, ec);
+    if (ec)
+        return "missing";
+    const auto size = std::filesystem::file_size(path, ec);
+    return std::to_string(time.time_since_epoch().count()) + ":" + std::to_string(ec ? 0 : size);
+}
 constexpr int kShWidth = 128; ///< SH9 is projected from a copy this wide (box-filtered)
 
 /// Box-filtered copy at most @p maxWidth wide (integer factor), RGB.
@@ -87,7 +100,8 @@ EnvironmentCache::~EnvironmentCache() {
 }
 
 const GpuEnvironment& EnvironmentCache::get(const Environment& env, Problems* problems) {
-    const std::string key = env.hdri.empty() ? uniformKey(env.color) : env.hdri;
+    const std::string key =
+        env.hdri.empty() ? uniformKey(env.color) : env.hdri + "\n" + fileStamp(env.hdri);
     auto it = std::find_if(m_entries.begin(), m_entries.end(),
                            [&](const GpuEnvironment& e) { return e.key == key; });
     if (it == m_entries.end()) {

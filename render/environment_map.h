@@ -14,7 +14,7 @@
 namespace velvet::render {
 
 struct GpuEnvironment {
-    std::string key; ///< HDRI path, or "uniform:r,g,b"
+    std::string key; ///< HDRI path + '\n' + its modification stamp, or "uniform:r,g,b"
     unsigned texture = 0;
     int width = 0;
     int levels = 1;
@@ -33,8 +33,9 @@ public:
     EnvironmentCache(const EnvironmentCache&) = delete;
     EnvironmentCache& operator=(const EnvironmentCache&) = delete;
 
-    /// The environment for @p env (loading it if needed). A file that cannot be read gives a
-    /// uniform grey fallback and a warning in @p problems naming the file.
+    /// The environment for @p env (loading it if needed, and again when the file's modification
+    /// time or size changed). A file that cannot be read gives a uniform grey fallback and a
+    /// warning in @p problems naming the file.
     const GpuEnvironment& get(const Environment& env, Problems* problems);
 
     /// Radiance used when an HDRI cannot be read.

@@ -908,8 +908,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     ShaderProgram* tonemap = d.tonemapProgram(error);
     if (!tonemap)
         return false;
-    if (!d.environment)
-        d.environment = &d.environments.get(d.scene.environment, nullptr);
+    // Every frame (a stat of the HDRI): an HDRI edited on disk is read and prefiltered again.
+    d.environment = &d.environments.get(d.scene.environment, nullptr);
     // Environment prefiltering: a few slices per frame (render/ibl_bake.h).
     d.ibl.request(*d.environment);
     {

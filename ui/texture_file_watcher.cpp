@@ -32,7 +32,10 @@ void TextureFileWatcher::setScene(const Scene& scene) {
         if (!ref.empty())
             files.push_back(QString::fromStdString(ref.file));
     }
-    // Image-texture nodes of the material graph (the renderer polls their files too).
+    // The HDRI (the renderer stats it every frame) and the image-texture nodes of the material
+    // graph (the renderer polls their files too).
+    if (!scene.environment.hdri.empty())
+        files.push_back(QString::fromStdString(scene.environment.hdri));
     if (const graph::Graph* g = scene.material.graph.get())
         for (const auto& [id, node] : g->nodes()) {
             if (!node.type || !node.type->samplesTexture)

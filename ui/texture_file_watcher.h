@@ -24,8 +24,8 @@ public:
 
     explicit TextureFileWatcher(QObject* parent = nullptr);
 
-    /// Watches the files @p scene's material texture slots and its graph's image-texture nodes
-    /// name (the timer runs only when there is at least one).
+    /// Watches the files @p scene's material texture slots, its graph's image-texture nodes and
+    /// its HDRI name (the timer runs only when there is at least one).
     void setScene(const Scene& scene);
     /// The files watched now (tests).
     QStringList files() const;

@@ -221,6 +221,26 @@ private slots:
                  qPrintable(QStringLiteral("%1 %2 %3").arg(view.x).arg(view.y).arg(view.z)));
     }
 
+    // An HDRI edited in another program is read again at the next frame (its cache key holds the
+    // file's modification stamp) and shows behind the sphere without a new scene.
+    void editedHdriIsReadAgain() {
+        const fs::path hdri = path("edited.exr");
+        std::string error;
+        QVERIFY2(writeImage(hdri, flat(8, 4, glm::vec4(0.25f, 0.25f, 0.25f, 1.0f)),
+                            PixelFormat::Half, &error),
+                 error.c_str());
+        Scene scene = furnace();
+        scene.environment.hdri = hdri.string();
+        const float before = render(&scene).rgba(1, 1).x; // a corner: the background
+        QVERIFY2(std::abs(before - 0.25f) < 0.01f, qPrintable(QString::number(before)));
+        // Another size, so the stamp differs even where the clock is coarse.
+        QVERIFY2(writeImage(hdri, flat(16, 8, glm::vec4(0.75f, 0.75f, 0.75f, 1.0f)),
+                            PixelFormat::Half, &error),
+                 error.c_str());
+        const float after = render(nullptr).rgba(1, 1).x; // same scene, next frame
+        QVERIFY2(std::abs(after - 0.75f) < 0.01f, qPrintable(QString::number(after)));
+    }
+
     // A flat normal map (0.5, 0.5, 1) leaves the lit image as without one (8-bit 128 is 0.502,
     // a tilt of 0.3 degrees); a tilted map does change it.
     void flatNormalMapChangesNothing() {

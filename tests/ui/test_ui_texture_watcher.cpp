@@ -1,6 +1,7 @@
-// ui/texture_file_watcher (issue 6, live reload): the files of the material's texture slots and
-// of its graph's image-texture nodes are watched, only while there are some, and a file rewritten
-// by another program (here: by this test, to another size) is reported within a few polls.
+// ui/texture_file_watcher (issue 6, live reload): the files of the material's texture slots, of
+// its graph's image-texture nodes and the HDRI are watched, only while there are some, and a file
+// rewritten by another program (here: by this test, to another size) is reported within a few
+// polls.
 #include "core/graph/graph.h"
 #include "core/image.h"
 #include "ui/texture_file_watcher.h"
@@ -64,6 +65,17 @@ private slots:
         QTRY_VERIFY_WITH_TIMEOUT(changed.count() >= 1, 5000);
         changed.clear();
         QVERIFY(writeFlat(slotFile, 16, 0.25f));
+        QTRY_VERIFY_WITH_TIMEOUT(changed.count() >= 1, 5000);
+
+        // The HDRI too (the renderer reads an edited one again at the next frame).
+        const QString hdri = dir.filePath(QStringLiteral("sky.png"));
+        QVERIFY(writeFlat(hdri, 8, 0.5f));
+        Scene lit;
+        lit.environment.hdri = hdri.toStdString();
+        watcher.setScene(lit);
+        QCOMPARE(watcher.files(), QStringList{hdri});
+        changed.clear();
+        QVERIFY(writeFlat(hdri, 16, 0.25f));
         QTRY_VERIFY_WITH_TIMEOUT(changed.count() >= 1, 5000);
 
         watcher.setScene(Scene());
