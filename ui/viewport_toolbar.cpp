@@ -304,20 +304,13 @@ SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
 
 void SceneToolbar::refresh() {
     const Scene& scene = m_controller->scene();
-    // sceneChanged comes with every material edit too: refill only what changed.
-    if (m_shownMesh == scene.mesh && m_shownEnvironment == scene.environment &&
-        m_shownLights == scene.lights)
+    const ShownSceneParts::Changes changed = m_shown.update(scene);
+    if (!changed.any())
         return;
-    const bool meshChanged = m_shownMesh != scene.mesh;
-    const bool environmentChanged = m_shownEnvironment != scene.environment;
-    const bool lightsChanged = m_shownLights != scene.lights;
-    m_shownMesh = scene.mesh;
-    m_shownEnvironment = scene.environment;
-    m_shownLights = scene.lights;
     m_updating = true;
-    if (meshChanged)
+    if (changed.mesh)
         fillMeshCombo(m_mesh, scene);
-    if (environmentChanged)
+    if (changed.environment)
         fillHdriCombo(m_hdri, scene);
     {
         const QSignalBlocker block(m_intensity);
@@ -330,7 +323,7 @@ void SceneToolbar::refresh() {
             degrees += 360.0f;
         m_rotation->setValue(int(std::lround(degrees)));
     }
-    if (lightsChanged)
+    if (changed.lights)
         fillLightRigCombo(m_lightRig, scene);
     m_updating = false;
 }

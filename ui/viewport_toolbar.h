@@ -12,6 +12,7 @@
 
 #include "render/renderer.h"
 #include "ui/color_picking.h"
+#include "ui/scene/scene_choosers.h"
 
 #include <QToolBar>
 #include <memory>
@@ -98,10 +99,7 @@ private:
     QDoubleSpinBox* m_intensity;
     QSlider* m_rotation;
     QComboBox* m_lightRig;
-    /// What the combos last showed (refilled only when their part of the scene changes).
-    std::optional<MeshRef> m_shownMesh;
-    std::optional<Environment> m_shownEnvironment;
-    std::optional<std::vector<Light>> m_shownLights;
+    ShownSceneParts m_shown; ///< combos are refilled only when their part of the scene changed
     int m_intensityKey = 0;
     int m_rotationKey = 0;
     bool m_updating = false;

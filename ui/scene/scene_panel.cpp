@@ -507,21 +507,15 @@ bool ScenePanel::eventFilter(QObject* watched, QEvent* event) {
 
 void ScenePanel::refresh() {
     const Scene& scene = m_controller->scene();
-    // sceneChanged comes with every material edit too: refill only what changed.
-    const bool meshChanged = m_shownMesh != scene.mesh;
-    const bool environmentChanged = m_shownEnvironment != scene.environment;
-    const bool lightsChanged = m_shownLights != scene.lights;
-    if (!meshChanged && !environmentChanged && !lightsChanged)
+    const ShownSceneParts::Changes changed = m_shown.update(scene);
+    if (!changed.any())
         return;
-    m_shownMesh = scene.mesh;
-    m_shownEnvironment = scene.environment;
-    m_shownLights = scene.lights;
     m_updating = true;
-    if (meshChanged)
+    if (changed.mesh)
         fillMeshCombo(m_mesh, scene);
-    if (environmentChanged)
+    if (changed.environment)
         fillHdriCombo(m_hdri, scene);
-    if (lightsChanged)
+    if (changed.lights)
         fillLightRigCombo(m_rig, scene);
     {
         const QSignalBlocker a(m_envIntensity), b(m_envRotation), c(m_background);

@@ -6,6 +6,7 @@
 /// and slider gestures merge into one (like Properties).
 
 #include "core/scene.h"
+#include "ui/scene/scene_choosers.h"
 
 #include <QWidget>
 #include <optional>
@@ -52,14 +53,10 @@ private:
 
     DocumentController* m_controller;
     bool m_updating = false;
-    int m_envKey = 0;      ///< merge key of the environment gesture in progress
-    int m_lightKey = 0;    ///< merge key of the light gesture in progress (new per selection)
-    int m_shownLight = -1; ///< the light the editor shows
-    /// What the combos last showed: they are refilled only when their part of the scene changes
-    /// (every material slider tick sends sceneChanged).
-    std::optional<MeshRef> m_shownMesh;
-    std::optional<Environment> m_shownEnvironment;
-    std::optional<std::vector<Light>> m_shownLights;
+    int m_envKey = 0;        ///< merge key of the environment gesture in progress
+    int m_lightKey = 0;      ///< merge key of the light gesture in progress (new per selection)
+    int m_shownLight = -1;   ///< the light the editor shows
+    ShownSceneParts m_shown; ///< combos are refilled only when their part of the scene changed
 
     // Mesh and environment.
     QComboBox* m_mesh;
