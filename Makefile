@@ -5,6 +5,12 @@ BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
 JOBS ?= $(shell nproc)
+# ccache, when installed, makes rebuilds in a second checkout (a worktree, a fresh clone) cheap;
+# CCACHE_BASEDIR lets checkouts in different folders share the cache.
+ifneq ($(shell command -v ccache 2>/dev/null),)
+export CCACHE_BASEDIR ?= $(CURDIR)
+LAUNCHER := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
+endif
 
 .PHONY: all deps configure build run test format clean goldens
 
@@ -14,7 +20,7 @@ deps:
 	@scripts/install-deps.sh
 
 $(BUILD_DIR)/CMakeCache.txt:
-	cmake -S . -B $(BUILD_DIR) -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	cmake -S . -B $(BUILD_DIR) -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(LAUNCHER)
 
 configure: deps $(BUILD_DIR)/CMakeCache.txt
 
