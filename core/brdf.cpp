@@ -218,15 +218,6 @@ float visibilityNeubelt(float NdotL, float NdotV) {
     return saturate(1.0f / (4.0f * (NdotL + NdotV - NdotL * NdotV)));
 }
 
-// Karis 2014, "Physically Based Shading on Mobile" (analytic environment BRDF approximation)
-glm::vec2 envBrdfApprox(float roughness, float NdotV) {
-    const glm::vec4 c0(-1.0f, -0.0275f, -0.572f, 0.022f);
-    const glm::vec4 c1(1.0f, 0.0425f, 1.04f, -0.04f);
-    const glm::vec4 r = roughness * c0 + c1;
-    const float a004 = std::min(r.x * r.x, std::exp2(-9.28f * NdotV)) * r.x + r.y;
-    return glm::vec2(-1.04f, 1.04f) * a004 + glm::vec2(r.z, r.w);
-}
-
 namespace {
 
 /// E(v) = integral over the hemisphere of D_Charlie * V_model * (n.l) dl, midpoint rule in

@@ -122,12 +122,6 @@ glm::vec3 diffuse(Diffuse which, glm::vec3 diffuseColor, float roughness, float 
 float visibilitySheen(SheenModel which, float NdotL, float NdotV, float sheenRoughness);
 /// @}
 
-/// Karis 2014's analytic fit of the split-sum environment BRDF: returns (scale, bias) so that the
-/// directional albedo of the specular lobe is f0 * scale + bias. An approximation (the renderer
-/// issue replaces it with a DFG LUT).
-glm::vec2 envBrdfApprox(float roughness, float NdotV);
-/// @}
-
 /// Directional albedo E(NdotV, roughness) of the sheen lobe (Charlie D x the visibility of
 /// @p model, white sheen colour), for KHR_materials_sheen's albedo scaling and the sheen IBL term.
 /// One table per SheenModel (Ashikhmin and Neubelt are the same function, so their tables are

@@ -218,14 +218,6 @@ const std::filesystem::path& ColorManagement::configPath() const {
     return m_impl->path;
 }
 
-std::string ColorManagement::configName() const {
-    return m_impl->config ? m_impl->config->getName() : std::string();
-}
-
-std::string ColorManagement::configDescription() const {
-    return m_impl->config ? m_impl->config->getDescription() : std::string();
-}
-
 std::vector<std::string> ColorManagement::colorSpaces() const {
     std::vector<std::string> out;
     if (!m_impl->config)

@@ -115,9 +115,6 @@ public:
     bool isLoaded() const;
     /// The file the loaded config came from (empty when none is loaded).
     const std::filesystem::path& configPath() const;
-    /// The config's name and description (may be empty).
-    std::string configName() const;
-    std::string configDescription() const;
     /// @}
 
     /// @name What the config offers (empty lists when nothing is loaded)

@@ -93,23 +93,6 @@ glm::vec2 dfgTexelParams(int i, int j, int size) {
     return {(float(i) + 0.5f) / float(size), (float(j) + 0.5f) / float(size)};
 }
 
-glm::vec2 sampleDfgLut(const std::vector<glm::vec2>& lut, int size, float NdotV,
-                       float perceptualRoughness) {
-    // GL_LINEAR with clamp to edge: texel centres at (i + 0.5) / size.
-    const auto coord = [&](float t, int& i0, float& f) {
-        const float x = std::clamp(t * float(size) - 0.5f, 0.0f, float(size - 1));
-        i0 = std::min(int(x), size - 2);
-        f = x - float(i0);
-    };
-    int x0, y0;
-    float fx, fy;
-    coord(NdotV, x0, fx);
-    coord(perceptualRoughness, y0, fy);
-    const auto at = [&](int x, int y) { return lut[size_t(y) * size + x]; };
-    return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
-                    glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
-}
-
 glm::vec3 specularAlbedo(glm::vec3 f0, glm::vec2 dfg, bool multiScatter) {
     const glm::vec3 single = f0 * dfg.x + dfg.y;
     if (!multiScatter)

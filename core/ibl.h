@@ -45,10 +45,6 @@ glm::vec2 integrateDfgQuadrature(float NdotV, float perceptualRoughness, int nU 
                                  int nPhi = 128);
 /// (A, B) of texel (i, j) of the LUT (the parameters above).
 glm::vec2 dfgTexelParams(int i, int j, int size = kDfgLutSize);
-/// Bilinear lookup into a LUT of @p size^2 (A, B) pairs stored row-major (row = roughness),
-/// exactly as the GPU samples it (GL_LINEAR, clamp to edge).
-glm::vec2 sampleDfgLut(const std::vector<glm::vec2>& lut, int size, float NdotV,
-                       float perceptualRoughness);
 /// @}
 
 /// Directional albedo of the specular lobe from (A, B): f0 A + B, plus, with @p multiScatter,

@@ -206,9 +206,4 @@ void TextureCache::clear() {
     m_entries.clear();
 }
 
-void TextureCache::setMaxTextureSide(int maxSide) {
-    std::lock_guard lock(m_mutex);
-    m_options.maxTextureSide = maxSide;
-}
-
 } // namespace velvet

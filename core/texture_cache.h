@@ -80,8 +80,6 @@ public:
     void trim();
     /// Drops every entry.
     void clear();
-    /// Changes the GPU limit for later loads (already loaded textures are not reloaded).
-    void setMaxTextureSide(int maxSide);
 
 private:
     struct FileStamp {

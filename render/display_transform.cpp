@@ -106,7 +106,6 @@ struct DisplayTransform::Impl {
 
     std::map<std::string, std::unique_ptr<Program>> cache; ///< keyed by OCIO's cache id
     Program* selected = nullptr;
-    std::string selectedId;
     int compiles = 0;
     GLuint emptyVao = 0;
 
@@ -179,7 +178,6 @@ bool DisplayTransform::select(const GpuDisplayTransform& transform, std::string*
     if (!d.build(transform, *program, error))
         return false;
     d.selected = program.get();
-    d.selectedId = transform.cacheId;
     d.cache[transform.cacheId] = std::move(program);
     return true;
 }
@@ -205,16 +203,11 @@ bool DisplayTransform::selectCached(const std::string& cacheId) {
     if (it == d.cache.end())
         return false;
     d.selected = it->second.get();
-    d.selectedId = cacheId;
     return true;
 }
 
 bool DisplayTransform::hasSelection() const {
     return m_impl->selected != nullptr;
-}
-
-const std::string& DisplayTransform::selectedCacheId() const {
-    return m_impl->selectedId;
 }
 
 void DisplayTransform::draw(unsigned hdrTexture, float exposureEv) {

@@ -32,8 +32,6 @@ public:
     /// Switches to an already built program; false (nothing changes) when @p cacheId is unknown.
     bool selectCached(const std::string& cacheId);
     bool hasSelection() const;
-    /// The selected transform's OCIO cache id ("" when none).
-    const std::string& selectedCacheId() const;
 
     /// Draws the final pass into the bound framebuffer over the current viewport: texel (x, y) of
     /// the scene-linear texture @p hdrTexture (a GL texture name, RGBA, read with texelFetch)

@@ -59,7 +59,7 @@ struct GraphPreview::Impl {
     size_t uboSlots = 0;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs; ///< by generated GLSL text
     std::map<std::string, CachedTexture> textures; ///< by file + '\n' + colour space
-    int compiles = 0, draws = 0;
+    int compiles = 0;
 
     ~Impl() {
         programs.clear();
@@ -165,10 +165,6 @@ int GraphPreview::compileCount() const {
     return m_impl->compiles;
 }
 
-int GraphPreview::drawCount() const {
-    return m_impl->draws;
-}
-
 std::vector<Image> GraphPreview::render(const graph::Graph& graph,
                                         std::span<const PreviewRequest> requests,
                                         TextureCache* textures, Problems* problems) {
@@ -221,7 +217,6 @@ std::vector<Image> GraphPreview::render(const graph::Graph& graph,
         glProgramUniform1i(program->id(), 1, encodesSrgb(graph, requests[i], c.previewType));
         glDrawArrays(GL_TRIANGLES, 0, 3);
         results[i] = d.readBack();
-        ++d.draws;
     }
 
     for (int unit : unitsUsed)

@@ -58,8 +58,6 @@ public:
     int side() const;
     /// Programs compiled since construction (tests: a value edit adds none).
     int compileCount() const;
-    /// Thumbnails drawn since construction.
-    int drawCount() const;
 
 private:
     struct Impl;

@@ -44,7 +44,7 @@ struct IblBakeOptions {
 
 /// What the bake measured (reported by tests and the bench; never asserted as absolute times).
 struct IblBakeStats {
-    int slices = 0;             ///< slices run since the last resetStats()
+    int slices = 0;             ///< slices run since construction
     double worstSliceMs = 0;    ///< longest slice (dispatch + glFinish, wall clock)
     double worstSliceUnits = 0; ///< most work units (texels x samples) one slice did
     double totalMs = 0;         ///< sum of the slices
@@ -98,7 +98,6 @@ public:
     /// fails keeps its last good build, and the warm-up runs again. False + every failure's
     /// message (file:line); @p compiled counts the programs rebuilt.
     bool reload(std::string* error, int* compiled = nullptr);
-    void resetStats() { m_stats = {}; }
 
     /// @name Read-backs for tests
     /// @{

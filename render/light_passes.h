@@ -50,8 +50,6 @@ public:
     /// ambient lights stay with the full-screen pass).
     void upload(const std::vector<Light>& lights);
     int lightCount() const { return m_count; }
-    /// Spot lights drawn by the cone proxy in the volumes path (packed after the others).
-    int coneLightCount() const { return m_count - m_coneFirst; }
 
     /// Adds the lights to @p hdrTexture (RGBA16F, bound in @p hdrFbo). Expects the frame UBO,
     /// the material table and the G-buffer textures bound, and the G-buffer of @p gbufferFbo

@@ -156,7 +156,6 @@ void TextureSet::refresh(int index, Problems* problems) {
     }
     // Row 0 (the image's top) goes to t = 0, matching glTF's UV space (v = 0 at the top).
     uploadMipChain(s.texture, image);
-    ++m_uploads;
     s.valid = true;
 
     // Atlas region (pixels, top-left origin) -> UV scale and offset; the shader keeps samples

@@ -79,8 +79,6 @@ public:
     /// GL texture (re)allocations since construction (tests: a changed file of the same size
     /// re-uploads without reallocating).
     int allocationCount() const { return m_allocations; }
-    /// Uploads (first loads and reloads) since construction.
-    int uploadCount() const { return m_uploads; }
     /// The GL texture name of @p slot (0 when the slot is empty or its file failed; tests read
     /// its levels back).
     unsigned texture(TextureSlot slot) const;
@@ -97,7 +95,6 @@ private:
     std::unique_ptr<TextureCache> m_cache;
     std::unique_ptr<std::array<Slot, kTextureSlotCount>> m_slots;
     int m_allocations = 0;
-    int m_uploads = 0;
 };
 
 } // namespace velvet::render

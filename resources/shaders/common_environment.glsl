@@ -74,7 +74,7 @@ vec3 specularRadiance(vec3 r, float perceptualRoughness) {
 }
 
 // (A, B) of the split-sum environment BRDF, E = f0 A + B: the DFG LUT (texel centres at
-// (i + 0.5) / N, velvet::ibl::sampleDfgLut), or Karis 2014's fit until the LUT is made.
+// (i + 0.5) / N, velvet::ibl::dfgTexelParams), or Karis 2014's fit until the LUT is made.
 vec2 environmentDfg(float NdotV, float perceptualRoughness) {
     if (ibl.state.z < 0.5)
         return envBrdfApprox(perceptualRoughness, NdotV);
