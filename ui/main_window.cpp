@@ -12,8 +12,10 @@
 #include "ui/post_chain/post_chain_panel.h"
 #include "ui/properties/property_panel.h"
 #include "ui/scene/scene_panel.h"
+#include "ui/undo_shortcuts.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
+#include "ui/wheel_guard.h"
 
 #include <QAction>
 #include <QApplication>
@@ -88,6 +90,7 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
       m_saveLayout(restoreLayout) {
     setObjectName(QStringLiteral("mainWindow"));
     setAcceptDrops(true);
+    WheelGuard::install(); // the wheel scrolls panels, not the unfocused controls in them
     setCentralWidget(m_viewport);
 
     // One OCIO config for the toolbar's lists, the renderer's display transform and the pickers.
@@ -375,11 +378,9 @@ void MainWindow::createMenus() {
     QUndoStack* stack = m_controller->undoStack();
     QAction* undo = stack->createUndoAction(this, tr("&Undo"));
     undo->setObjectName(QStringLiteral("undoAction"));
-    undo->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Z));
     QAction* redo = stack->createRedoAction(this, tr("&Redo"));
     redo->setObjectName(QStringLiteral("redoAction"));
-    redo->setShortcuts(
-        {QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z), QKeySequence(Qt::CTRL | Qt::Key_Y)});
+    UndoShortcuts::install(undo, redo); // Ctrl+Z, Ctrl+Shift+Z, Ctrl+Y wherever the focus is
     edit->addAction(undo);
     edit->addAction(redo);
 
