@@ -573,6 +573,7 @@ bool MainWindow::openFile(const QString& path) {
     QStringList problems;
     if (m_controller->openFile(path, &problems)) {
         addRecentFile(path);
+        fillRecentMenu(); // an empty menu is disabled and never asks to be filled
         // A crash (or kill) left unsaved changes of this file behind: offer them.
         if (m_autosave->offerRecovery(m_controller->filePath()))
             m_log->info(tr("Recovered unsaved changes of %1 from the autosave").arg(path));
@@ -632,6 +633,7 @@ bool MainWindow::saveDocumentAs() {
     if (m_controller->saveAs(path, &error)) {
         m_autosave->discard();
         addRecentFile(path);
+        fillRecentMenu(); // now, not at the next start: a disabled menu never shows
         return true;
     }
     m_log->error(tr("Save failed: %1").arg(error));
@@ -662,7 +664,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         settings.setValue(kStateKey, saveState(kLayoutVersion));
         m_viewToolbar->saveSettings();
     }
-    m_autosave->discard(); // saved or discarded by the artist: nothing to recover
+    m_autosave->finish(); // saved or discarded by the artist: nothing to recover
     event->accept();
 }
 
