@@ -11,6 +11,7 @@
 #include "ui/main_window.h"
 #include "ui/recovery_dialog.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_window.h"
 
 #include <QAction>
 #include <QApplication>
@@ -33,8 +34,6 @@ using namespace velvet;
 using namespace velvet::ui;
 
 namespace {
-
-constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
 
 /// Runs @p answer on the next modal dialog of type T once it is shown (as a user would act).
 template <class T>
@@ -94,11 +93,6 @@ private slots:
     void cleanExitRemovesStaleBackups(); // last: it closes the window
 
 private:
-    void activate() {
-        m_window->activateWindow();
-        QApplication::setActiveWindow(m_window.get());
-        QTRY_VERIFY(m_window->isActiveWindow());
-    }
     /// A saved document with roughness @p roughness, in the temporary folder.
     QString savedDocument(const QString& name, float roughness);
 
@@ -113,16 +107,8 @@ void TestUiRecovery::initTestCase() {
     QSettings().remove(QStringLiteral("files/recent"));
     m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
     m_doc = m_window->controller();
-    QSignalSpy frames(m_window->viewport(), &ViewportWidget::frameCompleted);
-    QSignalSpy failures(m_window->viewport(), &ViewportWidget::renderFailed);
-    m_window->resize(1280, 800);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-    m_window->activateWindow();
-    QApplication::setActiveWindow(m_window.get());
-    QTRY_VERIFY(m_window->isActiveWindow());
-    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() || !failures.isEmpty(), kFrameTimeoutMs);
-    QVERIFY2(failures.isEmpty(), qPrintable(m_window->viewport()->errorMessage()));
+    const QString error = test::showWithFirstFrame(m_window.get(), QSize(1280, 800));
+    QVERIFY2(error.isEmpty(), qPrintable(error));
 }
 
 void TestUiRecovery::cleanupTestCase() {
@@ -271,7 +257,7 @@ void TestUiRecovery::recentMenuFollowsSaveAs() {
     m_doc->editParam(ParamId::Roughness, glm::vec3(0.31f));
     const QString first = m_dir.filePath(QStringLiteral("first-save.json"));
     answerFileDialog(first);
-    activate();
+    QVERIFY(test::activate(m_window.get()));
     QTest::keyClick(m_window.get(), Qt::Key_S, Qt::ControlModifier);
     QTRY_COMPARE(m_doc->filePath(), QFileInfo(first).absoluteFilePath());
     QVERIFY(recent->isEnabled());
@@ -281,7 +267,8 @@ void TestUiRecovery::recentMenuFollowsSaveAs() {
     // Save As under another name: at the top of the menu at once.
     const QString second = m_dir.filePath(QStringLiteral("saved-as.json"));
     answerFileDialog(second);
-    activate(); // no window manager under xvfb gives the focus back after the dialog
+    QVERIFY(test::activate(
+        m_window.get())); // no window manager under xvfb gives the focus back after the dialog
     QTest::keyClick(m_window.get(), Qt::Key_S, Qt::ControlModifier | Qt::ShiftModifier);
     QTRY_COMPARE(m_doc->filePath(), QFileInfo(second).absoluteFilePath());
     QStringList names;
