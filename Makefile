@@ -12,7 +12,7 @@ export CCACHE_BASEDIR ?= $(CURDIR)
 LAUNCHER := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
 endif
 
-.PHONY: all deps configure build run test format clean goldens
+.PHONY: all deps configure build run test format clean goldens install package
 
 all: build
 
@@ -38,6 +38,15 @@ run: build
 # Builds and runs the whole suite headless (widget tests under xvfb-run, render tests on EGL).
 test: build
 	cd $(BUILD_DIR) && QT_QPA_PLATFORM= ctest --output-on-failure -j $(JOBS)
+
+# Installs the editor, its resources, .desktop entry and icon under PREFIX (DESTDIR for staging).
+PREFIX ?= /usr/local
+install: build
+	DESTDIR=$(DESTDIR) cmake --install $(BUILD_DIR) --prefix $(PREFIX)
+
+# A Debian package (build/velvet_VERSION_ARCH.deb) whose Depends dpkg-shlibdeps computes.
+package: build
+	cd $(BUILD_DIR) && cpack -G DEB
 
 # Regenerates the golden images from the current renderer (review the diff before committing).
 goldens: build

@@ -1,5 +1,6 @@
 // velvet info: version, the headless OpenGL context, dependency versions.
 #include "app/cli.h"
+#include "core/resources.h"
 #include "core/versions.h"
 #include "render/headless_context.h"
 
@@ -23,6 +24,9 @@ int runInfo(const std::vector<std::string>& argv) {
         return Ok;
     }
     std::cout << "Velvet " << VELVET_VERSION << "\n";
+    // Where shaders, presets and HDRIs come from (beside the binary, an installed
+    // share/velvet, the source tree, or VELVET_RESOURCES): the first question when one is missing.
+    std::cout << "Resources: " << resources::root().string() << "\n";
     int code = Ok;
     if (auto context = render::HeadlessContext::create(&error)) {
         std::cout << "OpenGL (headless, EGL " << context->platform() << ")\n"

@@ -8,6 +8,7 @@
 #include <system_error>
 
 // OpenImageIO stays inside this file (DESIGN.md, "Heavy dependencies behind a .cpp").
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -221,19 +222,17 @@ std::vector<float> remapChannels(const Image& image, int channels) {
     return out;
 }
 
-} // namespace
+/// What writeImage() and encodeImage() hand to an OpenImageIO writer: the spec for the format
+/// of @p ext, and the pixels in the channel layout the format can hold.
+struct PreparedImage {
+    OIIO::ImageSpec spec;
+    std::vector<float> remapped;
+    const float* pixels = nullptr;
+    OIIO::stride_t xstride = 0;
+};
 
-bool writeImage(const std::filesystem::path& file, const Image& image, PixelFormat format,
-                std::string* error, const ImageWriteOptions& options) {
-    if (image.empty() || image.channels < 1 || image.channels > 4 ||
-        image.pixels.size() != size_t(image.width) * image.height * image.channels)
-        return fail(error, file, "nothing to write (empty or inconsistent image)");
-
-    const std::string ext = lowerExtension(file);
-    auto out = OIIO::ImageOutput::create(file.string());
-    if (!out)
-        return fail(error, file, "no image writer for extension '" + ext + "'");
-
+void prepareImage(const Image& image, const std::string& ext, PixelFormat format,
+                  const ImageWriteOptions& options, PreparedImage& p) {
     OIIO::TypeDesc type = toTypeDesc(format);
     // Formats with fixed sample types: keep the request where the writer supports it.
     const bool jpeg = ext == ".jpg" || ext == ".jpeg";
@@ -252,28 +251,76 @@ bool writeImage(const std::filesystem::path& file, const Image& image, PixelForm
         channels -= 1; // JPEG has no alpha
     else if (ext == ".bmp" && channels == 2)
         channels = 4; // BMP has no grey + alpha: RRRA
-    std::vector<float> remapped;
-    const float* pixels = image.pixels.data();
-    OIIO::stride_t xstride = OIIO::stride_t(image.channels) * sizeof(float);
+    p.pixels = image.pixels.data();
+    p.xstride = OIIO::stride_t(image.channels) * sizeof(float);
     if (channels > image.channels || (channels < image.channels && channels != 3)) {
-        remapped = remapChannels(image, channels);
-        pixels = remapped.data();
-        xstride = OIIO::stride_t(channels) * sizeof(float);
+        p.remapped = remapChannels(image, channels);
+        p.pixels = p.remapped.data();
+        p.xstride = OIIO::stride_t(channels) * sizeof(float);
     } // else the first `channels` of each pixel are written, through the stride
 
-    OIIO::ImageSpec spec(image.width, image.height, channels, type);
+    p.spec = OIIO::ImageSpec(image.width, image.height, channels, type);
     // Channel names as readers expect them: grey is "Y" (OpenEXR's luminance), alpha "A".
     static const std::vector<std::string> kNames[4] = {
         {"Y"}, {"Y", "A"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
-    spec.channelnames = kNames[channels - 1];
-    spec.alpha_channel = channels == 2 ? 1 : channels == 4 ? 3 : -1;
+    p.spec.channelnames = kNames[channels - 1];
+    p.spec.alpha_channel = channels == 2 ? 1 : channels == 4 ? 3 : -1;
     if (ext == ".exr")
-        spec.attribute("compression", "zip");
+        p.spec.attribute("compression", "zip");
     if (jpeg)
-        spec.attribute("CompressionQuality", std::clamp(options.jpegQuality, 1, 100));
+        p.spec.attribute("CompressionQuality", std::clamp(options.jpegQuality, 1, 100));
     if (options.orientation > 1 && options.orientation <= 8)
-        spec.attribute("Orientation", options.orientation);
-    spec.attribute("oiio:UnassociatedAlpha", 1); // our pixels carry straight alpha
+        p.spec.attribute("Orientation", options.orientation);
+    p.spec.attribute("oiio:UnassociatedAlpha", 1); // our pixels carry straight alpha
+}
+
+bool consistent(const Image& image) {
+    return !image.empty() && image.channels >= 1 && image.channels <= 4 &&
+           image.pixels.size() == size_t(image.width) * image.height * image.channels;
+}
+
+} // namespace
+
+bool encodeImage(const Image& image, std::string_view extension, PixelFormat format,
+                 std::string& bytes, std::string* error, const ImageWriteOptions& options) {
+    const std::filesystem::path name = "image" + std::string(extension);
+    if (!consistent(image))
+        return fail(error, name, "nothing to encode (empty or inconsistent image)");
+    const std::string ext = lowerExtension(name);
+    auto out = OIIO::ImageOutput::create(name.string());
+    if (!out || !out->supports("ioproxy"))
+        return fail(error, name, "no in-memory image writer for extension '" + ext + "'");
+    PreparedImage p;
+    prepareImage(image, ext, format, options, p);
+    // The writer streams into memory through an IOProxy (OpenImageIO 2.3+), so a container such
+    // as GLB can embed the file without a temporary on disk.
+    std::vector<unsigned char> buffer;
+    OIIO::Filesystem::IOVecOutput proxy(buffer);
+    void* proxyPointer = &proxy;
+    p.spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxyPointer);
+    bool ok = out->open(name.string(), p.spec) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, p.pixels, p.xstride);
+    ok = out->close() && ok;
+    if (!ok)
+        return fail(error, name, "cannot encode: " + oiioMessage(out->geterror()));
+    bytes.assign(reinterpret_cast<const char*>(buffer.data()), buffer.size());
+    return true;
+}
+
+bool writeImage(const std::filesystem::path& file, const Image& image, PixelFormat format,
+                std::string* error, const ImageWriteOptions& options) {
+    if (!consistent(image))
+        return fail(error, file, "nothing to write (empty or inconsistent image)");
+
+    const std::string ext = lowerExtension(file);
+    auto out = OIIO::ImageOutput::create(file.string());
+    if (!out)
+        return fail(error, file, "no image writer for extension '" + ext + "'");
+    PreparedImage prepared;
+    prepareImage(image, ext, format, options, prepared);
+    const OIIO::ImageSpec& spec = prepared.spec;
+    const float* pixels = prepared.pixels;
+    const OIIO::stride_t xstride = prepared.xstride;
 
     // Temp file beside the target (same file system, so the rename is atomic), same extension so
     // the writer is chosen the same way.

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <glm/vec4.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace velvet {
@@ -106,5 +107,11 @@ struct ImageWriteOptions {
 /// target, then a rename. Returns false and a message naming the file on failure.
 bool writeImage(const std::filesystem::path& file, const Image& image, PixelFormat format,
                 std::string* error, const ImageWriteOptions& options = {});
+
+/// Encodes @p image in memory as writeImage() would write a file with @p extension (".png",
+/// ".jpg", ".tga", ".tif", ".exr": the formats whose OpenImageIO writer streams to memory), for
+/// containers that embed images (GLB). Returns false and a message on failure.
+bool encodeImage(const Image& image, std::string_view extension, PixelFormat format,
+                 std::string& bytes, std::string* error, const ImageWriteOptions& options = {});
 
 } // namespace velvet

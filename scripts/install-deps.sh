@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages Velvet needs to build, run and test, only those missing.
+# Installs the Debian 12 packages Velvet needs to build, run and test, only those missing, and
+# the Khronos glTF-Validator (npm package, pinned) into the ignored project folder tools/node.
 # Runs apt-get as root, or through sudo. Quiet and quick when everything is present.
 set -euo pipefail
 
@@ -9,24 +10,52 @@ packages=(
   libglm-dev libepoxy-dev libegl-dev libgl1-mesa-dri libegl-mesa0
   libassimp-dev libopenimageio-dev libopencolorio-dev nlohmann-json3-dev
   xvfb xauth
+  nodejs
 )
+
+# The glTF export tests (tests/app/test_app_export.cpp) validate every file they write with
+# this version, through scripts/gltf-validate.js.
+gltf_validator_version=2.0.0-dev.3.10
+node_tools="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/node"
+
+install_node_tools() {
+  local installed="$node_tools/node_modules/gltf-validator/package.json"
+  if [[ -f "$installed" ]] && grep -q "\"version\": \"$gltf_validator_version\"" "$installed"; then
+    return 0
+  fi
+  if ! command -v npm >/dev/null; then
+    echo "velvet: npm is missing (Debian package npm, or Node.js's own); cannot install gltf-validator" >&2
+    exit 1
+  fi
+  echo "velvet: installing gltf-validator $gltf_validator_version into tools/node"
+  npm install --prefix "$node_tools" --no-save --no-audit --no-fund --loglevel=error \
+    "gltf-validator@$gltf_validator_version"
+}
 
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
   [[ "$status" == "install ok installed" ]] || missing+=("$p")
 done
-[[ ${#missing[@]} -eq 0 ]] && exit 0
+if [[ ${#missing[@]} -eq 0 ]] && command -v npm >/dev/null; then
+  install_node_tools
+  exit 0
+fi
 
-echo "velvet: installing missing Debian packages: ${missing[*]}"
 if [[ $(id -u) -eq 0 ]]; then
   sudo=()
 elif command -v sudo >/dev/null; then
   sudo=(sudo)
 else
-  echo "velvet: these packages are missing and neither root nor sudo is available: ${missing[*]}" >&2
+  echo "velvet: these packages are missing and neither root nor sudo is available: ${missing[*]:-npm}" >&2
   exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo[@]}" apt-get update -qq
-"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [[ ${#missing[@]} -gt 0 ]]; then
+  echo "velvet: installing missing Debian packages: ${missing[*]}"
+  "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+# Debian's nodejs comes without npm (Node.js's own packages include it).
+command -v npm >/dev/null || "${sudo[@]}" apt-get install -y -qq --no-install-recommends npm
+install_node_tools

@@ -2,16 +2,34 @@
 
 #include "core/document_io.h"
 #include "ui/document_controller.h"
+#include "ui/recovery_dialog.h"
 
 #include <QApplication>
 #include <QCryptographicHash>
 #include <QDir>
 #include <QFileInfo>
 #include <QMessageBox>
+#include <QSaveFile>
 #include <QStandardPaths>
 #include <QTimer>
+#include <algorithm>
 
 namespace velvet::ui {
+namespace {
+
+const QString kSourceSuffix = QStringLiteral(".source");
+const QString kBackupSuffix = QStringLiteral(".bak");
+
+/// The document an autosave belongs to, from the line beside it; empty for an untitled document
+/// (or an autosave written before the line existed).
+QString documentOf(const QString& autosaveFile) {
+    QFile source(autosaveFile + kSourceSuffix);
+    if (!source.open(QIODevice::ReadOnly))
+        return {};
+    return QString::fromUtf8(source.readAll()).trimmed();
+}
+
+} // namespace
 
 Autosave::Autosave(DocumentController* controller, QObject* parent)
     : QObject(parent), m_controller(controller), m_timer(new QTimer(this)) {
@@ -26,7 +44,7 @@ Autosave::Autosave(DocumentController* controller, QObject* parent)
     // has saved or chosen to discard.
     connect(m_controller, &DocumentController::fileChanged, this, [this] {
         if (!m_lastPath.isEmpty())
-            QFile::remove(m_lastPath);
+            remove(m_lastPath);
         m_lastPath.clear();
     });
 }
@@ -83,16 +101,78 @@ bool Autosave::saveNow(QString* error) {
             *error = tr("Autosave failed: %1").arg(QString::fromStdString(message));
         return false;
     }
+    // saveSceneFile keeps the previous version as ".bak", right for documents; an autosave
+    // is itself the backup of one.
+    QFile::remove(path + kBackupSuffix);
+    // Which document this is, for the start-up list (the name holds only a hash of the path).
+    const QString document = m_controller->filePath().isEmpty()
+                                 ? QString()
+                                 : QFileInfo(m_controller->filePath()).absoluteFilePath();
+    if (documentOf(path) != document || !QFile::exists(path + kSourceSuffix)) {
+        QSaveFile source(path + kSourceSuffix);
+        if (!source.open(QIODevice::WriteOnly) || source.write(document.toUtf8()) < 0 ||
+            !source.commit()) {
+            if (error)
+                *error = tr("Autosave could not record its document in %1").arg(source.fileName());
+            return false;
+        }
+    }
     m_lastPath = path;
     emit saved(path);
     return true;
 }
 
 void Autosave::discard() {
-    const QString path =
-        m_lastPath.isEmpty() ? autosavePathFor(m_controller->filePath()) : m_lastPath;
-    QFile::remove(path);
+    remove(m_lastPath.isEmpty() ? autosavePathFor(m_controller->filePath()) : m_lastPath);
     m_lastPath.clear();
+}
+
+void Autosave::finish() {
+    discard();
+    const QDir dir(directory());
+    // Backups an earlier version kept of autosaves, and record lines whose autosave is gone.
+    for (const QString& name : dir.entryList({QStringLiteral("*.autosave.json") + kBackupSuffix,
+                                              QStringLiteral("*.autosave.json") + kSourceSuffix},
+                                             QDir::Files)) {
+        const QString path = dir.filePath(name);
+        if (name.endsWith(kBackupSuffix) || !QFile::exists(path.chopped(kSourceSuffix.size())))
+            QFile::remove(path);
+    }
+    // Autosaves of documents saved since: recoverableFor never offers them again.
+    for (const QFileInfo& file :
+         dir.entryInfoList({QStringLiteral("*.autosave.json")}, QDir::Files)) {
+        const QFileInfo saved(documentOf(file.absoluteFilePath()));
+        if (!saved.filePath().isEmpty() && saved.exists() &&
+            saved.lastModified() >= file.lastModified())
+            remove(file.absoluteFilePath());
+    }
+}
+
+void Autosave::remove(const QString& autosaveFile) {
+    QFile::remove(autosaveFile);
+    QFile::remove(autosaveFile + kSourceSuffix);
+    QFile::remove(autosaveFile + kBackupSuffix);
+}
+
+QList<Autosave::Recoverable> Autosave::recoverable() const {
+    QList<Recoverable> found;
+    const QDir dir(directory());
+    const QString own = m_lastPath.isEmpty() ? QString() : QFileInfo(m_lastPath).absoluteFilePath();
+    for (const QFileInfo& file :
+         dir.entryInfoList({QStringLiteral("*.autosave.json")}, QDir::Files)) {
+        const QString path = file.absoluteFilePath();
+        if (path == own)
+            continue;
+        const QString document = documentOf(path);
+        // recoverableFor's rule: stale when the document was saved after it was written.
+        const QFileInfo saved(document);
+        if (!document.isEmpty() && saved.exists() && saved.lastModified() >= file.lastModified())
+            continue;
+        found.push_back({path, document, file.lastModified()});
+    }
+    std::sort(found.begin(), found.end(),
+              [](const Recoverable& a, const Recoverable& b) { return a.written > b.written; });
+    return found;
 }
 
 bool Autosave::recover(const QString& autosaveFile, const QString& filePath, QString* error) {
@@ -124,17 +204,22 @@ bool Autosave::offerRecovery(const QString& filePath) {
     if (m_prompt) {
         accept = m_prompt(autosave, when);
     } else {
-        const QString name =
-            filePath.isEmpty() ? tr("an untitled document") : QFileInfo(filePath).fileName();
-        accept = QMessageBox::question(
-                     QApplication::activeWindow(), tr("Recover unsaved changes?"),
-                     tr("Velvet found an autosave of %1 from %2, newer than the saved file. "
-                        "Recover it?")
-                         .arg(name, QLocale().toString(when, QLocale::ShortFormat)),
-                     QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes) == QMessageBox::Yes;
+        const QString time = QLocale().toString(when, QLocale::ShortFormat);
+        // An untitled document has no saved file to be newer than.
+        const QString text =
+            filePath.isEmpty()
+                ? tr("Velvet found unsaved changes of an untitled document, autosaved %1. "
+                     "Recover them?")
+                      .arg(time)
+                : tr("Velvet found an autosave of %1 from %2, newer than the saved file. "
+                     "Recover it?")
+                      .arg(QFileInfo(filePath).fileName(), time);
+        accept = QMessageBox::question(QApplication::activeWindow(), tr("Recover unsaved changes?"),
+                                       text, QMessageBox::Yes | QMessageBox::No,
+                                       QMessageBox::Yes) == QMessageBox::Yes;
     }
     if (!accept) {
-        QFile::remove(autosave);
+        remove(autosave);
         return false;
     }
     QString error;
@@ -147,6 +232,27 @@ bool Autosave::offerRecovery(const QString& filePath) {
 
 void Autosave::setPrompt(std::function<bool(const QString&, const QDateTime&)> prompt) {
     m_prompt = std::move(prompt);
+}
+
+bool Autosave::offerStartupRecovery(QWidget* parent) {
+    const QList<Recoverable> found = recoverable();
+    if (found.isEmpty())
+        return false;
+    RecoveryDialog dialog(found, parent);
+    const bool accepted = dialog.exec() == QDialog::Accepted;
+    for (const QString& file : dialog.discarded())
+        remove(file);
+    // "Later" (or none chosen): what is left stays for the next start or the file's next open.
+    const std::optional<Recoverable> chosen =
+        accepted ? dialog.chosen() : std::optional<Recoverable>();
+    if (!chosen)
+        return false;
+    QString error;
+    if (!recover(chosen->autosaveFile, chosen->documentPath, &error)) {
+        emit failed(error);
+        return false;
+    }
+    return true;
 }
 
 } // namespace velvet::ui

@@ -3,16 +3,22 @@
 /// Autosave and crash recovery (DESIGN.md, "Data safety"). While the document is dirty it is
 /// written every interval (60 s by default) to QStandardPaths::AppDataLocation/autosave/,
 /// atomically (core saveSceneFile: temp file + rename). The window removes the autosave after a
-/// save and a clean close; replacing the document (new, open) removes the old one's. At start-up
-/// and when a file is opened, an autosave newer than the file (or one of an untitled document) is
-/// offered for recovery; the recovered document is dirty until saved.
+/// save and a clean close; replacing the document (new, open) removes the old one's. Beside each
+/// autosave a one-line "NAME.autosave.json.source" names the document it belongs to, so a plain
+/// start can list every recoverable autosave with its document and time (recoverable(),
+/// offerStartupRecovery(), issue 17 item 11). When a file is opened, an autosave newer than the
+/// file is offered for recovery; the recovered document is dirty until saved. An autosave is the
+/// backup itself: it keeps no "*.bak" (core's atomic write does for documents), and a clean exit
+/// removes any "*.autosave.json.bak" an earlier version left in the folder.
 
 #include <QDateTime>
+#include <QList>
 #include <QObject>
 #include <QString>
 #include <functional>
 
 class QTimer;
+class QWidget;
 
 namespace velvet::ui {
 
@@ -22,6 +28,14 @@ class Autosave : public QObject {
     Q_OBJECT
 public:
     static constexpr int kDefaultIntervalMs = 60000;
+
+    /// An autosave that may be recovered: its file, the document it belongs to (absolute; empty
+    /// for an untitled document) and when it was written.
+    struct Recoverable {
+        QString autosaveFile;
+        QString documentPath;
+        QDateTime written;
+    };
 
     explicit Autosave(DocumentController* controller, QObject* parent = nullptr);
 
@@ -34,12 +48,20 @@ public:
     /// The autosave that may be recovered for @p filePath: it exists and, for a file, is newer
     /// than the file (or the file is gone). Empty when there is none.
     static QString recoverableFor(const QString& filePath);
+    /// Every recoverable autosave in directory() (by recoverableFor's rule), newest first, except
+    /// the one the current document writes.
+    QList<Recoverable> recoverable() const;
 
     /// Writes the document's autosave now when it is dirty. False + @p error when the write
     /// failed; true when written or when there was nothing to write.
     bool saveNow(QString* error = nullptr);
     /// Removes the current document's autosave (after a save, or a clean close).
     void discard();
+    /// A clean exit: discard(); every "*.autosave.json.bak" left in the folder, and every
+    /// autosave whose document was saved after it (stale), is removed.
+    void finish();
+    /// Removes @p autosaveFile with the files kept beside it (".source", ".bak").
+    static void remove(const QString& autosaveFile);
     /// Loads @p autosaveFile as the document of @p filePath with unsaved changes (the autosave
     /// stays until the document is saved). False + @p error when it could not be read.
     bool recover(const QString& autosaveFile, const QString& filePath, QString* error);
@@ -49,6 +71,10 @@ public:
     /// Replaces the question asked before recovering (tests answer without a dialog). The
     /// function gets the autosave's path and time and returns true to recover.
     void setPrompt(std::function<bool(const QString&, const QDateTime&)> prompt);
+    /// At a plain start (no FILE): lists recoverable() in a RecoveryDialog over @p parent, where
+    /// the artist recovers one (it becomes the document), discards any, or keeps them for later.
+    /// True when one was recovered; false at once when there is nothing to offer.
+    bool offerStartupRecovery(QWidget* parent);
 
 signals:
     /// An autosave was written to @p path.

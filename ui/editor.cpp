@@ -81,7 +81,8 @@ int runEditor(int& argc, char** argv, const EditorOptions& options) {
         if (!openFile.isEmpty())
             window.openFile(openFile); // problems appear in a message box over the default scene
         else
-            window.autosave()->offerRecovery(QString()); // an untitled document's unsaved work
+            // Every autosave a crash or kill left behind, saved documents' and untitled ones'.
+            window.autosave()->offerStartupRecovery(&window);
         return QApplication::exec();
     }
     if (!openFile.isEmpty()) {

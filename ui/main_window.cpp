@@ -12,8 +12,10 @@
 #include "ui/post_chain/post_chain_panel.h"
 #include "ui/properties/property_panel.h"
 #include "ui/scene/scene_panel.h"
+#include "ui/undo_shortcuts.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
+#include "ui/wheel_guard.h"
 
 #include <QAction>
 #include <QApplication>
@@ -88,6 +90,7 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
       m_saveLayout(restoreLayout) {
     setObjectName(QStringLiteral("mainWindow"));
     setAcceptDrops(true);
+    WheelGuard::install(); // the wheel scrolls panels, not the unfocused controls in them
     setCentralWidget(m_viewport);
 
     // One OCIO config for the toolbar's lists, the renderer's display transform and the pickers.
@@ -375,11 +378,9 @@ void MainWindow::createMenus() {
     QUndoStack* stack = m_controller->undoStack();
     QAction* undo = stack->createUndoAction(this, tr("&Undo"));
     undo->setObjectName(QStringLiteral("undoAction"));
-    undo->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Z));
     QAction* redo = stack->createRedoAction(this, tr("&Redo"));
     redo->setObjectName(QStringLiteral("redoAction"));
-    redo->setShortcuts(
-        {QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z), QKeySequence(Qt::CTRL | Qt::Key_Y)});
+    UndoShortcuts::install(undo, redo); // Ctrl+Z, Ctrl+Shift+Z, Ctrl+Y wherever the focus is
     edit->addAction(undo);
     edit->addAction(redo);
 
@@ -572,6 +573,7 @@ bool MainWindow::openFile(const QString& path) {
     QStringList problems;
     if (m_controller->openFile(path, &problems)) {
         addRecentFile(path);
+        fillRecentMenu(); // an empty menu is disabled and never asks to be filled
         // A crash (or kill) left unsaved changes of this file behind: offer them.
         if (m_autosave->offerRecovery(m_controller->filePath()))
             m_log->info(tr("Recovered unsaved changes of %1 from the autosave").arg(path));
@@ -631,6 +633,7 @@ bool MainWindow::saveDocumentAs() {
     if (m_controller->saveAs(path, &error)) {
         m_autosave->discard();
         addRecentFile(path);
+        fillRecentMenu(); // now, not at the next start: a disabled menu never shows
         return true;
     }
     m_log->error(tr("Save failed: %1").arg(error));
@@ -661,7 +664,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         settings.setValue(kStateKey, saveState(kLayoutVersion));
         m_viewToolbar->saveSettings();
     }
-    m_autosave->discard(); // saved or discarded by the artist: nothing to recover
+    m_autosave->finish(); // saved or discarded by the artist: nothing to recover
     event->accept();
 }
 

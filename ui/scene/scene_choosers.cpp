@@ -4,6 +4,7 @@
 #include "core/resources.h"
 #include "core/scene.h"
 #include "ui/document_controller.h"
+#include "ui/hdri_thumbnail.h"
 
 #include <QComboBox>
 #include <QDir>
@@ -59,17 +60,24 @@ void fillMeshCombo(QComboBox* combo, const Scene& scene) {
 void fillHdriCombo(QComboBox* combo, const Scene& scene) {
     const QSignalBlocker block(combo);
     combo->clear();
+    // Every shipped environment (resources/hdri, CC0) with a thumbnail of the panorama, so the
+    // artist sees what a name lights the scene with before choosing it.
+    combo->setIconSize(kHdriThumbnailSize);
     combo->addItem(QObject::tr("Uniform white"), QString());
     const QDir dir(QString::fromStdString(resources::path("hdri").string()));
-    for (const QFileInfo& file :
-         dir.entryInfoList({QStringLiteral("*.exr")}, QDir::Files, QDir::Name))
-        combo->addItem(file.completeBaseName(), normalPath(file.absoluteFilePath()));
+    for (const QFileInfo& file : dir.entryInfoList(
+             {QStringLiteral("*.exr"), QStringLiteral("*.hdr")}, QDir::Files, QDir::Name)) {
+        const QString path = normalPath(file.absoluteFilePath());
+        combo->addItem(hdriThumbnail(path), file.completeBaseName(), path);
+        combo->setItemData(combo->count() - 1, path, Qt::ToolTipRole);
+    }
     const QString current = scene.environment.hdri.empty()
                                 ? QString()
                                 : normalPath(QString::fromStdString(scene.environment.hdri));
     int index = combo->findData(current);
     if (index < 0) {
-        combo->addItem(QFileInfo(current).fileName(), current);
+        combo->addItem(hdriThumbnail(current), QFileInfo(current).fileName(), current);
+        combo->setItemData(combo->count() - 1, current, Qt::ToolTipRole);
         index = combo->count() - 1;
     }
     combo->addItem(QObject::tr("Other HDRI…"), QString());

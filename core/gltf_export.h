@@ -1,0 +1,44 @@
+#pragma once
+/// @file gltf_export.h
+/// A material on a mesh as a glTF 2.0 asset: the metallic-roughness core with
+/// KHR_materials_clearcoat, _sheen, _specular, _ior and _emissive_strength, textures as PNG
+/// images (atlas regions through KHR_texture_transform), in a .glb (one file, buffers and images
+/// embedded) or a .gltf (JSON, a .bin and the images beside it). Every mapping, and what cannot
+/// be mapped, is in docs/interchange.md. Built in memory; writing is export_files.h's job.
+
+#include "core/export_files.h"
+#include "core/material.h"
+#include "core/mesh.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace velvet {
+
+class TextureCache;
+
+enum class GltfContainer { Glb, Gltf };
+
+/// The files of one export and what could not be mapped.
+struct GltfExportResult {
+    /// .glb: one file. .gltf: the images, the .bin, then the .gltf (written in that order).
+    std::vector<ExportFile> files;
+    /// One line per thing glTF cannot carry (a BRDF term choice, the node graph, a clamped
+    /// value): never dropped silently (DESIGN.md, "Interchange").
+    std::vector<std::string> warnings;
+};
+
+/// Builds the asset of @p material on @p mesh. @p baseName (already a safe stem, see
+/// sanitizeFileStem) names the files: BASE.glb, or BASE.gltf + BASE.bin + BASE_<map>.png.
+/// Textures are read through @p textures. False + one-line @p error when a texture cannot be
+/// read or the mesh is empty.
+bool buildGltf(const Material& material, const MeshData& mesh, std::string_view baseName,
+               GltfContainer container, TextureCache& textures, GltfExportResult& out,
+               std::string* error);
+
+/// The mapping losses of @p material that do not depend on textures: each BRDF term choice that
+/// is not glTF's, the sheen model, the node graph. Also part of buildGltf()'s warnings.
+std::vector<std::string> gltfMappingWarnings(const Material& material);
+
+} // namespace velvet

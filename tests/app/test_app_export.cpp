@@ -1,0 +1,483 @@
+// `velvet export` (issue 12, first part): glTF 2.0 files that pass the Khronos glTF-Validator
+// with 0 errors, whose factors and extensions are the material's values, whose packed and
+// colour textures hold the material's texels; standalone presets; the output-folder safety
+// rules (--force, atomic replacement, names that cannot escape). Runs the real binary.
+#include "core/document_io.h"
+#include "core/graph/graph.h"
+#include "core/graph/node_catalogue.h"
+#include "core/image.h"
+#include "run_velvet.h"
+
+#include <QDir>
+#include <QDirIterator>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+#include <cmath>
+#include <unistd.h>
+
+namespace {
+
+using velvet::test::Result;
+
+Result runVelvet(const QStringList& args) {
+    velvet::test::RunOptions options;
+    options.timeoutMs = 120000;
+    return velvet::test::runVelvet(args, options);
+}
+
+QString preset(const QString& name) {
+    return QStringLiteral(VELVET_SOURCE_DIR "/resources/presets/") + name;
+}
+
+/// The glTF JSON of a .gltf, or of a .glb's JSON chunk (glTF 2.0 section 4.4).
+QJsonObject gltfJson(const QString& file) {
+    QFile f(file);
+    if (!f.open(QIODevice::ReadOnly))
+        return {};
+    QByteArray bytes = f.readAll();
+    if (file.endsWith(".glb")) {
+        if (bytes.size() < 20 || bytes.left(4) != "glTF")
+            return {};
+        quint32 length = 0;
+        std::memcpy(&length, bytes.constData() + 12, 4);
+        bytes = bytes.mid(20, int(length));
+    }
+    return QJsonDocument::fromJson(bytes).object();
+}
+
+/// The validator's report (scripts/gltf-validate.js). Fails the test loudly when the validator
+/// is not installed: the export's correctness is not optional.
+QJsonObject validate(const QString& file) {
+    const QString node = QStringLiteral(VELVET_NODE);
+    if (node.isEmpty())
+        qFatal("node (Node.js) was not found when configuring; run 'make deps'");
+    QProcess p;
+    p.start(node, {QStringLiteral(VELVET_SOURCE_DIR "/scripts/gltf-validate.js"), file});
+    if (!p.waitForFinished(120000))
+        qFatal("gltf-validate.js did not finish on %s", qPrintable(file));
+    const QString err = QString::fromUtf8(p.readAllStandardError());
+    if (p.exitCode() == 2)
+        qFatal("the glTF validator could not run (run 'make deps'): %s", qPrintable(err));
+    const QJsonObject report = QJsonDocument::fromJson(p.readAllStandardOutput()).object();
+    if (report.isEmpty())
+        qFatal("gltf-validate.js printed no report: %s", qPrintable(err));
+    for (const QJsonValue m : report["messages"].toArray()) {
+        const QJsonObject o = m.toObject();
+        qInfo("validator %s (severity %d) %s at %s", qPrintable(o["code"].toString()),
+              o["severity"].toInt(), qPrintable(o["message"].toString()),
+              qPrintable(o["pointer"].toString()));
+    }
+    return report;
+}
+
+bool near(double a, double b, double tolerance = 1e-6) {
+    return std::abs(a - b) <= tolerance;
+}
+
+bool nearColor(const QJsonValue& v, glm::vec3 c) {
+    const QJsonArray a = v.toArray();
+    return a.size() >= 3 && near(a[0].toDouble(), c.x) && near(a[1].toDouble(), c.y) &&
+           near(a[2].toDouble(), c.z);
+}
+
+velvet::Image flat(int w, int h, int channels, std::initializer_list<float> value) {
+    velvet::Image img(w, h, channels);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            std::copy(value.begin(), value.end(), img.at(x, y));
+    return img;
+}
+
+void writePng(const QString& file, const velvet::Image& img) {
+    std::string error;
+    if (!velvet::writeImage(file.toStdString(), img, velvet::PixelFormat::UInt8, &error))
+        qFatal("%s", error.c_str());
+}
+
+/// Every file under @p dir (relative paths), hidden ones included.
+QStringList filesUnder(const QString& dir) {
+    QStringList out;
+    QDirIterator it(dir, QDir::Files | QDir::Hidden | QDir::System, QDirIterator::Subdirectories);
+    while (it.hasNext())
+        out << QDir(dir).relativeFilePath(it.next());
+    out.sort();
+    return out;
+}
+
+} // namespace
+
+class TestAppExport : public QObject {
+    Q_OBJECT
+    QTemporaryDir m_tmp;
+    QString m_textured; ///< a preset using most texture slots, an atlas and packed maps
+
+private slots:
+    void initTestCase() {
+        QVERIFY(m_tmp.isValid());
+        const QString t = m_tmp.filePath("textures/");
+        QVERIFY(QDir().mkpath(t));
+        // Atlas: left half base colour (with a cut-out column), right half sheen colour.
+        velvet::Image atlas(64, 32, 4);
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const float base[4] = {0.2f, 0.4f, 0.6f, x == 3 ? 0.0f : 1.0f};
+                const float sheen[4] = {1.0f, 0.8f, 0.2f, 1.0f};
+                std::copy(x < 32 ? base : sheen, (x < 32 ? base : sheen) + 4, atlas.at(x, y));
+            }
+        writePng(t + "atlas.png", atlas);
+        writePng(t + "occlusion.png", flat(16, 16, 1, {0.25f}));
+        writePng(t + "mr.png", flat(16, 16, 3, {0.0f, 0.6f, 0.9f}));
+        writePng(t + "normal.png", flat(16, 16, 3, {0.5f, 0.5f, 1.0f}));
+        writePng(t + "emissive.png", flat(8, 8, 3, {1.0f, 0.5f, 0.0f}));
+        writePng(t + "clearcoat.png", flat(8, 8, 1, {0.7f}));
+        writePng(t + "speccolor.png", flat(8, 8, 3, {0.9f, 0.9f, 1.0f}));
+
+        using velvet::ParamId;
+        using velvet::TextureSlot;
+        velvet::Material m;
+        m.name = "Textured test";
+        m.setColor(ParamId::EmissiveColor, glm::vec3(1.0f));
+        m.setScalar(ParamId::EmissiveStrength, 4.0f);
+        m.setScalar(ParamId::ClearcoatWeight, 1.0f);
+        m.setScalar(ParamId::SheenWeight, 0.5f);
+        m.setColor(ParamId::SheenColor, {1.0f, 0.5f, 0.5f});
+        m.setScalar(ParamId::Ior, 1.45f);
+        auto ref = [&](const char* file) {
+            velvet::TextureRef r;
+            r.file = (t + file).toStdString();
+            return r;
+        };
+        velvet::TextureRef base = ref("atlas.png");
+        base.useRegion = true;
+        base.region = {0, 0, 32, 32};
+        velvet::TextureRef sheen = base;
+        sheen.region = {32, 0, 32, 32};
+        m.setTexture(TextureSlot::BaseColor, base);
+        m.setTexture(TextureSlot::SheenColor, sheen);
+        m.setTexture(TextureSlot::Occlusion, ref("occlusion.png"));
+        m.setTexture(TextureSlot::MetallicRoughness, ref("mr.png"));
+        m.setTexture(TextureSlot::Normal, ref("normal.png"));
+        m.setTexture(TextureSlot::Emissive, ref("emissive.png"));
+        m.setTexture(TextureSlot::Clearcoat, ref("clearcoat.png"));
+        m.setTexture(TextureSlot::SpecularColor, ref("speccolor.png"));
+        m_textured = m_tmp.filePath("textured.json");
+        std::string error;
+        QVERIFY2(velvet::saveMaterialFile(m, m_textured.toStdString(), &error), error.c_str());
+    }
+
+    void validatesWithMaterialValues_data() {
+        QTest::addColumn<QString>("input");
+        QTest::addColumn<QString>("format");
+        const QStringList inputs{preset("crimson_velvet.json"), preset("silk.json"),
+                                 preset("gold.json"), preset("car_paint.json"), m_textured};
+        for (const QString& in : inputs)
+            for (const char* f : {"glb", "gltf"})
+                QTest::newRow(qPrintable(QFileInfo(in).baseName() + "." + f)) << in << f;
+    }
+    void validatesWithMaterialValues() {
+        QFETCH(QString, input);
+        QFETCH(QString, format);
+        const QString out = m_tmp.filePath("values-" + format);
+        const Result r = runVelvet({"export", input, "-f", format, "-o", out, "--force"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QString file = out + "/" + QFileInfo(input).baseName() + "." + format;
+        QVERIFY2(QFileInfo::exists(file), qPrintable(r.out + r.err));
+        QCOMPARE(r.out.trimmed(), file);
+
+        const QJsonObject report = validate(file);
+        QCOMPARE(report["numErrors"].toInt(-1), 0);
+        qInfo("%s: %d errors, %d warnings, %d infos, %d hints (validator %s)", qPrintable(file),
+              report["numErrors"].toInt(), report["numWarnings"].toInt(),
+              report["numInfos"].toInt(), report["numHints"].toInt(),
+              qPrintable(report["validatorVersion"].toString()));
+
+        // Round trip of the values: each factor is the material's, each extension is present
+        // exactly when its lobe is on.
+        velvet::Problems problems;
+        const auto m = velvet::loadMaterialFile(input.toStdString(), problems);
+        QVERIFY(m);
+        using velvet::ParamId;
+        const QJsonObject doc = gltfJson(file);
+        const QJsonObject mat = doc["materials"].toArray()[0].toObject();
+        QCOMPARE(mat["name"].toString(), QString::fromStdString(m->name));
+        const QJsonObject pbr = mat["pbrMetallicRoughness"].toObject();
+        QVERIFY(nearColor(pbr["baseColorFactor"], m->color(ParamId::BaseColor)));
+        QVERIFY(near(pbr["metallicFactor"].toDouble(), m->scalar(ParamId::Metallic)));
+        QVERIFY(near(pbr["roughnessFactor"].toDouble(), m->scalar(ParamId::Roughness)));
+        const QJsonObject ext = mat["extensions"].toObject();
+        const bool coat = m->scalar(ParamId::ClearcoatWeight) > 0;
+        QCOMPARE(ext.contains("KHR_materials_clearcoat"), coat);
+        if (coat) {
+            const QJsonObject c = ext["KHR_materials_clearcoat"].toObject();
+            QVERIFY(near(c["clearcoatFactor"].toDouble(), m->scalar(ParamId::ClearcoatWeight)));
+            QVERIFY(near(c["clearcoatRoughnessFactor"].toDouble(),
+                         m->scalar(ParamId::ClearcoatRoughness)));
+        }
+        const bool sheen = m->scalar(ParamId::SheenWeight) > 0;
+        QCOMPARE(ext.contains("KHR_materials_sheen"), sheen);
+        if (sheen) {
+            const QJsonObject s = ext["KHR_materials_sheen"].toObject();
+            QVERIFY(nearColor(s["sheenColorFactor"],
+                              m->scalar(ParamId::SheenWeight) * m->color(ParamId::SheenColor)));
+            QVERIFY(near(s["sheenRoughnessFactor"].toDouble(), m->scalar(ParamId::SheenRoughness)));
+        }
+        const bool ior = m->scalar(ParamId::Ior) != 1.5f;
+        QCOMPARE(ext.contains("KHR_materials_ior"), ior);
+        if (ior)
+            QVERIFY(near(ext["KHR_materials_ior"].toObject()["ior"].toDouble(),
+                         m->scalar(ParamId::Ior)));
+        const bool specular = m->scalar(ParamId::SpecularWeight) != 1.0f ||
+                              m->color(ParamId::SpecularColor) != glm::vec3(1.0f) ||
+                              !m->texture(velvet::TextureSlot::Specular).empty() ||
+                              !m->texture(velvet::TextureSlot::SpecularColor).empty();
+        QCOMPARE(ext.contains("KHR_materials_specular"), specular);
+        const bool emits = m->color(ParamId::EmissiveColor) != glm::vec3(0.0f);
+        QCOMPARE(mat.contains("emissiveFactor"), emits);
+        QCOMPARE(ext.contains("KHR_materials_emissive_strength"),
+                 emits && m->scalar(ParamId::EmissiveStrength) != 1.0f);
+        // extensionsUsed lists exactly the extensions the file uses.
+        QStringList used;
+        for (const QJsonValue v : doc["extensionsUsed"].toArray())
+            used << v.toString();
+        QStringList expected = ext.keys();
+        if (QJsonDocument(mat).toJson().contains("KHR_texture_transform"))
+            expected << "KHR_texture_transform";
+        expected.sort();
+        QCOMPARE(used, expected);
+        // Mesh: the default scene's sphere, with every attribute glTF's PBR needs.
+        const QJsonObject attributes = doc["meshes"]
+                                           .toArray()[0]
+                                           .toObject()["primitives"]
+                                           .toArray()[0]
+                                           .toObject()["attributes"]
+                                           .toObject();
+        for (const char* a : {"POSITION", "NORMAL", "TANGENT", "TEXCOORD_0"})
+            QVERIFY2(attributes.contains(a), a);
+    }
+
+    /// The textured preset's texels: the packed image holds occlusion, roughness, metallic in
+    /// R, G, B; colour textures come back with the source's sRGB values; regions become
+    /// KHR_texture_transform; the cut-out alpha becomes MASK.
+    void texturedKnownAnswers() {
+        const QString out = m_tmp.filePath("known");
+        const Result r = runVelvet({"export", m_textured, "-f", "gltf", "-o", out});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QJsonObject doc = gltfJson(out + "/textured.gltf");
+        const QJsonObject mat = doc["materials"].toArray()[0].toObject();
+        const QJsonObject pbr = mat["pbrMetallicRoughness"].toObject();
+        QCOMPARE(mat["alphaMode"].toString(), QString("MASK"));
+        QCOMPARE(mat["occlusionTexture"].toObject()["index"].toInt(-1),
+                 pbr["metallicRoughnessTexture"].toObject()["index"].toInt(-2));
+        const QJsonObject baseTex = pbr["baseColorTexture"].toObject();
+        const QJsonObject sheenTex =
+            mat["extensions"]["KHR_materials_sheen"]["sheenColorTexture"].toObject();
+        // One atlas image, two regions.
+        QCOMPARE(baseTex["index"].toInt(-1), sheenTex["index"].toInt(-2));
+        const QJsonObject bt = baseTex["extensions"]["KHR_texture_transform"].toObject();
+        const QJsonObject st = sheenTex["extensions"]["KHR_texture_transform"].toObject();
+        QCOMPARE(bt["scale"].toArray(), QJsonArray({0.5, 1.0}));
+        QCOMPARE(bt["offset"].toArray(), QJsonArray({0.0, 0.0}));
+        QCOMPARE(st["offset"].toArray(), QJsonArray({0.5, 0.0}));
+        QVERIFY(doc["extensionsRequired"].toArray().contains("KHR_texture_transform"));
+        QVERIFY(mat["normalTexture"].isObject());
+        QVERIFY(mat["emissiveTexture"].isObject());
+
+        velvet::Image orm, atlas;
+        std::string error;
+        QVERIFY2(velvet::readImage((out + "/textured_orm.png").toStdString(), orm, &error),
+                 error.c_str());
+        const glm::vec4 t = orm.rgba(5, 7);
+        QVERIFY2(near(t.r, 64 / 255.0, 0.6 / 255) && near(t.g, 153 / 255.0, 0.6 / 255) &&
+                     near(t.b, 230 / 255.0, 0.6 / 255),
+                 qPrintable(QString("orm texel %1 %2 %3").arg(t.r).arg(t.g).arg(t.b)));
+        const int source =
+            doc["textures"].toArray()[baseTex["index"].toInt()].toObject()["source"].toInt();
+        const QString atlasFile =
+            out + "/" + doc["images"].toArray()[source].toObject()["uri"].toString();
+        QVERIFY2(velvet::readImage(atlasFile.toStdString(), atlas, &error), error.c_str());
+        const glm::vec4 b = atlas.rgba(10, 10), cut = atlas.rgba(3, 0), s = atlas.rgba(40, 4);
+        QVERIFY2(near(b.r, 51 / 255.0, 1.1 / 255) && near(b.g, 102 / 255.0, 1.1 / 255) &&
+                     near(b.b, 153 / 255.0, 1.1 / 255) && b.a == 1.0f,
+                 qPrintable(QString("base texel %1 %2 %3").arg(b.r).arg(b.g).arg(b.b)));
+        QCOMPARE(cut.a, 0.0f);
+        QVERIFY(near(s.g, 204 / 255.0, 1.1 / 255));
+        // .gltf writes its parts beside it and nothing else.
+        QCOMPARE(filesUnder(out), (QStringList{"textured.bin", "textured.gltf",
+                                               "textured_baseColor.png", "textured_clearcoat.png",
+                                               "textured_emissive.png", "textured_normal.png",
+                                               "textured_orm.png", "textured_specularColor.png"}));
+    }
+
+    void unmappableIsWarned() {
+        using namespace velvet;
+        Material m;
+        m.setChoice(ParamId::Distribution, int(Distribution::Beckmann));
+        m.setChoice(ParamId::Diffuse, int(Diffuse::Burley));
+        graph::Graph g;
+        const graph::NodeId outNode = g.addNode(graph::kOutputTypeId).node;
+        const graph::NodeId value = g.addNode("constant.float").node;
+        const graph::NodeType* outType = graph::findNodeType(graph::kOutputTypeId);
+        QVERIFY(g.connect({value, 0, outNode, graph::PortIndex(outType->inputIndex("roughness"))}));
+        m.graph = SharedGraph(g);
+        const QString in = m_tmp.filePath("unmappable.json");
+        std::string error;
+        QVERIFY2(saveMaterialFile(m, in.toStdString(), &error), error.c_str());
+        const Result r = runVelvet({"export", in, "-f", "glb", "-o", m_tmp.filePath("warn")});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(r.err.contains("warning: ") && r.err.contains("brdf.distribution = beckmann") &&
+                     r.err.contains("brdf.diffuse = burley") &&
+                     r.err.contains("graph: the node graph drives roughness") &&
+                     r.err.contains("GPU"),
+                 qPrintable(r.err));
+        QCOMPARE(validate(m_tmp.filePath("warn/unmappable.glb"))["numErrors"].toInt(-1), 0);
+        // A preset carries everything: no warning, and the same material comes back.
+        const Result p = runVelvet({"export", in, "-f", "preset", "-o", m_tmp.filePath("warn")});
+        QVERIFY2(p.exitCode == 0 && p.err.isEmpty(), qPrintable(p.err));
+        Problems problems;
+        const auto back =
+            loadMaterialFile(m_tmp.filePath("warn/unmappable.json").toStdString(), problems);
+        QVERIFY(back);
+        QVERIFY(*back == m);
+    }
+
+    void presetIsTheSameMaterial() {
+        const Result r =
+            runVelvet({"export", m_textured, "-f", "preset", "-o", m_tmp.filePath("p/copy.json")});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        velvet::Problems a, b;
+        const auto original = velvet::loadMaterialFile(m_textured.toStdString(), a);
+        const auto copy = velvet::loadMaterialFile(m_tmp.filePath("p/copy.json").toStdString(), b);
+        QVERIFY(original && copy);
+        QVERIFY(*original == *copy);
+    }
+
+    void meshOption() {
+        const QString out = m_tmp.filePath("mesh");
+        Result r = runVelvet(
+            {"export", preset("gold.json"), "-f", "glb", "--mesh", "cube", "-o", out + "/c.glb"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QJsonObject doc = gltfJson(out + "/c.glb");
+        QCOMPARE(doc["accessors"].toArray()[0].toObject()["count"].toInt(), 24);
+        QCOMPARE(validate(out + "/c.glb")["numErrors"].toInt(-1), 0);
+        // A mesh file: the cube exported above, read back through the crash-isolated import.
+        r = runVelvet({"export", preset("silk.json"), "-f", "glb", "--mesh", out + "/c.glb", "-o",
+                       out + "/from-file.glb"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(validate(out + "/from-file.glb")["numErrors"].toInt(-1), 0);
+        // Open surfaces are double-sided.
+        r = runVelvet({"export", preset("silk.json"), "-f", "glb", "--mesh", "cloth-drape", "-o",
+                       out + "/cloth.glb"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY(gltfJson(out + "/cloth.glb")["materials"][0]["doubleSided"].toBool());
+        QCOMPARE(validate(out + "/cloth.glb")["numErrors"].toInt(-1), 0);
+    }
+
+    void existingOutputRefusedUnlessForced() {
+        const QString out = m_tmp.filePath("force");
+        const QString file = out + "/gold.glb";
+        QCOMPARE(runVelvet({"export", preset("gold.json"), "-f", "glb", "-o", out}).exitCode, 0);
+        // A hard link to the first export: an atomic replacement (new file + rename) leaves it
+        // holding the old bytes; writing in place would change it too.
+        QVERIFY(::link(file.toLocal8Bit().constData(), (out + "/old-link").toLocal8Bit()) == 0);
+        QFile f(file);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QByteArray before = f.readAll();
+        f.close();
+        Result r = runVelvet({"export", preset("silk.json"), "-f", "glb", "-o", file});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("exists") && r.err.contains("--force"), qPrintable(r.err));
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        QCOMPARE(f.readAll(), before);
+        f.close();
+        r = runVelvet({"export", preset("silk.json"), "-f", "glb", "-o", file, "--force"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        QVERIFY(f.readAll() != before);
+        f.close();
+        QFile link(out + "/old-link");
+        QVERIFY(link.open(QIODevice::ReadOnly));
+        QCOMPARE(link.readAll(), before);
+        // No temporary file is left behind.
+        QCOMPARE(filesUnder(out), (QStringList{"gold.glb", "old-link"}));
+        // .gltf: one existing part refuses the whole export, nothing else is written.
+        const QString parts = m_tmp.filePath("parts");
+        QVERIFY(QDir().mkpath(parts));
+        QFile bin(parts + "/gold.bin");
+        QVERIFY(bin.open(QIODevice::WriteOnly));
+        bin.write("mine");
+        bin.close();
+        r = runVelvet({"export", preset("gold.json"), "-f", "gltf", "-o", parts});
+        QCOMPARE(r.exitCode, 2);
+        QCOMPARE(filesUnder(parts), QStringList{"gold.bin"});
+    }
+
+    void namesCannotEscape() {
+        // A file name full of path syntax and a material name that is a path: every output
+        // lands in the chosen folder under a sanitised name.
+        const QString root = m_tmp.filePath("escape");
+        QVERIFY(QDir().mkpath(root + "/in"));
+        velvet::Material m;
+        m.name = "../../escaped";
+        const QString in = root + "/in/..;$(x) ..json";
+        std::string error;
+        QVERIFY2(velvet::saveMaterialFile(m, in.toStdString(), &error), error.c_str());
+        for (const char* format : {"glb", "gltf", "preset"}) {
+            const Result r = runVelvet({"export", in, "-f", format, "-o", root + "/out"});
+            QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        }
+        QCOMPARE(filesUnder(root), (QStringList{"in/..;$(x) ..json", "out/x.bin", "out/x.glb",
+                                                "out/x.gltf", "out/x.json"}));
+    }
+
+    void badInvocations_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<int>("exitCode");
+        const QString gold = preset("gold.json");
+        QTest::newRow("no file") << QStringList{"export", "-f", "glb", "-o", "x"} << 1;
+        QTest::newRow("no format") << QStringList{"export", gold, "-o", "x"} << 1;
+        QTest::newRow("no output") << QStringList{"export", gold, "-f", "glb"} << 1;
+        QTest::newRow("bad format") << QStringList{"export", gold, "-f", "fbx", "-o", "x"} << 1;
+        QTest::newRow("bad mesh") << QStringList{"export", gold,     "-f", "glb",
+                                                 "--mesh", "teapot", "-o", "x"}
+                                  << 1;
+        QTest::newRow("same name twice")
+            << QStringList{"export", gold, gold, "-f", "glb", "-o", "x"} << 1;
+        QTest::newRow("missing input")
+            << QStringList{"export", "/nonexistent/m.json", "-f", "glb", "-o", "x"} << 2;
+    }
+    void badInvocations() {
+        QFETCH(QStringList, args);
+        QFETCH(int, exitCode);
+        for (QString& a : args)
+            if (a == "x")
+                a = m_tmp.filePath("bad/x");
+        const Result r = runVelvet(args);
+        QCOMPARE(r.status, QProcess::NormalExit);
+        QCOMPARE(r.exitCode, exitCode);
+        QVERIFY(!r.err.isEmpty());
+        QVERIFY(!QFileInfo::exists(m_tmp.filePath("bad/x")) ||
+                QDir(m_tmp.filePath("bad/x")).isEmpty());
+    }
+
+    void missingTextureIsBadInput() {
+        velvet::Material m;
+        velvet::TextureRef r;
+        r.file = m_tmp.filePath("nope.png").toStdString();
+        m.setTexture(velvet::TextureSlot::Normal, r);
+        const QString in = m_tmp.filePath("missing-texture.json");
+        std::string error;
+        QVERIFY2(velvet::saveMaterialFile(m, in.toStdString(), &error), error.c_str());
+        const Result res = runVelvet({"export", in, "-f", "glb", "-o", m_tmp.filePath("mt")});
+        QCOMPARE(res.exitCode, 2);
+        QVERIFY2(res.err.contains("textures.normal"), qPrintable(res.err));
+        QVERIFY(!QFileInfo::exists(m_tmp.filePath("mt/missing-texture.glb")));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestAppExport)
+#include "test_app_export.moc"

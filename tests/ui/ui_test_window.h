@@ -1,0 +1,44 @@
+#pragma once
+/// @file ui_test_window.h
+/// Bringing the real MainWindow up for a widget test under xvfb-run: shown, active (Xvfb has no
+/// window manager to activate it, and shortcuts go to the active window) and past its first
+/// frame (llvmpipe compiles every shader for it).
+
+#include "ui/main_window.h"
+#include "ui/viewport_widget.h"
+
+#include <QApplication>
+#include <QSignalSpy>
+#include <QTest>
+
+namespace velvet::test {
+
+inline constexpr int kFrameTimeoutMs = 120000;
+
+/// Makes @p window the active window; false when it does not become active.
+inline bool activate(QWidget* window) {
+    window->activateWindow();
+    QApplication::setActiveWindow(window);
+    return QTest::qWaitFor([window] { return window->isActiveWindow(); });
+}
+
+/// Shows @p window at @p size and waits for its first frame. Empty when it is up; otherwise what
+/// went wrong.
+inline QString showWithFirstFrame(ui::MainWindow* window, QSize size) {
+    ui::ViewportWidget* viewport = window->viewport();
+    QSignalSpy frames(viewport, &ui::ViewportWidget::frameCompleted);
+    QSignalSpy failures(viewport, &ui::ViewportWidget::renderFailed);
+    window->resize(size);
+    window->show();
+    if (!QTest::qWaitForWindowExposed(window))
+        return QStringLiteral("the window was not exposed");
+    if (!activate(window))
+        return QStringLiteral("the window did not become active");
+    if (!QTest::qWaitFor([&] { return !frames.isEmpty() || !failures.isEmpty(); }, kFrameTimeoutMs))
+        return QStringLiteral("no frame within %1 s").arg(kFrameTimeoutMs / 1000);
+    if (!failures.isEmpty())
+        return viewport->errorMessage();
+    return {};
+}
+
+} // namespace velvet::test
