@@ -35,6 +35,36 @@ double msSince(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
+/// Takes into @p dst the parts of @p src that @p parts names, and nothing else (a part the mask
+/// does not name keeps the renderer's own, so what is drawn is what was uploaded).
+void copyParts(Scene& dst, const Scene& src, ScenePart parts) {
+    if (touches(parts, ScenePart::Camera))
+        dst.camera = src.camera;
+    if (touches(parts, ScenePart::Material)) {
+        // The values (parameters, BRDF terms, names) from the side the mask names; texture slots
+        // and the graph each from theirs.
+        Material m = touches(parts, ScenePart::MaterialValues) ? src.material : dst.material;
+        const Material& structure =
+            touches(parts, ScenePart::MaterialStructure) ? src.material : dst.material;
+        for (int i = 0; i < kTextureSlotCount; ++i)
+            m.setTexture(TextureSlot(i), structure.texture(TextureSlot(i)));
+        m.graph = touches(parts, ScenePart::Graph) ? src.material.graph : dst.material.graph;
+        dst.material = std::move(m);
+        if (touches(parts, ScenePart::MaterialValues))
+            dst.materialPreset = src.materialPreset;
+    }
+    if (touches(parts, ScenePart::Mesh))
+        dst.mesh = src.mesh;
+    if (touches(parts, ScenePart::Environment))
+        dst.environment = src.environment;
+    if (touches(parts, ScenePart::Lights))
+        dst.lights = src.lights;
+    if (touches(parts, ScenePart::PostChain))
+        dst.post = src.post;
+    if (touches(parts, ScenePart::Atlases))
+        dst.atlases = src.atlases;
+}
+
 } // namespace
 
 struct Renderer::Impl {
@@ -78,6 +108,8 @@ struct Renderer::Impl {
     int lastWidth = 0, lastHeight = 0;
     mutable FrameTimings timings;
     double cpuMs = 0;
+    /// Uploads since construction; graphCompiles and graphValueUploads come from graph.
+    UploadStats uploads;
 
     ~Impl() {
         if (emptyVao)
@@ -104,6 +136,7 @@ struct Renderer::Impl {
     /// The material record: parameters, then texture presence bits and the means of the slots
     /// the G-buffer cannot carry (render/texture_set.h). Never a shader.
     void uploadMaterial() {
+        ++uploads.materialUploads;
         GpuMaterial g = packMaterial(scene.material);
         textures.applyTo(g);
         packedA = g;
@@ -115,6 +148,22 @@ struct Renderer::Impl {
         GpuMaterial g = packMaterial(b);
         textures.applyTo(g);
         materials.upload({packedA, g});
+    }
+
+    void selectMesh(Problems* problems) {
+        ++uploads.meshSelections;
+        mesh = &meshes.select(scene.mesh, problems);
+    }
+    void refreshTextureSlots(Problems* problems) {
+        ++uploads.textureSlotRefreshes;
+        textures.setMaterial(scene.material, problems);
+    }
+    /// The lights; @p problems hears of each directional light past kMaxDirectionalLights.
+    void uploadLights(Problems* problems);
+    void requestEnvironment(Problems* problems) {
+        ++uploads.environmentRequests;
+        environment = &environments.get(scene.environment, problems);
+        ibl.request(*environment);
     }
 
     /// Per-frame work before drawing: texture files changed on disk, a structural graph edit
@@ -146,8 +195,10 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
                                   DisplayChoice& choice, const ShaderProgram*& surfaceProgram,
                                   std::string* error) {
     // A texture file changed on disk (edited in another program): re-upload, re-pack the record.
-    if (textures.poll())
+    if (textures.poll()) {
+        ++uploads.textureSlotRefreshes;
         uploadMaterial();
+    }
     // A structural graph edit: start the new G-buffer program, or adopt it once the driver's
     // compiler threads have finished (GL_KHR_parallel_shader_compile); meanwhile this frame
     // draws the old program, so the window never waits for a compile. Without the extension the
@@ -165,7 +216,10 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     if (!display.choose(fs, choice, error))
         return false;
     // Every frame (a stat of the HDRI): an HDRI edited on disk is read and prefiltered again.
-    environment = &environments.get(scene.environment, nullptr);
+    const GpuEnvironment* current = &environments.get(scene.environment, nullptr);
+    if (current != environment)
+        ++uploads.environmentRequests; // read again: a new entry
+    environment = current;
     // Environment prefiltering: a few slices per frame (render/ibl_bake.h).
     ibl.request(*environment);
     const auto iblStart = std::chrono::steady_clock::now();
@@ -180,6 +234,24 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
                                    " is incomplete: " + framebufferStatusName(status));
     }
     return true;
+}
+
+void Renderer::Impl::uploadLights(Problems* problems) {
+    ++uploads.lightUploads;
+    lights.upload(scene.lights);
+    if (!problems)
+        return;
+    // The full-screen pass has a fixed array of directional lights (MAX_LIGHTS in
+    // common_frame.glsl); makeFrameBlock() draws the first kMaxDirectionalLights and drops the
+    // rest.
+    int directional = 0;
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].type == LightType::Directional && ++directional > kMaxDirectionalLights)
+            problems->warning("", "lights[" + std::to_string(i) + "]",
+                              "directional light " + std::to_string(directional) +
+                                  " is not drawn: the renderer draws the first " +
+                                  std::to_string(kMaxDirectionalLights) +
+                                  " directional lights only");
 }
 
 void Renderer::Impl::drawLocalLights(const FrameSettings& fs) {
@@ -273,12 +345,12 @@ bool Renderer::initialize(std::string* error) {
     if (!d.lights.initialize(error))
         return false;
     if (d.haveScene)
-        d.lights.upload(d.scene.lights);
+        d.uploadLights(nullptr);
     if (!d.ibl.initialize(error))
         return false;
     d.iblCompiles += 3; // the IBL bake's compute programs
-    d.mesh = &d.meshes.select(d.scene.mesh, nullptr);
-    d.textures.setMaterial(d.scene.material, nullptr);
+    d.selectMesh(nullptr);
+    d.refreshTextureSlots(nullptr);
     d.uploadMaterial();
     d.graph.uploadValues();
     d.graph.refreshTextures(d.textures.sharedCache(), nullptr);
@@ -318,40 +390,46 @@ void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorMa
     // Input colour space names are looked up in the new config too.
     d.textures.setColorManagement(d.colorManagement);
     if (d.initialized) {
-        d.textures.setMaterial(d.scene.material, nullptr);
+        d.refreshTextureSlots(nullptr);
         d.uploadMaterial();
     }
 }
 
 void Renderer::setScene(const Scene& scene, Problems* problems) {
+    update(scene, ScenePart::All, problems);
+}
+
+void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     Impl& d = *m_impl;
-    d.scene = scene;
+    copyParts(d.scene, scene, parts);
     d.haveScene = true;
     if (!d.initialized)
         return; // uploaded by initialize()
-    d.mesh = &d.meshes.select(scene.mesh, problems);
-    d.textures.setMaterial(scene.material, problems);
+    if (touches(parts, ScenePart::Mesh))
+        d.selectMesh(problems);
+    if (touches(parts, ScenePart::MaterialStructure))
+        d.refreshTextureSlots(problems);
     // Numbers only: rewrite the material table (never a shader).
-    d.uploadMaterial();
+    if (touches(parts, ScenePart::MaterialStructure | ScenePart::MaterialValues))
+        d.uploadMaterial();
     // The graph: values and textures now, a new structure at the next render().
-    d.graph.setGraph(scene.material, d.textures.sharedCache(), problems);
-    d.lights.upload(scene.lights);
-    if (problems) {
-        // The full-screen pass has a fixed array of directional lights (MAX_LIGHTS in
-        // common_frame.glsl); makeFrameBlock() draws the first kMaxDirectionalLights and drops
-        // the rest.
-        int directional = 0;
-        for (size_t i = 0; i < scene.lights.size(); ++i)
-            if (scene.lights[i].type == LightType::Directional &&
-                ++directional > kMaxDirectionalLights)
-                problems->warning("", "lights[" + std::to_string(i) + "]",
-                                  "directional light " + std::to_string(directional) +
-                                      " is not drawn: the renderer draws the first " +
-                                      std::to_string(kMaxDirectionalLights) +
-                                      " directional lights only");
-    }
-    d.environment = &d.environments.get(scene.environment, problems);
-    d.ibl.request(*d.environment);
+    if (touches(parts, ScenePart::Graph))
+        d.graph.setGraph(d.scene.material, d.textures.sharedCache(), problems);
+    if (touches(parts, ScenePart::Lights))
+        d.uploadLights(problems);
+    if (touches(parts, ScenePart::Environment))
+        d.requestEnvironment(problems);
+    // PostChain: PostChainRenderer::run reads scene.post at each frame, nothing to upload.
+    // Camera: the stored camera is all (makeFrameBlock reads it when FrameSettings::camera is
+    // unset). Atlases: nothing in the renderer today — atlas regions reach it as texture slots
+    // (MaterialStructure), and scene.atlases only names the document the editor loads.
+}
+
+UploadStats Renderer::uploadStats() const {
+    UploadStats s = m_impl->uploads;
+    s.graphCompiles = m_impl->graph.graphCompiles();
+    s.graphValueUploads = m_impl->graph.valueUploads();
+    return s;
 }
 
 bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* error) {
@@ -370,7 +448,9 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     if (!d.prepareFrame(fs, targetFbo, display, surfaceProgram, error))
         return false;
 
-    const FrameBlock block = makeFrameBlock(d.scene, d.scene.camera, *d.environment, fs);
+    // The per-frame camera (an orbit) or the scene's.
+    const FrameBlock block =
+        makeFrameBlock(d.scene, fs.camera ? *fs.camera : d.scene.camera, *d.environment, fs);
     d.uniforms.bindFrame(block);
     if (fs.splitMaterial)
         d.uploadSplitMaterial(*fs.splitMaterial);
