@@ -7,6 +7,7 @@
 #include "core/diagnostics.h"
 #include "core/image.h"
 #include "core/scene.h"
+#include "core/scene_parts.h"
 
 #include <glm/mat4x4.hpp>
 #include <memory>
@@ -25,7 +26,8 @@ namespace velvet::render {
 class PostChainRenderer;
 
 /// Directional lights the lighting pass draws (MAX_LIGHTS in resources/shaders/common_frame.glsl);
-/// setScene() reports each one past this as a warning naming its JSON path ("lights[i]").
+/// update() with ScenePart::Lights reports each one past this as a warning naming its JSON path
+/// ("lights[i]").
 inline constexpr int kMaxDirectionalLights = 16;
 
 /// What the final pass shows (the renderer issue adds every G-buffer and lighting view).
@@ -75,6 +77,10 @@ enum class ToneMapper { KhronosPbrNeutral, AcesFitted, Reinhard, Linear };
 struct FrameSettings {
     int width = 256;
     int height = 256;
+    /// Set: the frame is drawn from this camera instead of the scene's (the editor's orbit is a
+    /// per-frame setting, never a scene edit: a camera move uploads nothing). The frame block and
+    /// motion blur's view-projection use it. Unset: Scene::camera as update() last took it.
+    std::optional<Camera> camera;
     /// Exposure in stops (scene-linear x 2^EV) before the tone mapper, or fed to the OCIO display
     /// transform's dynamic exposure uniform when a tone-mapping OCIO view is chosen. A uniform
     /// either way: changing it compiles nothing.
@@ -146,6 +152,20 @@ struct FrameTimings {
     double iblMs = 0;
 };
 
+/// What the renderer uploaded since construction (Renderer::uploadStats), one count per kind
+/// of scene upload. Per-frame work counts only when it really uploads: a texture slot or the
+/// material record re-uploaded because a file changed on disk, an HDRI read again because it
+/// changed. The A/B split's material (FrameSettings::splitMaterial) is per frame and not counted.
+struct UploadStats {
+    int meshSelections = 0;       ///< preview mesh selections (an upload the first time per mesh)
+    int textureSlotRefreshes = 0; ///< the texture slots taken again (TextureSet::setMaterial)
+    int materialUploads = 0;      ///< the scene material's record written to the material table
+    int graphCompiles = 0;        ///< material graph -> GLSL compiles (not GL program builds)
+    int graphValueUploads = 0;    ///< the graph's value block written
+    int lightUploads = 0;         ///< point, spot and area lights uploaded (render/light_passes.h)
+    int environmentRequests = 0;  ///< environment looked up and its bake requested
+};
+
 class Renderer {
 public:
     Renderer();
@@ -165,10 +185,27 @@ public:
     /// false + message (file:line and the driver's log for each failure).
     bool reloadShaders(std::string* error);
 
-    /// Takes the scene to draw. Cheap for value edits (material numbers go to a uniform buffer, no
-    /// shader is recompiled); mesh and HDRI are (re)loaded only when their source changes.
-    /// Problems (a missing HDRI or texture) are reported and a fallback is used.
+    /// @name Scene updates (DESIGN.md, "Changes")
+    /// @{
+    /// Takes the parts of @p scene that @p parts names into the renderer's own scene and
+    /// (re)uploads only those; the other parts of @p scene are not read. Mesh: the mesh
+    /// selection. MaterialStructure: the texture slots and the material record. MaterialValues:
+    /// the material record only (no texture is looked at). Graph: the graph (compiled to GLSL;
+    /// values and textures now, a new structure at the next render()). Lights: the light upload
+    /// and a warning for each directional light past kMaxDirectionalLights. Environment: the
+    /// environment (an HDRI loaded once per file) and its bake. PostChain: the chain (read at
+    /// each frame). Camera: only the stored camera (an orbit should use FrameSettings::camera,
+    /// which uploads nothing). Atlases: nothing (atlas regions reach the renderer as texture
+    /// slots, MaterialStructure). Value edits never compile a shader. Problems (a missing HDRI,
+    /// texture or mesh) are reported to @p problems and a fallback is used. Before initialize()
+    /// the parts are only stored; initialize() uploads the whole stored scene.
+    void update(const Scene& scene, ScenePart parts, Problems* problems = nullptr);
+    /// Takes the whole scene: update(scene, ScenePart::All, problems).
     void setScene(const Scene& scene, Problems* problems = nullptr);
+    /// Uploads counted since construction (tests: an orbit uploads nothing, a value edit one
+    /// material record).
+    UploadStats uploadStats() const;
+    /// @}
 
     /// The OpenColorIO config the display encoding and transforms come from. Without one,
     /// initialize() loads ColorManagement::defaultConfigPath() ($OCIO or the shipped config).
@@ -190,7 +227,7 @@ public:
 
     /// @name Material graph (core/graph/graph_compiler.h)
     /// The scene material's graph is compiled into the G-buffer program as the generated include
-    /// "material_graph.glsl". setScene() with only value or texture-file changes uploads the
+    /// "material_graph.glsl". update() with only value or texture-file changes uploads the
     /// value block and rebinds textures (no compile); a structural change starts the new
     /// G-buffer program at the next render() without waiting for it: where the driver compiles
     /// on its own threads (GL_KHR_parallel_shader_compile) each render() polls it and draws the

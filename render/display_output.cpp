@@ -1,0 +1,154 @@
+#include "render/display_output.h"
+
+#include "render/gl_util.h"
+
+#include <cstdio>
+#include <epoxy/gl.h>
+
+namespace velvet::render {
+
+void DisplayOutput::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
+    m_config = std::move(colorManagement);
+    m_transformIds.clear();
+    m_transformKey.clear();
+    m_encodingIds.clear();
+    m_configFailed = false;
+}
+
+const ColorManagement* DisplayOutput::config() {
+    if (!m_config && !m_configFailed) {
+        auto loaded = std::make_shared<ColorManagement>();
+        std::string message;
+        if (loaded->loadDefault(&message)) {
+            m_config = std::move(loaded);
+        } else {
+            m_configFailed = true;
+            std::fprintf(stderr,
+                         "velvet: warning: no OpenColorIO config could be loaded (%s); the "
+                         "display is encoded with the built-in sRGB curve instead of OCIO\n",
+                         message.c_str());
+        }
+    }
+    return m_config.get();
+}
+
+bool DisplayOutput::initialize(std::string* error) {
+    return selectEncoding({}, error) && tonemapProgram(error);
+}
+
+bool DisplayOutput::ocioToneMaps(const FrameSettings& fs, bool& toneMaps, std::string* error) {
+    toneMaps = false;
+    if (!fs.usesColorManagement())
+        return true;
+    const ColorManagement* cm = config();
+    if (!cm)
+        return fail(error, "a display/view was chosen but no OpenColorIO config could be "
+                           "loaded from " +
+                               ColorManagement::defaultConfigPath().string());
+    const std::optional<bool> encodes = cm->isEncodingView(fs.display, fs.displayView, error);
+    if (!encodes)
+        return false;
+    toneMaps = !*encodes || !fs.look.empty();
+    return true;
+}
+
+bool DisplayOutput::choose(const FrameSettings& fs, DisplayChoice& choice, std::string* error) {
+    choice = {};
+    if (!ocioToneMaps(fs, choice.ocioToneMaps, error))
+        return false;
+    choice.ocioDisplay = choice.ocioToneMaps && fs.view == DebugView::Final;
+    if (choice.ocioDisplay && !selectDisplayTransform(fs, error))
+        return false;
+    if (!selectEncoding(fs.display, error))
+        return false;
+    choice.tonemap = tonemapProgram(error);
+    return choice.tonemap != nullptr;
+}
+
+bool DisplayOutput::selectEncoding(const std::string& display, std::string* error) {
+    const ColorManagement* cm = config();
+    if (!cm) {
+        m_encoding.selectFallback();
+        return true;
+    }
+    if (const auto it = m_encodingIds.find(display);
+        it != m_encodingIds.end() && m_encoding.selectCached(it->second))
+        return true;
+    const std::optional<GpuDisplayTransform> t =
+        cm->gpuDisplayEncoding(display, error, DisplayEncoding::options());
+    if (!t || !m_encoding.select(*t, error))
+        return false;
+    m_encodingIds[display] = t->cacheId;
+    return true;
+}
+
+ShaderProgram* DisplayOutput::tonemapProgram(std::string* error) {
+    auto& program = m_tonemaps[m_encoding.cacheId()];
+    if (program)
+        return program.get();
+    auto built = std::make_unique<ShaderProgram>();
+    if (!buildTonemap(*built, m_encoding.cacheId(), error)) {
+        m_tonemaps.erase(m_encoding.cacheId());
+        return nullptr;
+    }
+    return (program = std::move(built)).get();
+}
+
+bool DisplayOutput::buildTonemap(ShaderProgram& program, const std::string& encodingId,
+                                 std::string* error) {
+    if (!program.build("fullscreen.vert", "post_tonemap.frag", {}, m_encoding.sources(encodingId),
+                       error))
+        return false;
+    m_encoding.setUniforms(program.id(), encodingId);
+    ++m_compileCount;
+    return true;
+}
+
+bool DisplayOutput::selectDisplayTransform(const FrameSettings& fs, std::string* error) {
+    const std::string key = fs.display + '\n' + fs.displayView + '\n' + fs.look;
+    if (key == m_transformKey && m_transform.hasSelection())
+        return true;
+    if (const auto it = m_transformIds.find(key);
+        it != m_transformIds.end() && m_transform.selectCached(it->second)) {
+        m_transformKey = key;
+        return true;
+    }
+    if (!config())
+        return fail(error, "no OpenColorIO config could be loaded from " +
+                               ColorManagement::defaultConfigPath().string());
+    const DisplaySettings settings{fs.display, fs.displayView, fs.look, 0.0f};
+    const std::optional<GpuDisplayTransform> transform =
+        m_config->gpuDisplayTransform(settings, error);
+    if (!transform || !m_transform.select(*transform, error))
+        return false;
+    m_transformIds[key] = transform->cacheId;
+    m_transformKey = key;
+    return true;
+}
+
+void DisplayOutput::draw(const DisplayChoice& choice, unsigned hdrTexture, float exposureEv) {
+    if (choice.ocioDisplay) {
+        m_transform.draw(hdrTexture, exposureEv);
+        return;
+    }
+    glBindTextureUnit(binding::kHdrTex, hdrTexture);
+    m_encoding.bindLuts();
+    glUseProgram(choice.tonemap->id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    m_encoding.unbindLuts();
+}
+
+bool DisplayOutput::reload(std::string* error) {
+    std::string errors;
+    auto collect = [&](bool ok, const std::string& message) {
+        if (!ok)
+            errors += (errors.empty() ? "" : "\n") + message;
+    };
+    std::string message;
+    collect(m_transform.reload(&message), message);
+    for (auto& [id, program] : m_tonemaps)
+        collect(buildTonemap(*program, id, &message), message);
+    return errors.empty() || fail(error, errors);
+}
+
+} // namespace velvet::render

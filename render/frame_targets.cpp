@@ -1,0 +1,90 @@
+#include "render/frame_targets.h"
+
+#include "render/gbuffer_layout.h"
+#include "render/gl_util.h"
+
+#include <epoxy/gl.h>
+#include <vector>
+
+namespace velvet::render {
+namespace {
+
+GLuint depthTextureOf(GLuint fbo) {
+    GLint depthTexture = 0;
+    glGetNamedFramebufferAttachmentParameteriv(
+        fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depthTexture);
+    return GLuint(depthTexture);
+}
+
+} // namespace
+
+FrameTargets::~FrameTargets() {
+    if (m_litFbo)
+        glDeleteFramebuffers(1, &m_litFbo);
+    if (m_geometryFbo)
+        glDeleteFramebuffers(1, &m_geometryFbo);
+}
+
+bool FrameTargets::resize(int width, int height, std::string* error) {
+    return m_gbuffer.resize(width, height, error) && m_hdr.resize(width, height, GL_RGBA16F, error);
+}
+
+unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
+    const GLuint depthTexture = depthTextureOf(m_gbuffer.framebuffer());
+    if (!m_geometryFbo)
+        glCreateFramebuffers(1, &m_geometryFbo);
+    const int n = gbufferColorAttachmentCount();
+    if (m_geometryHdrGeneration != m_hdr.generation() ||
+        m_geometryGbufferGeneration != m_gbuffer.generation()) {
+        std::vector<GLenum> drawBuffers;
+        for (int i = 0; i < n; ++i) {
+            GLint texture = 0;
+            glGetNamedFramebufferAttachmentParameteriv(
+                m_gbuffer.framebuffer(), GLenum(GL_COLOR_ATTACHMENT0 + i),
+                GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &texture);
+            glNamedFramebufferTexture(m_geometryFbo, GLenum(GL_COLOR_ATTACHMENT0 + i),
+                                      GLuint(texture), 0);
+            drawBuffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+        }
+        glNamedFramebufferTexture(m_geometryFbo, GLenum(GL_COLOR_ATTACHMENT0 + n), m_hdr.texture(),
+                                  0);
+        drawBuffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + n));
+        glNamedFramebufferTexture(m_geometryFbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);
+        glNamedFramebufferDrawBuffers(m_geometryFbo, GLsizei(drawBuffers.size()),
+                                      drawBuffers.data());
+        const GLenum status = glCheckNamedFramebufferStatus(m_geometryFbo, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            fail(error, "geometry framebuffer incomplete: " + framebufferStatusName(status));
+            return 0;
+        }
+        m_geometryHdrGeneration = m_hdr.generation();
+        m_geometryGbufferGeneration = m_gbuffer.generation();
+        m_geometryEmission = -1;
+    }
+    if (m_geometryEmission != int(emission)) {
+        std::vector<GLenum> drawBuffers;
+        for (int i = 0; i < n; ++i)
+            drawBuffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+        drawBuffers.push_back(emission ? GLenum(GL_COLOR_ATTACHMENT0 + n) : GLenum(GL_NONE));
+        glNamedFramebufferDrawBuffers(m_geometryFbo, GLsizei(drawBuffers.size()),
+                                      drawBuffers.data());
+        m_geometryEmission = int(emission);
+    }
+    return m_geometryFbo;
+}
+
+unsigned FrameTargets::litFramebuffer() {
+    const GLuint depthTexture = depthTextureOf(m_gbuffer.framebuffer());
+    if (!m_litFbo)
+        glCreateFramebuffers(1, &m_litFbo);
+    if (m_litHdrGeneration != m_hdr.generation() ||
+        m_litGbufferGeneration != m_gbuffer.generation()) {
+        glNamedFramebufferTexture(m_litFbo, GL_COLOR_ATTACHMENT0, m_hdr.texture(), 0);
+        glNamedFramebufferTexture(m_litFbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);
+        m_litHdrGeneration = m_hdr.generation();
+        m_litGbufferGeneration = m_gbuffer.generation();
+    }
+    return m_litFbo;
+}
+
+} // namespace velvet::render

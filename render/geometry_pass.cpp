@@ -1,0 +1,72 @@
+#include "render/geometry_pass.h"
+
+#include "core/graph/graph.h"
+#include "core/graph/node_catalogue.h"
+#include "render/gbuffer_layout.h"
+#include "render/material_graph_program.h"
+#include "render/texture_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <epoxy/gl.h>
+
+namespace velvet::render {
+
+bool materialEmits(const Material& m) {
+    const glm::vec3 e = m.color(ParamId::EmissiveColor) * m.scalar(ParamId::EmissiveStrength);
+    if (e.r > 0.0f || e.g > 0.0f || e.b > 0.0f)
+        return true;
+    const graph::Graph* g = m.graph.get();
+    const graph::NodeId out = g ? g->outputNode() : graph::kInvalidNodeId;
+    if (out == graph::kInvalidNodeId)
+        return false;
+    for (ParamId id : {ParamId::EmissiveColor, ParamId::EmissiveStrength})
+        if (g->connectionTo(out, graph::PortIndex(graph::outputInputForParam(id))))
+            return true;
+    return false;
+}
+
+void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh,
+                      MaterialGraphProgram& graph, const TextureSet& textures) {
+    glBindFramebuffer(GL_FRAMEBUFFER, in.framebuffer);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+    const float zeros[4] = {0, 0, 0, 0};
+    const float farDepth = 1.0f;
+    const auto clearGeometry = [&] {
+        for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
+            glClearBufferfv(GL_COLOR, i, zeros);
+        if (in.emission)
+            glClearBufferfv(GL_COLOR, gbufferColorAttachmentCount(), kNoEmission);
+        glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    };
+    clearGeometry();
+    const unsigned program = graph.program();
+    glUseProgram(program);
+    glProgramUniform1i(program, 0, 0); // uMaterialId: the scene's material
+    textures.bind(program);
+    graph.bind();
+    if (mesh.doubleSided)
+        glDisable(GL_CULL_FACE);
+    mesh.gpu.draw();
+    if (in.split) {
+        // A/B split: the right part again, from a cleared G-buffer, with material B (id 1).
+        const int seam = std::clamp(
+            int(std::lround(std::clamp(in.splitPosition, 0.0f, 1.0f) * in.width)), 0, in.width);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(seam, 0, in.width - seam, in.height);
+        clearGeometry();
+        glProgramUniform1i(program, 0, 1);
+        mesh.gpu.draw();
+        glProgramUniform1i(program, 0, 0);
+        glDisable(GL_SCISSOR_TEST);
+    }
+    textures.unbind();
+    graph.unbind();
+}
+
+} // namespace velvet::render

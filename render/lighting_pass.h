@@ -1,0 +1,60 @@
+#pragma once
+/// @file lighting_pass.h
+/// Render-private: the full-screen passes over the G-buffer into the HDR target (lighting.frag in
+/// variants): the background where no geometry was drawn, then the surfaces lit by the
+/// directional and ambient lights and the environment (image-based light). Both draw a triangle
+/// at the far plane against the G-buffer's depth, read-only: GL_EQUAL passes where nothing was
+/// drawn (the background), GL_GREATER where there is geometry (the surfaces), so neither pays
+/// for the other.
+
+#include "core/scene.h"
+#include "render/renderer.h"
+#include "render/shader_program.h"
+
+#include <string>
+
+namespace velvet::render {
+
+/// Views the point, spot and area lights contribute to (debug_views.glsl, isLightView).
+bool isLightView(DebugView view);
+
+class LightingPass {
+public:
+    /// Builds the variants every frame may need (Final and the backgrounds: a scene edit never
+    /// compiles); the debug families again only when built before. With @p keepGoing (shader
+    /// reload) a failure keeps that variant's last good build and the others are still built.
+    /// False + every message.
+    bool build(std::string* error, bool keepGoing = false);
+    /// The surface variant for @p view, built the first time a debug family is shown (a
+    /// debug-view switch may compile once); null + message on failure.
+    const ShaderProgram* surfaceProgram(DebugView view, std::string* error);
+
+    /// The background (FrameSettings::view Final only: debug views leave the HDR target black).
+    /// Blurred falls back to Sharp (the same lookup) until the prefiltered cube is ready.
+    void drawBackground(BackgroundMode mode, bool prefilteredReady);
+    /// The surfaces, from @p program (surfaceProgram()). With @p emission the geometry pass's
+    /// emission is kept: result = surface + emission x alpha (lighting.frag's header), the
+    /// target's alpha staying 1; without it the surfaces replace the black (no blend to pay).
+    void drawSurfaces(const ShaderProgram& program, bool emission);
+
+    /// Programs built since construction.
+    int compileCount() const { return m_compileCount; }
+
+private:
+    /// lighting.frag's variants (its header): the surfaces per debug-view family, and the
+    /// background per BackgroundMode.
+    enum Variant {
+        kFinal,
+        kLobeViews,
+        kGBufferViews,
+        kBackground, ///< + int(BackgroundMode)
+        kCount = kBackground + 4
+    };
+    static Variant variantFor(DebugView view);
+    bool buildVariant(Variant v, std::string* error);
+
+    ShaderProgram m_programs[kCount];
+    int m_compileCount = 0;
+};
+
+} // namespace velvet::render

@@ -1,0 +1,92 @@
+#pragma once
+/// @file material_graph_program.h
+/// Render-private: the G-buffer program with the scene material's graph compiled into it as the
+/// generated include "material_graph.glsl" (core/graph/graph_compiler.h), and that graph's
+/// lifecycle (render/renderer.h, "Material graph"): its value block (kGraphValuesUbo), its
+/// texture nodes' textures, and a structural edit being built on the driver's threads while the
+/// old program, with the old graph's values and textures, goes on drawing.
+
+#include "core/diagnostics.h"
+#include "core/graph/graph_compiler.h"
+#include "core/material.h"
+#include "render/shader_program.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace velvet {
+class TextureCache;
+} // namespace velvet
+
+namespace velvet::render {
+
+class MaterialGraphProgram {
+public:
+    MaterialGraphProgram() = default;
+    /// Needs the renderer's context current (frees the value block and the textures).
+    ~MaterialGraphProgram();
+    MaterialGraphProgram(const MaterialGraphProgram&) = delete;
+    MaterialGraphProgram& operator=(const MaterialGraphProgram&) = delete;
+
+    /// Compiles @p material's graph to GLSL as the interface the first build() links (a graph
+    /// that cannot compile, e.g. too many texture nodes, starts with the empty graph and sets
+    /// error()). No GL.
+    void start(const Material& material);
+    /// Builds the G-buffer program from disk with the linked graph; false + message (the last
+    /// good program is kept). A structure in flight is abandoned (it restarts next frame).
+    bool build(std::string* error);
+
+    /// Takes @p material's graph: a value or texture edit updates the block and the bindings now;
+    /// a structural edit (different shader text) is built at the next buildPending(). A graph
+    /// that fails to compile is reported to @p problems and the previous one kept.
+    void setGraph(const Material& material, TextureCache& cache, Problems* problems);
+    /// Starts the G-buffer program for a pending structure, and adopts it once the driver has
+    /// finished (polled each frame; with @p wait, now). Until then the old program draws with
+    /// the old interface. A failure keeps the old program and is reported by error().
+    void buildPending(TextureCache& cache, bool wait = false);
+    /// Uploads the linked graph's value block (a value edit: no shader is touched).
+    void uploadValues();
+    /// Loads (through @p cache) and uploads each texture node's image when its file, colour space
+    /// or contents changed. Cheap when nothing did: one cache lookup each.
+    void refreshTextures(TextureCache& cache, Problems* problems);
+    /// Binds the value block and the texture nodes' units for the geometry pass / unbinds them.
+    void bind();
+    void unbind() const;
+
+    unsigned program() const { return m_program.id(); }
+    /// Why the last graph was not compiled, or "" when the drawn program matches the scene.
+    const std::string& error() const { return m_error; }
+    /// A structural change is waiting for its program.
+    bool pending() const { return m_hasPending; }
+
+    /// G-buffer programs built (GL compiles) since construction.
+    int compileCount() const { return m_compileCount; }
+    /// Graph-to-GLSL compiles (start() and setGraph()) since construction.
+    int graphCompiles() const { return m_graphCompiles; }
+    /// Value-block uploads since construction.
+    int valueUploads() const { return m_valueUploads; }
+
+private:
+    struct Texture {
+        unsigned texture = 0;
+        std::uint64_t generation = 0;
+        int width = 0, height = 0;
+    };
+    graph::CompiledGraph compile(const Material& material);
+    void release();
+
+    ShaderProgram m_program;
+    graph::CompiledGraph m_linked;  ///< what m_program was built from
+    graph::CompiledGraph m_pending; ///< a new structure, started at the next buildPending()
+    bool m_hasPending = false;      ///< m_pending is waiting to start or being built
+    ProgramBuild m_build;           ///< m_pending's program in flight
+    std::string m_error;
+    unsigned m_ubo = 0;
+    size_t m_uboSlots = 0;
+    std::vector<Texture> m_textures; ///< one per m_linked.samplers entry
+    unsigned m_fallback = 0;         ///< 1x1 white for a texture node without an image
+    int m_compileCount = 0, m_graphCompiles = 0, m_valueUploads = 0;
+};
+
+} // namespace velvet::render

@@ -1,0 +1,38 @@
+#include "render/mesh_cache.h"
+
+#include "core/mesh.h"
+#include "core/mesh_import.h"
+
+namespace velvet::render {
+
+const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems) {
+    const bool custom = ref.kind == PreviewMeshKind::Custom;
+    const std::string key = std::to_string(int(ref.kind)) + (custom ? ":" + ref.file : "");
+    auto& entry = m_entries[key];
+    if (!entry) {
+        entry = std::make_unique<Entry>();
+        MeshData data;
+        std::string error;
+        // importMesh runs `velvet import-mesh` in a child process when the application set
+        // the helper, in process otherwise (core/mesh_import.h).
+        if (custom && ref.file.empty())
+            entry->failure = "a custom mesh needs a file";
+        else if (custom && !importMesh(ref.file, data, &error))
+            entry->failure = error;
+        else if (!custom)
+            data = makePreviewMesh(ref.kind);
+        if (entry->failure.empty()) {
+            entry->gpu.upload(data);
+            entry->doubleSided = data.doubleSided;
+        }
+    }
+    if (!entry->failure.empty()) {
+        if (problems)
+            problems->error(ref.file, "mesh", entry->failure + "; showing the sphere");
+        return select(MeshRef{}, nullptr);
+    }
+    m_selected = entry.get();
+    return *entry;
+}
+
+} // namespace velvet::render

@@ -1,0 +1,40 @@
+#pragma once
+/// @file mesh_cache.h
+/// Render-private: the preview meshes on the GPU, uploaded once per kind or custom file. A custom
+/// mesh that fails to import is remembered with its message, so it is reported again at each
+/// selection but never re-imported.
+
+#include "core/diagnostics.h"
+#include "core/scene.h"
+#include "render/gpu_mesh.h"
+
+#include <map>
+#include <memory>
+#include <string>
+
+namespace velvet::render {
+
+class MeshCache {
+public:
+    struct Entry {
+        GpuMesh gpu;
+        bool doubleSided = false;
+        std::string failure; ///< why the import failed ("" when the mesh is uploaded)
+    };
+
+    MeshCache() = default;
+    MeshCache(const MeshCache&) = delete;
+    MeshCache& operator=(const MeshCache&) = delete;
+
+    /// Selects (uploading once) the mesh @p ref names; a custom mesh that fails to import is
+    /// reported to @p problems and the sphere selected instead. Needs a current context.
+    const Entry& select(const MeshRef& ref, Problems* problems);
+    /// The selected mesh (null before the first select()).
+    const Entry* selected() const { return m_selected; }
+
+private:
+    std::map<std::string, std::unique_ptr<Entry>> m_entries;
+    const Entry* m_selected = nullptr;
+};
+
+} // namespace velvet::render
