@@ -1,6 +1,7 @@
 // velvet bench [--json] [--short]: renderer variants side by side in one process, one scene.
 // DESIGN.md, "Measuring": medians and ratios; tests assert ratios and keys, never times.
 #include "app/cli.h"
+#include "core/scene_parts.h"
 #include "render/gbuffer_layout.h"
 #include "render/headless_context.h"
 #include "render/offscreen.h"
@@ -280,8 +281,8 @@ int runBench(const std::vector<std::string>& argv) {
             put(key, ms);
         }
 
-        // Responsiveness (issue 5): 100 value edits through Renderer::setScene compile no shader;
-        // an edit reaches a finished frame (setScene + render + the frame's last timer query)
+        // Responsiveness (issue 5): 100 value edits through Renderer::update compile no shader;
+        // an edit reaches a finished frame (update + render + the frame's last timer query)
         // in param_edit_to_frame_ms (median), or at half resolution (the editor's interactive
         // render scale while a slider is dragged) in param_edit_to_frame_half_ms.
         {
@@ -302,7 +303,7 @@ int runBench(const std::vector<std::string>& argv) {
                 edited.material.setValue(ParamId::Roughness,
                                          glm::vec3(0.1f + 0.8f * float(i % 10) / 9.0f));
                 const auto start = std::chrono::steady_clock::now();
-                b.renderer.setScene(edited);
+                b.renderer.update(edited, ScenePart::MaterialValues);
                 if (!b.frame(fs, ft, &error))
                     return failed("rendering failed");
                 const double ms = std::chrono::duration<double, std::milli>(
@@ -314,6 +315,62 @@ int runBench(const std::vector<std::string>& argv) {
             put("param_edit_to_frame_ms", median(full));
             put("param_edit_to_frame_half_ms", median(half));
             put("param_edit_half_speedup", median(full) / std::max(1e-6, median(half)));
+            // What travels as a mask (issue 11), old way and new way interleaved so both see the
+            // same machine state: an orbit step as every mouse move used to be (the whole scene,
+            // camera included, through setScene) against the camera as a per-frame setting; a
+            // roughness edit through setScene against update(MaterialValues).
+            std::vector<double> orbitWhole, orbitMask, editWhole, editMask;
+            const auto timed = [&](std::vector<double>& into, auto&& work) {
+                const auto start = std::chrono::steady_clock::now();
+                const bool ok = work();
+                into.push_back(std::chrono::duration<double, std::milli>(
+                                   std::chrono::steady_clock::now() - start)
+                                   .count());
+                return ok;
+            };
+            Scene scene = b.scene;
+            for (int i = 0; i < 2 * b.frames + 10; ++i) {
+                Camera camera = b.scene.camera;
+                camera.yawDeg += 3.0f * float(i);
+                render::FrameSettings fs = b.settings();
+                Scene moved = scene;
+                moved.camera = camera;
+                const bool ok =
+                    timed(orbitWhole,
+                          [&] {
+                              b.renderer.setScene(moved);
+                              return b.frame(fs, ft, &error);
+                          }) &&
+                    timed(orbitMask,
+                          [&] {
+                              render::FrameSettings perFrame = fs;
+                              perFrame.camera = camera;
+                              return b.frame(perFrame, ft, &error);
+                          }) &&
+                    timed(editWhole,
+                          [&] {
+                              scene.material.setValue(ParamId::Roughness,
+                                                      glm::vec3(0.2f + 0.05f * float(i % 10)));
+                              b.renderer.setScene(scene);
+                              return b.frame(fs, ft, &error);
+                          }) &&
+                    timed(editMask, [&] {
+                        scene.material.setValue(ParamId::Roughness,
+                                                glm::vec3(0.25f + 0.05f * float(i % 10)));
+                        b.renderer.update(scene, ScenePart::MaterialValues);
+                        return b.frame(fs, ft, &error);
+                    });
+                if (!ok)
+                    return failed("rendering failed");
+            }
+            put("orbit_frame_ms", median(orbitMask));
+            put("orbit_frame_whole_scene_ms", median(orbitWhole));
+            put("orbit_speedup_vs_whole_scene",
+                median(orbitWhole) / std::max(1e-6, median(orbitMask)));
+            put("param_edit_mask_ms", median(editMask));
+            put("param_edit_whole_scene_ms", median(editWhole));
+            put("param_edit_speedup_vs_whole_scene",
+                median(editWhole) / std::max(1e-6, median(editMask)));
             // What the editor window adds per frame needs a display: tests/ui/bench_viewport
             // measures it under xvfb-run (BENCHMARKS.md, "Responsiveness").
             put("viewport_overhead_ms", NAN);

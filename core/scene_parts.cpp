@@ -35,4 +35,23 @@ ScenePart changedParts(const Scene& a, const Scene& b) {
     return parts;
 }
 
+void copyParts(Scene& to, const Scene& from, ScenePart parts) {
+    if (touches(parts, ScenePart::Camera))
+        to.camera = from.camera;
+    if (touches(parts, ScenePart::Material)) {
+        to.material = from.material;
+        to.materialPreset = from.materialPreset;
+    }
+    if (touches(parts, ScenePart::Mesh))
+        to.mesh = from.mesh;
+    if (touches(parts, ScenePart::Environment))
+        to.environment = from.environment;
+    if (touches(parts, ScenePart::Lights))
+        to.lights = from.lights;
+    if (touches(parts, ScenePart::PostChain))
+        to.post = from.post;
+    if (touches(parts, ScenePart::Atlases))
+        to.atlases = from.atlases;
+}
+
 } // namespace velvet

@@ -38,12 +38,20 @@ constexpr ScenePart operator&(ScenePart a, ScenePart b) {
 constexpr ScenePart operator~(ScenePart a) {
     return ScenePart(~std::uint32_t(a) & std::uint32_t(ScenePart::All));
 }
-constexpr ScenePart& operator|=(ScenePart& a, ScenePart b) { return a = a | b; }
-constexpr ScenePart& operator&=(ScenePart& a, ScenePart b) { return a = a & b; }
+constexpr ScenePart& operator|=(ScenePart& a, ScenePart b) {
+    return a = a | b;
+}
+constexpr ScenePart& operator&=(ScenePart& a, ScenePart b) {
+    return a = a & b;
+}
 /// Whether @p parts holds any bit of @p part.
 constexpr bool touches(ScenePart parts, ScenePart part) {
     return (std::uint32_t(parts) & std::uint32_t(part)) != 0;
 }
+
+/// Copies the parts of @p from named by @p parts into @p to (the rest of @p to is kept). Any
+/// material bit copies the whole Material (its values, slots and shared graph pointer: cheap).
+void copyParts(Scene& to, const Scene& from, ScenePart parts);
 
 /// The parts in which @p a and @p b differ (for callers that hold two whole scenes: the CLI's
 /// batch renders, tests; the editor knows what each edit changed and never diffs).

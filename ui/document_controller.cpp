@@ -92,38 +92,39 @@ void DocumentController::editTexture(TextureSlot slot, const TextureRef& ref, co
 
 void DocumentController::setTexture(TextureSlot slot, const TextureRef& ref) {
     m_scene.material.setTexture(slot, ref);
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::MaterialStructure);
 }
 
 void DocumentController::setEnvironment(const Environment& environment) {
     m_scene.environment = environment;
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::Environment);
 }
 
 void DocumentController::setMesh(const MeshRef& mesh) {
     m_scene.mesh = mesh;
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::Mesh);
 }
 
 void DocumentController::setLights(const std::vector<Light>& lights) {
     m_scene.lights = lights;
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::Lights);
 }
 
 void DocumentController::setMaterialGraph(const SharedGraph& graph) {
     m_scene.material.graph = graph;
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::Graph);
 }
 
 void DocumentController::setPostChain(const PostChain& chain) {
     m_scene.post = chain;
     emit postChainChanged();
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::PostChain);
 }
 
 void DocumentController::setAtlas(AtlasKind kind, AtlasDocument atlas) {
     m_atlases[kind] = std::move(atlas);
     emit atlasChanged(kind);
+    emit sceneChanged(ScenePart::Atlases);
 }
 
 void DocumentController::setMaterial(const Material& material, const std::string& preset) {
@@ -132,13 +133,13 @@ void DocumentController::setMaterial(const Material& material, const std::string
     for (int i = 0; i < kParamCount; ++i)
         emit paramChanged(static_cast<ParamId>(i));
     emit materialReplaced();
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::Material);
 }
 
 void DocumentController::setParam(ParamId id, glm::vec3 value) {
     m_scene.material.setValue(id, value);
     emit paramChanged(id);
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::MaterialValues);
 }
 
 void DocumentController::newDocument() {
@@ -238,7 +239,7 @@ void DocumentController::setDocument(Scene scene, const QString& filePath, Atlas
     for (int k = 0; k < kAtlasKindCount; ++k)
         emit atlasChanged(AtlasKind(k));
     emit materialReplaced();
-    emit sceneChanged();
+    emit sceneChanged(ScenePart::All);
     emit dirtyChanged(false);
 }
 

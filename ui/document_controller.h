@@ -6,6 +6,7 @@
 
 #include "core/atlas_document.h"
 #include "core/scene.h"
+#include "core/scene_parts.h"
 
 #include <QObject>
 #include <QString>
@@ -61,22 +62,27 @@ public:
 
     /// @name Applied by undo commands (not undoable by themselves)
     /// @{
-    /// Sets a parameter (clamped to its hard range by Material) and notifies.
+    /// Sets a parameter (clamped to its hard range by Material) and notifies (paramChanged,
+    /// sceneChanged: MaterialValues).
     void setParam(ParamId id, glm::vec3 value);
-    /// Sets the environment and notifies (sceneChanged).
+    /// Sets the environment and notifies (sceneChanged: Environment).
     void setEnvironment(const Environment& environment);
-    /// Sets the preview mesh and notifies (sceneChanged).
+    /// Sets the preview mesh and notifies (sceneChanged: Mesh).
     void setMesh(const MeshRef& mesh);
-    /// Sets the lights and notifies (sceneChanged).
+    /// Sets the lights and notifies (sceneChanged: Lights).
     void setLights(const std::vector<Light>& lights);
-    /// Sets the material's node graph and notifies (sceneChanged only: the graph editor's model,
-    /// ui/graph/graph_model.h, is the one caller and already knows).
+    /// Sets the material's node graph and notifies (sceneChanged: Graph only: the graph editor's
+    /// model, ui/graph/graph_model.h, is the one caller and already knows).
     void setMaterialGraph(const SharedGraph& graph);
-    /// Sets a texture slot and notifies (sceneChanged).
+    /// Sets a texture slot and notifies (sceneChanged: MaterialStructure).
     void setTexture(TextureSlot slot, const TextureRef& ref);
-    /// Replaces the post chain and notifies (postChainChanged, sceneChanged).
+    /// Replaces the post chain and notifies (postChainChanged, sceneChanged: PostChain).
     void setPostChain(const PostChain& chain);
-    /// Replaces one atlas and notifies (atlasChanged).
+    /// Keeps the viewport's camera (the artist's orbit) with the document, so that a save
+    /// writes it and a reopen shows that view again. View state: no undo step, not dirty, no
+    /// signal (the viewport that reports it already draws it).
+    void setViewCamera(const Camera& camera) { m_scene.camera = camera; }
+    /// Replaces one atlas and notifies (atlasChanged, sceneChanged: Atlases).
     void setAtlas(AtlasKind kind, AtlasDocument atlas);
     /// Replaces the whole material (a library preset) and where it came from; notifies
     /// (paramChanged for every parameter, materialReplaced, sceneChanged).
@@ -103,8 +109,10 @@ public:
     /// @}
 
 signals:
-    /// Anything in the scene changed (one parameter, or the whole document).
-    void sceneChanged();
+    /// Parts of the scene changed (core/scene_parts.h): one bit for a parameter, a light list or
+    /// a mesh edit, ScenePart::Material for a preset, ScenePart::All for a new or opened document.
+    /// Views update only what @p parts names (the renderer uploads only those parts).
+    void sceneChanged(velvet::ScenePart parts);
     /// One material parameter changed (undo, redo or edit).
     void paramChanged(velvet::ParamId id);
     /// The post chain changed (an effect added, removed, moved, toggled or edited; undo, redo).

@@ -119,9 +119,11 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     statusBar()->addPermanentWidget(m_frameLabel);
 
     connect(m_controller, &DocumentController::sceneChanged, this,
-            [this] { m_viewport->setScene(m_controller->scene()); });
+            [this](ScenePart parts) { m_viewport->setScene(m_controller->scene(), parts); });
     connect(m_controller, &DocumentController::documentReplaced, m_viewport,
             &ViewportWidget::resetView);
+    connect(m_viewport, &ViewportWidget::viewCameraChanged, m_controller,
+            &DocumentController::setViewCamera);
     connect(m_controller, &DocumentController::fileChanged, this, &MainWindow::updateTitle);
     connect(m_controller, &DocumentController::dirtyChanged, this, &MainWindow::updateTitle);
     connect(m_viewport, &ViewportWidget::frameCompleted, this, &MainWindow::showFrameTime);

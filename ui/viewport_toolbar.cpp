@@ -277,7 +277,7 @@ SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
     addWidget(m_lightRig);
 
     m_intensityKey = SetEnvironmentCommand::nextMergeKey();
-    refresh();
+    refresh(ScenePart::All);
     connect(m_lightRig, &QComboBox::activated, this,
             [this](int index) { applyLightRigChoice(m_controller, m_lightRig, index); });
 
@@ -302,15 +302,15 @@ SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
     connect(m_controller, &DocumentController::sceneChanged, this, &SceneToolbar::refresh);
 }
 
-void SceneToolbar::refresh() {
-    const Scene& scene = m_controller->scene();
-    const ShownSceneParts::Changes changed = m_shown.update(scene);
-    if (!changed.any())
+void SceneToolbar::refresh(ScenePart parts) {
+    // Every material edit emits sceneChanged too: refill only for the parts shown here.
+    if (!touches(parts, ScenePart::Mesh | ScenePart::Environment | ScenePart::Lights))
         return;
+    const Scene& scene = m_controller->scene();
     m_updating = true;
-    if (changed.mesh)
+    if (touches(parts, ScenePart::Mesh))
         fillMeshCombo(m_mesh, scene);
-    if (changed.environment)
+    if (touches(parts, ScenePart::Environment))
         fillHdriCombo(m_hdri, scene);
     {
         const QSignalBlocker block(m_intensity);
@@ -323,7 +323,7 @@ void SceneToolbar::refresh() {
             degrees += 360.0f;
         m_rotation->setValue(int(std::lround(degrees)));
     }
-    if (changed.lights)
+    if (touches(parts, ScenePart::Lights))
         fillLightRigCombo(m_lightRig, scene);
     m_updating = false;
 }

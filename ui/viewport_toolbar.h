@@ -10,6 +10,7 @@
 /// light rig.
 /// Each change is an undo command through DocumentController (drags merge into one).
 
+#include "core/scene_parts.h"
 #include "render/renderer.h"
 #include "ui/color_picking.h"
 #include "ui/scene/scene_choosers.h"
@@ -86,7 +87,8 @@ public:
     SceneToolbar(DocumentController* controller, QWidget* parent = nullptr);
 
     /// Shows the document's mesh and environment (emits no edits).
-    void refresh();
+    /// Refills what shows @p parts of the scene (DocumentController::sceneChanged).
+    void refresh(velvet::ScenePart parts);
 
 private:
     void onMeshChosen(int index);
@@ -99,7 +101,6 @@ private:
     QDoubleSpinBox* m_intensity;
     QSlider* m_rotation;
     QComboBox* m_lightRig;
-    ShownSceneParts m_shown; ///< combos are refilled only when their part of the scene changed
     int m_intensityKey = 0;
     int m_rotationKey = 0;
     bool m_updating = false;

@@ -205,10 +205,16 @@ void ViewportWidget::releaseRenderer() {
     m_surface->doneCurrent();
 }
 
-void ViewportWidget::setScene(const Scene& scene) {
-    m_scene = scene;
-    m_sceneDirty = true;
-    m_textureWatcher->setScene(scene);
+void ViewportWidget::setScene(const Scene& scene, ScenePart parts) {
+    // Only the parts that changed are copied, and only they reach the renderer at the next frame
+    // (Renderer::update): a roughness tick re-packs one material record, nothing else.
+    copyParts(m_scene, scene, parts);
+    m_pendingParts |= parts;
+    if (touches(parts, ScenePart::Material | ScenePart::Environment))
+        m_textureWatcher->setScene(m_scene);
+    if (!touches(parts, ~ScenePart::Atlases))
+        return; // atlas documents are not drawn (their regions reach the slots as
+                // MaterialStructure)
     noteInteraction();
     updateAnimation();
     requestFrame();
@@ -278,7 +284,6 @@ void ViewportWidget::setReducedResolution(bool enabled, float scale) {
 
 void ViewportWidget::resetView() {
     m_orbit.reset();
-    m_sceneDirty = true;
     requestFrame();
 }
 
@@ -339,8 +344,8 @@ double ViewportWidget::environmentProgress() const {
 }
 
 void ViewportWidget::setViewCamera(const Camera& camera) {
-    m_orbit = camera;
-    m_sceneDirty = true;
+    m_orbit = camera; // a per-frame setting (FrameSettings::camera): the scene is not touched
+    emit viewCameraChanged(camera);
     noteInteraction();
     requestFrame();
 }
@@ -416,7 +421,7 @@ void ViewportWidget::initializeGL() {
     if (m_colorManagement)
         renderer->setColorManagement(m_colorManagement);
     m_renderer = std::move(renderer);
-    m_sceneDirty = true;
+    m_pendingParts = ScenePart::All; // a new renderer has none of the scene
 }
 
 QSize ViewportWidget::frameSize() const {
@@ -439,23 +444,21 @@ void ViewportWidget::paintGL() {
 }
 
 bool ViewportWidget::drawFrame(unsigned fbo) {
-    if (m_sceneDirty) {
-        Scene scene = m_scene;
-        if (m_orbit)
-            scene.camera = *m_orbit;
+    if (m_pendingParts != ScenePart::None) {
         Problems problems;
-        m_renderer->setScene(scene, &problems);
-        m_sceneDirty = false;
+        m_renderer->update(m_scene, m_pendingParts, &problems);
+        m_pendingParts = ScenePart::None;
         QStringList lines;
         for (const Problem& p : problems.items)
             lines << QString::fromStdString(p.toString());
-        // setScene runs on every scene change (each slider tick): report a problem list once,
+        // update runs on every scene change (each slider tick): report a problem list once,
         // not again while it stays the same.
         if (lines != m_lastSceneProblems && !lines.isEmpty())
             emit sceneProblems(lines);
         m_lastSceneProblems = lines;
     }
     render::FrameSettings settings = m_settings;
+    settings.camera = viewCamera(); // the orbit, or the document's camera
     const QSize size = frameSize();
     settings.width = size.width();
     settings.height = size.height();

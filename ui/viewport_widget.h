@@ -19,6 +19,7 @@
 /// (ui/screenshot.h).
 
 #include "core/scene.h"
+#include "core/scene_parts.h"
 #include "render/graph_preview.h"
 #include "render/renderer.h"
 
@@ -62,8 +63,10 @@ public:
     /// Frees the renderer with the GL window's context current.
     ~ViewportWidget() override;
 
-    /// The scene to draw (copied; cheap for value edits).
-    void setScene(const Scene& scene);
+    /// The parts @p parts of @p scene changed (DocumentController::sceneChanged): they are
+    /// copied and reach the renderer at the next frame (Renderer::update), the rest is kept.
+    /// The camera the viewport draws is the orbit (a per-frame setting) or the scene's.
+    void setScene(const Scene& scene, ScenePart parts = ScenePart::All);
     /// Forgets orbit/zoom and shows the scene's own camera again (on new/open).
     void resetView();
     /// Frame settings other than the size (exposure, tone mapper, debug view).
@@ -160,6 +163,9 @@ signals:
     void renderFailed(const QString& message);
     /// Problems found while taking a scene (a missing HDRI or texture); a fallback is used.
     void sceneProblems(const QStringList& problems);
+    /// The artist moved the view (orbit, pan, zoom, fly, frame): the camera the viewport now
+    /// draws with. The main window keeps it with the document (DocumentController::setViewCamera).
+    void viewCameraChanged(const velvet::Camera& camera);
     /// Shift + right drag moved by @p deltaDeg degrees of HDRI rotation. Every move of one drag
     /// carries the same @p gestureKey, so the edits merge into one undo command.
     void environmentRotationDragged(float deltaDeg, int gestureKey);
@@ -209,7 +215,7 @@ private:
     Scene m_scene;
     std::optional<Camera> m_orbit; ///< view state, never part of the document or the undo stack
     render::FrameSettings m_settings;
-    bool m_sceneDirty = true;
+    ScenePart m_pendingParts = ScenePart::All; ///< changed since the renderer's last update
     QString m_error;
     int m_frameCount = 0;
     std::shared_ptr<const ColorManagement> m_colorManagement;
@@ -237,7 +243,7 @@ private:
     QTimer* m_animationTimer;
     /// Draws a frame when a texture file the material uses changes on disk (an idle viewport
     /// would otherwise not notice; ui/texture_file_watcher.h).
-    QStringList m_lastSceneProblems; ///< the problems setScene reported last (no repeats)
+    QStringList m_lastSceneProblems; ///< the problems update reported last (no repeats)
     TextureFileWatcher* m_textureWatcher;
 };
 

@@ -42,13 +42,19 @@ private slots:
                               "total_ms",
                               "post_chain_share",
                               "bloom_vs_gauss9",
-                              "effect_bloom_ms"};
+                              "effect_bloom_ms",
+                              "orbit_frame_ms",
+                              "orbit_frame_whole_scene_ms",
+                              "orbit_speedup_vs_whole_scene",
+                              "param_edit_mask_ms",
+                              "param_edit_whole_scene_ms"};
         for (const char* k : keys)
             QVERIFY2(o.contains(k) && o.value(k).isDouble(), k);
         QVERIFY(o.value("gbuffer_bytes_per_pixel").toDouble() <= 16.0);
         for (const char* k : {"lights1000_speedup_vs_volumes", "lights1000_speedup_vs_brute",
                               "lights_growth_1000_vs_100", "light_pixel_pairs_ratio_1000_vs_100",
-                              "lights1000_avg_lights_per_pixel", "bloom_vs_gauss9"}) {
+                              "lights1000_avg_lights_per_pixel", "bloom_vs_gauss9",
+                              "orbit_speedup_vs_whole_scene"}) {
             const double v = o.value(k).toDouble();
             QVERIFY2(std::isfinite(v) && v > 0.0, k);
         }

@@ -108,6 +108,7 @@ private slots:
     void saveMarksCleanAndNamesTitle();
     void textureDropShowsThumbnailAndUndoes();
     void textureDropRefusesNonImage();
+    void editsSayWhichPartsChanged();
 
 private:
     /// The viewport's current image (grabFramebuffer renders a fresh frame).
@@ -539,6 +540,40 @@ void TestUiEditor::textureDropRefusesNonImage() {
     QVERIFY(messages.at(1).at(0).toString().contains(QStringLiteral("broken.png")));
     QVERIFY(m_doc->material() == before);
     QCOMPARE(m_doc->undoStack()->count(), 0);
+}
+
+void TestUiEditor::editsSayWhichPartsChanged() {
+    // Each edit, its undo and its redo name the one part they changed (core/scene_parts.h), so
+    // the renderer and the panels touch only that part; a new document names every part.
+    std::vector<ScenePart> seen;
+    const QMetaObject::Connection c = connect(m_doc, &DocumentController::sceneChanged, this,
+                                              [&seen](ScenePart parts) { seen.push_back(parts); });
+    const auto expectOne = [&](ScenePart part, const char* what) {
+        QVERIFY2(seen.size() == 1, what);
+        QVERIFY2(seen.front() == part, what);
+        seen.clear();
+    };
+    m_doc->editParam(ParamId::Roughness, glm::vec3(0.83f));
+    expectOne(ScenePart::MaterialValues, "roughness edit");
+    m_doc->undoStack()->undo();
+    expectOne(ScenePart::MaterialValues, "roughness undo");
+    m_doc->undoStack()->redo();
+    expectOne(ScenePart::MaterialValues, "roughness redo");
+    std::vector<Light> lights = m_doc->scene().lights;
+    lights.push_back(Light{});
+    m_doc->editLights(lights, QStringLiteral("Add light"));
+    expectOne(ScenePart::Lights, "light added");
+    m_doc->editMesh(MeshRef{PreviewMeshKind::Cube, {}});
+    expectOne(ScenePart::Mesh, "mesh");
+    Environment env = m_doc->scene().environment;
+    env.intensity = 2.5f;
+    m_doc->editEnvironment(env, QStringLiteral("Intensity"));
+    expectOne(ScenePart::Environment, "environment");
+    m_doc->editTexture(TextureSlot::BaseColor, TextureRef{}, QStringLiteral("Clear"));
+    QVERIFY(seen.empty()); // the slot was empty already: no edit, no signal
+    m_doc->newDocument();
+    expectOne(ScenePart::All, "new document");
+    disconnect(c);
 }
 
 int main(int argc, char** argv) {

@@ -8,8 +8,8 @@
 // orbit, pan, zoom, fly keys, F, T and Ctrl+Z while it has focus, and a file dropped on it
 // reaches the main window; screenshots compose its frame (QWidget::grab leaves it out).
 #include "core/color_management.h"
-#include "core/post_effects.h"
 #include "core/image.h"
+#include "core/post_effects.h"
 #include "core/resources.h"
 #include "render/renderer.h"
 #include "ui/color_picking.h"
@@ -115,6 +115,8 @@ private slots:
     void shiftRightDragRotatesEnvironment();
     void frameMeshResetsTargetAndDistance();
     void leftDragOrbitsAndFlyKeysMove();
+    void orbitUploadsNothingAndAnEditOnlyItsPart();
+    void orbitedViewIsSavedWithTheDocument();
     void brokenShaderKeepsDrawingAndLogs();
     void droppedExrSetsHdri();
     void timingOverlayKeepsPicture();
@@ -327,6 +329,69 @@ void TestUiViewport::leftDragOrbitsAndFlyKeysMove() {
              qPrintable(QString::number(glm::length(flown.target - orbited.target))));
     QCOMPARE(flown.yawDeg, orbited.yawDeg);
     QCOMPARE(m_doc->undoStack()->count(), 0); // view state only
+}
+
+void TestUiViewport::orbitUploadsNothingAndAnEditOnlyItsPart() {
+    // An orbit is a per-frame camera (FrameSettings::camera), not a scene edit: it uploads no
+    // material, texture, light, mesh, graph or environment. A roughness edit re-packs the
+    // material record and nothing else (ScenePart::MaterialValues).
+    ViewportWidget* viewport = m_window->viewport();
+    const QImage still = viewportImage(); // the document's parts are uploaded by now
+    const render::Renderer* renderer = viewport->renderer();
+    QVERIFY(renderer);
+    const render::UploadStats before = renderer->uploadStats();
+    drag(glWindow(), Qt::LeftButton, Qt::NoModifier, viewport->rect().center(), QPoint(12, 4), 5);
+    const QImage orbited = viewportImage();
+    QVERIFY(orbited != still); // the view did turn
+    const render::UploadStats afterOrbit = renderer->uploadStats();
+    QCOMPARE(afterOrbit.materialUploads, before.materialUploads);
+    QCOMPARE(afterOrbit.textureSlotRefreshes, before.textureSlotRefreshes);
+    QCOMPARE(afterOrbit.lightUploads, before.lightUploads);
+    QCOMPARE(afterOrbit.meshSelections, before.meshSelections);
+    QCOMPARE(afterOrbit.graphCompiles, before.graphCompiles);
+    QCOMPARE(afterOrbit.graphValueUploads, before.graphValueUploads);
+    QCOMPARE(afterOrbit.environmentRequests, before.environmentRequests);
+
+    m_doc->editParam(ParamId::Roughness, glm::vec3(0.9f));
+    const QImage rougher = viewportImage();
+    QVERIFY(rougher != orbited);
+    const render::UploadStats afterEdit = renderer->uploadStats();
+    QCOMPARE(afterEdit.materialUploads, afterOrbit.materialUploads + 1);
+    QCOMPARE(afterEdit.textureSlotRefreshes, afterOrbit.textureSlotRefreshes);
+    QCOMPARE(afterEdit.lightUploads, afterOrbit.lightUploads);
+    QCOMPARE(afterEdit.meshSelections, afterOrbit.meshSelections);
+    QCOMPARE(afterEdit.graphCompiles, afterOrbit.graphCompiles);
+    QCOMPARE(afterEdit.environmentRequests, afterOrbit.environmentRequests);
+}
+
+void TestUiViewport::orbitedViewIsSavedWithTheDocument() {
+    // Orbit and zoom, Save As, reopen: the view the artist left comes back (issue 17, item 10),
+    // and moving the view is no undo step and does not dirty the document.
+    ViewportWidget* viewport = m_window->viewport();
+    const Camera initial = viewport->viewCamera();
+    drag(glWindow(), Qt::LeftButton, Qt::NoModifier, viewport->rect().center(), QPoint(-9, 6), 5);
+    const QPoint c = viewport->rect().center();
+    QWheelEvent wheelEvent(QPointF(c), QPointF(glWindow()->mapToGlobal(c)), QPoint(),
+                           QPoint(0, 240), Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+    QCoreApplication::sendEvent(glWindow(), &wheelEvent);
+    const Camera moved = viewport->viewCamera();
+    QVERIFY(std::abs(moved.yawDeg - initial.yawDeg) > 5.0f);
+    QVERIFY(moved.distance < initial.distance);
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+    QVERIFY(!m_doc->isDirty());
+
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("view.json"));
+    QString error;
+    QVERIFY2(m_doc->saveAs(path, &error), qPrintable(error));
+    m_doc->newDocument();
+    QVERIFY(std::abs(viewport->viewCamera().yawDeg - moved.yawDeg) > 5.0f); // the default view
+    QVERIFY(m_window->openFile(path));
+    const Camera reopened = viewport->viewCamera();
+    QVERIFY2(std::abs(reopened.yawDeg - moved.yawDeg) < 1e-3f,
+             qPrintable(QStringLiteral("%1 vs %2").arg(reopened.yawDeg).arg(moved.yawDeg)));
+    QVERIFY(std::abs(reopened.pitchDeg - moved.pitchDeg) < 1e-3f);
+    QVERIFY(std::abs(reopened.distance - moved.distance) < 1e-4f);
 }
 
 void TestUiViewport::brokenShaderKeepsDrawingAndLogs() {

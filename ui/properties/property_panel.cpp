@@ -161,7 +161,9 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
 
     connect(m_controller, &DocumentController::paramChanged, this, &PropertyPanel::refresh);
     // Texture slots change through sceneChanged (edit, undo, redo, open); rows skip unchanged.
-    connect(m_controller, &DocumentController::sceneChanged, this, [this] {
+    connect(m_controller, &DocumentController::sceneChanged, this, [this](ScenePart parts) {
+        if (!touches(parts, ScenePart::MaterialStructure))
+            return;
         for (TextureSlotEditor* row : m_textureEditors)
             row->refresh();
     });

@@ -9,8 +9,6 @@
 #include "core/scene.h"
 
 #include <QString>
-#include <optional>
-#include <vector>
 
 class QComboBox;
 class QWidget;
@@ -36,29 +34,5 @@ void applyHdriChoice(DocumentController* controller, QComboBox* combo, int index
 /// Every rig of core/light_rigs.h, plus "Custom" while the lights match none of them.
 void fillLightRigCombo(QComboBox* combo, const Scene& scene);
 void applyLightRigChoice(DocumentController* controller, QComboBox* combo, int index);
-
-/// Which parts of the scene a panel last showed. sceneChanged comes with every material edit too
-/// (each slider tick), so the Scene toolbar and dock refill a combo only when its part changed.
-class ShownSceneParts {
-public:
-    struct Changes {
-        bool mesh = false, environment = false, lights = false;
-        bool any() const { return mesh || environment || lights; }
-    };
-    /// What differs from the last call (everything the first time), and remembers @p scene.
-    Changes update(const Scene& scene) {
-        Changes c{m_mesh != scene.mesh, m_environment != scene.environment,
-                  m_lights != scene.lights};
-        m_mesh = scene.mesh;
-        m_environment = scene.environment;
-        m_lights = scene.lights;
-        return c;
-    }
-
-private:
-    std::optional<MeshRef> m_mesh;
-    std::optional<Environment> m_environment;
-    std::optional<std::vector<Light>> m_lights;
-};
 
 } // namespace velvet::ui

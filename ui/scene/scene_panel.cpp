@@ -241,7 +241,7 @@ ScenePanel::ScenePanel(DocumentController* controller, QWidget* parent)
     connect(m_duplicate, &QPushButton::clicked, this, &ScenePanel::duplicateSelectedLight);
     connect(m_remove, &QPushButton::clicked, this, &ScenePanel::removeSelectedLight);
     connect(m_controller, &DocumentController::sceneChanged, this, &ScenePanel::refresh);
-    refresh();
+    refresh(ScenePart::All);
 }
 
 void ScenePanel::buildEnvironmentGroup(QFormLayout* form) {
@@ -505,17 +505,18 @@ bool ScenePanel::eventFilter(QObject* watched, QEvent* event) {
     return QWidget::eventFilter(watched, event);
 }
 
-void ScenePanel::refresh() {
-    const Scene& scene = m_controller->scene();
-    const ShownSceneParts::Changes changed = m_shown.update(scene);
-    if (!changed.any())
+void ScenePanel::refresh(ScenePart parts) {
+    // sceneChanged comes with every material edit too (each slider tick): only the parts this
+    // dock shows refill anything.
+    if (!touches(parts, ScenePart::Mesh | ScenePart::Environment | ScenePart::Lights))
         return;
+    const Scene& scene = m_controller->scene();
     m_updating = true;
-    if (changed.mesh)
+    if (touches(parts, ScenePart::Mesh))
         fillMeshCombo(m_mesh, scene);
-    if (changed.environment)
+    if (touches(parts, ScenePart::Environment))
         fillHdriCombo(m_hdri, scene);
-    if (changed.lights)
+    if (touches(parts, ScenePart::Lights))
         fillLightRigCombo(m_rig, scene);
     {
         const QSignalBlocker a(m_envIntensity), b(m_envRotation), c(m_background);

@@ -6,6 +6,7 @@
 /// and slider gestures merge into one (like Properties).
 
 #include "core/scene.h"
+#include "core/scene_parts.h"
 #include "ui/scene/scene_choosers.h"
 
 #include <QWidget>
@@ -42,7 +43,8 @@ public:
 private:
     void buildEnvironmentGroup(QFormLayout* form);
     void buildLightEditor(QFormLayout* form);
-    void refresh();
+    /// Refills what shows @p parts of the scene (DocumentController::sceneChanged).
+    void refresh(velvet::ScenePart parts);
     void refreshLightList();
     void refreshLightEditor();
     /// Replaces the selected light with @p light (one command named @p text, merged by
@@ -53,10 +55,9 @@ private:
 
     DocumentController* m_controller;
     bool m_updating = false;
-    int m_envKey = 0;        ///< merge key of the environment gesture in progress
-    int m_lightKey = 0;      ///< merge key of the light gesture in progress (new per selection)
-    int m_shownLight = -1;   ///< the light the editor shows
-    ShownSceneParts m_shown; ///< combos are refilled only when their part of the scene changed
+    int m_envKey = 0;      ///< merge key of the environment gesture in progress
+    int m_lightKey = 0;    ///< merge key of the light gesture in progress (new per selection)
+    int m_shownLight = -1; ///< the light the editor shows
 
     // Mesh and environment.
     QComboBox* m_mesh;
