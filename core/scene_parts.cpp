@@ -35,23 +35,32 @@ ScenePart changedParts(const Scene& a, const Scene& b) {
     return parts;
 }
 
-void copyParts(Scene& to, const Scene& from, ScenePart parts) {
+void copyParts(Scene& dst, const Scene& src, ScenePart parts) {
     if (touches(parts, ScenePart::Camera))
-        to.camera = from.camera;
+        dst.camera = src.camera;
     if (touches(parts, ScenePart::Material)) {
-        to.material = from.material;
-        to.materialPreset = from.materialPreset;
+        // The values (parameters, BRDF terms, names) from the side the mask names; texture slots
+        // and the graph each from theirs.
+        Material m = touches(parts, ScenePart::MaterialValues) ? src.material : dst.material;
+        const Material& structure =
+            touches(parts, ScenePart::MaterialStructure) ? src.material : dst.material;
+        for (int i = 0; i < kTextureSlotCount; ++i)
+            m.setTexture(TextureSlot(i), structure.texture(TextureSlot(i)));
+        m.graph = touches(parts, ScenePart::Graph) ? src.material.graph : dst.material.graph;
+        dst.material = std::move(m);
+        if (touches(parts, ScenePart::MaterialValues))
+            dst.materialPreset = src.materialPreset;
     }
     if (touches(parts, ScenePart::Mesh))
-        to.mesh = from.mesh;
+        dst.mesh = src.mesh;
     if (touches(parts, ScenePart::Environment))
-        to.environment = from.environment;
+        dst.environment = src.environment;
     if (touches(parts, ScenePart::Lights))
-        to.lights = from.lights;
+        dst.lights = src.lights;
     if (touches(parts, ScenePart::PostChain))
-        to.post = from.post;
+        dst.post = src.post;
     if (touches(parts, ScenePart::Atlases))
-        to.atlases = from.atlases;
+        dst.atlases = src.atlases;
 }
 
 } // namespace velvet

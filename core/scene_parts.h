@@ -49,9 +49,10 @@ constexpr bool touches(ScenePart parts, ScenePart part) {
     return (std::uint32_t(parts) & std::uint32_t(part)) != 0;
 }
 
-/// Copies the parts of @p from named by @p parts into @p to (the rest of @p to is kept). Any
-/// material bit copies the whole Material (its values, slots and shared graph pointer: cheap).
-void copyParts(Scene& to, const Scene& from, ScenePart parts);
+/// Takes into @p dst the parts of @p src that @p parts names, and nothing else: a part the mask
+/// does not name keeps @p dst's own (MaterialValues, MaterialStructure and Graph each copy only
+/// their share of the Material), so what the renderer draws is what it was handed.
+void copyParts(Scene& dst, const Scene& src, ScenePart parts);
 
 /// The parts in which @p a and @p b differ (for callers that hold two whole scenes: the CLI's
 /// batch renders, tests; the editor knows what each edit changed and never diffs).
