@@ -70,7 +70,6 @@ void copyParts(Scene& dst, const Scene& src, ScenePart parts) {
 struct Renderer::Impl {
     bool initialized = false;
     bool parallelShaderCompile = false; ///< GL_KHR_parallel_shader_compile (shader_program.h)
-    int iblCompiles = 0;                ///< the IBL bake's compute programs
 
     /// @name The passes, in pipeline order
     /// @{
@@ -338,6 +337,9 @@ bool Renderer::initialize(std::string* error) {
     // after it compile nothing (the encoding comes from the config, loaded here if none is set).
     if (!d.display.initialize(error))
         return false;
+    // The texture slots look their input colour spaces up in the same config, loaded once.
+    if (!d.colorManagement)
+        d.textures.setColorManagement(d.display.sharedConfig());
     d.uniforms.initialize();
     glCreateVertexArrays(1, &d.emptyVao);
     glCreateQueries(GL_TIMESTAMP, 4, d.queries);
@@ -348,7 +350,6 @@ bool Renderer::initialize(std::string* error) {
         d.uploadLights(nullptr);
     if (!d.ibl.initialize(error))
         return false;
-    d.iblCompiles += 3; // the IBL bake's compute programs
     d.selectMesh(nullptr);
     d.refreshTextureSlots(nullptr);
     d.uploadMaterial();
@@ -375,7 +376,7 @@ bool Renderer::reloadShaders(std::string* error) {
     std::string message;
     collect(d.buildPrograms(&message, /*keepGoing=*/true), message);
     collect(d.lights.reload(&message), message);
-    collect(d.ibl.reload(&message, &d.iblCompiles), message);
+    collect(d.ibl.reload(&message), message);
     collect(d.display.reload(&message), message);
     collect(d.post.reload(&message), message); // counted by shaderCompileCount() through post
     if (!errors.empty())
@@ -387,8 +388,10 @@ void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorMa
     Impl& d = *m_impl;
     d.colorManagement = std::move(colorManagement);
     d.display.setColorManagement(d.colorManagement);
-    // Input colour space names are looked up in the new config too.
-    d.textures.setColorManagement(d.colorManagement);
+    // Input colour space names are looked up in the new config too (without one, in the
+    // display's default, loaded once by the display at initialize()).
+    d.textures.setColorManagement(d.colorManagement || !d.initialized ? d.colorManagement
+                                                                      : d.display.sharedConfig());
     if (d.initialized) {
         d.refreshTextureSlots(nullptr);
         d.uploadMaterial();
@@ -423,6 +426,10 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     // Camera: the stored camera is all (makeFrameBlock reads it when FrameSettings::camera is
     // unset). Atlases: nothing in the renderer today — atlas regions reach it as texture slots
     // (MaterialStructure), and scene.atlases only names the document the editor loads.
+}
+
+Problems Renderer::takeWarnings() {
+    return m_impl->display.takeWarnings();
 }
 
 UploadStats Renderer::uploadStats() const {
@@ -579,7 +586,7 @@ bool Renderer::parallelShaderCompile() const {
 int Renderer::shaderCompileCount() const {
     const Impl& d = *m_impl;
     return d.graph.compileCount() + d.lighting.compileCount() + d.lights.compileCount() +
-           d.iblCompiles + d.display.compileCount() + d.post.compileCount();
+           d.ibl.compileCount() + d.display.compileCount() + d.post.compileCount();
 }
 
 PostChainRenderer& Renderer::postChain() {
