@@ -241,7 +241,7 @@ void Renderer::Impl::uploadLights(Problems* problems) {
     if (!problems)
         return;
     // The full-screen pass has a fixed array of directional lights (MAX_LIGHTS in
-    // common_frame.glsl); makeFrameBlock() draws the first kMaxDirectionalLights and drops the
+    // render_interface.glsl); makeFrameBlock() draws the first kMaxDirectionalLights and drops the
     // rest.
     int directional = 0;
     for (size_t i = 0; i < scene.lights.size(); ++i)
@@ -267,11 +267,11 @@ bool Renderer::Impl::runPost(const FrameSettings& fs, const FrameBlock& b, unsig
     in.hdrTexture = targets.hdr().texture();
     in.width = fs.width;
     in.height = fs.height;
-    in.viewProj = b.viewProj;
-    in.proj = b.proj;
+    in.viewProj = b.viewProjMatrix;
+    in.proj = b.projMatrix;
     in.prevViewProj = fs.hasPreviousViewProj ? fs.previousViewProj
                       : haveLastViewProj     ? lastViewProj
-                                             : b.viewProj;
+                                             : b.viewProjMatrix;
     in.time = fs.time;
     in.exposureEv = fs.exposureEv;
     // The tonemap effect's operator indices: pbr-neutral, aces, reinhard, …, linear (5).
@@ -521,7 +521,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         glViewport(0, 0, fs.width, fs.height);
         glBindVertexArray(d.emptyVao);
     }
-    d.lastViewProj = block.viewProj;
+    d.lastViewProj = block.viewProjMatrix;
     d.haveLastViewProj = true;
 
     // 6. Display, into the target (unless the chain's tone map and LDR effects did it).

@@ -25,7 +25,7 @@ namespace velvet::render {
 
 class PostChainRenderer;
 
-/// Directional lights the lighting pass draws (MAX_LIGHTS in resources/shaders/common_frame.glsl);
+/// Directional lights the lighting pass draws (MAX_LIGHTS in the generated render_interface.glsl);
 /// update() with ScenePart::Lights reports each one past this as a warning naming its JSON path
 /// ("lights[i]").
 inline constexpr int kMaxDirectionalLights = 16;
