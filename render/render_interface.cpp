@@ -91,6 +91,79 @@ constexpr std::string_view debugName(DebugView v) {
     return kDebugViewNames[size_t(v)];
 }
 
+/// An enum value shared with GLSL as a `#define`.
+template <typename E>
+struct EnumName {
+    E value;
+    std::string_view glsl;
+};
+
+/// Whether @p names lists every value 0 .. N-1 in order (so the defines are the enum's numbers).
+template <typename E, size_t N>
+constexpr bool dense(const std::array<EnumName<E>, N>& names) {
+    for (size_t i = 0; i < N; ++i)
+        if (int(names[i].value) != int(i))
+            return false;
+    return true;
+}
+
+// The BRDF term ids (core/material.h), as packed in GpuMaterial.terms (D, V, F, diffuse) and
+// terms2.x (sheen model); common_brdf.glsl dispatches on them.
+constexpr std::array<EnumName<Distribution>, 3> kDistributions{{
+    {Distribution::GGX, "DISTRIBUTION_GGX"},
+    {Distribution::Beckmann, "DISTRIBUTION_BECKMANN"},
+    {Distribution::BlinnPhong, "DISTRIBUTION_BLINN_PHONG"},
+}};
+constexpr std::array<EnumName<Visibility>, 7> kVisibilities{{
+    {Visibility::SmithGGXSeparable, "VISIBILITY_SMITH_GGX_SEPARABLE"},
+    {Visibility::SmithGGXCorrelated, "VISIBILITY_SMITH_GGX_CORRELATED"},
+    {Visibility::SchlickGGX, "VISIBILITY_SCHLICK_GGX"},
+    {Visibility::CookTorrance, "VISIBILITY_COOK_TORRANCE"},
+    {Visibility::Implicit, "VISIBILITY_IMPLICIT"},
+    {Visibility::Neumann, "VISIBILITY_NEUMANN"},
+    {Visibility::Kelemen, "VISIBILITY_KELEMEN"},
+}};
+constexpr std::array<EnumName<Fresnel>, 3> kFresnels{{
+    {Fresnel::Schlick, "FRESNEL_SCHLICK"},
+    {Fresnel::SchlickSphericalGaussian, "FRESNEL_SCHLICK_SPHERICAL_GAUSSIAN"},
+    {Fresnel::ExactDielectric, "FRESNEL_EXACT_DIELECTRIC"},
+}};
+constexpr std::array<EnumName<Diffuse>, 2> kDiffuses{{
+    {Diffuse::Lambert, "DIFFUSE_LAMBERT"},
+    {Diffuse::Burley, "DIFFUSE_BURLEY"},
+}};
+constexpr std::array<EnumName<SheenModel>, 3> kSheenModels{{
+    {SheenModel::CharlieContyKulla, "SHEEN_CHARLIE_CONTY_KULLA"},
+    {SheenModel::CharlieAshikhmin, "SHEEN_CHARLIE_ASHIKHMIN"},
+    {SheenModel::CharlieNeubelt, "SHEEN_CHARLIE_NEUBELT"},
+}};
+// The viewport's built-in tone mappers (FrameBlock.modes.z; common_tonemap.glsl's toneMap()).
+// The post chain's tonemap effect numbers its operators itself (renderer.cpp maps them).
+constexpr std::array<EnumName<ToneMapper>, 4> kToneMappers{{
+    {ToneMapper::KhronosPbrNeutral, "TONEMAP_PBR_NEUTRAL"},
+    {ToneMapper::AcesFitted, "TONEMAP_ACES_FITTED"},
+    {ToneMapper::Reinhard, "TONEMAP_REINHARD"},
+    {ToneMapper::Linear, "TONEMAP_LINEAR"},
+}};
+static_assert(dense(kDistributions) && dense(kVisibilities) && dense(kFresnels) &&
+                  dense(kDiffuses) && dense(kSheenModels) && dense(kToneMappers),
+              "a GLSL name table skips or reorders an enum value");
+static_assert(int(Distribution::BlinnPhong) + 1 == int(kDistributions.size()) &&
+                  int(Fresnel::ExactDielectric) + 1 == int(kFresnels.size()) &&
+                  int(Diffuse::Burley) + 1 == int(kDiffuses.size()) &&
+                  int(Visibility::Kelemen) + 1 == int(kVisibilities.size()) &&
+                  int(SheenModel::CharlieNeubelt) + 1 == int(kSheenModels.size()) &&
+                  int(ToneMapper::Linear) + 1 == int(kToneMappers.size()),
+              "an enum value has no GLSL name");
+
+template <typename E, size_t N>
+std::string defines(const std::array<EnumName<E>, N>& names) {
+    std::string s;
+    for (const auto& n : names)
+        s += "#define " + std::string(n.glsl) + " " + std::to_string(int(n.value)) + "\n";
+    return s;
+}
+
 template <size_t N>
 std::string block(std::string_view name, int binding, std::string_view instance,
                   const std::array<Member, N>& members) {
@@ -132,6 +205,8 @@ std::string renderInterfaceGlsl() {
     s += "bool isLightView(int view) { return view == " + std::string(debugName(DebugView::Final)) +
          " || view == " + std::string(debugName(DebugView::LightsPerPixel)) +
          " || isLobeView(view); }\n";
+    s += defines(kDistributions) + defines(kVisibilities) + defines(kFresnels) +
+         defines(kDiffuses) + defines(kSheenModels) + defines(kToneMappers);
     return s;
 }
 

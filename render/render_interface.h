@@ -9,7 +9,9 @@
 /// Generated: the per-frame block (FrameBlock, binding kFrameUbo, instance `frame`), the IBL
 /// block (IblBlock, binding kIblUbo, instance `ibl`), MAX_LIGHTS, the debug-view ids
 /// (DEBUG_FINAL … from render::DebugView) and `bool isLightView(int)` / `bool isLobeView(int)`,
-/// the same tests as the C++ isLightView() / isLobeView() below.
+/// the same tests as the C++ isLightView() / isLobeView() below; the BRDF term ids
+/// (DISTRIBUTION_*, VISIBILITY_*, FRESNEL_*, DIFFUSE_*, SHEEN_CHARLIE_*: core/material.h's enums)
+/// and the built-in tone mappers (TONEMAP_*: ToneMapper).
 
 #include "render/renderer.h"
 

@@ -1,6 +1,6 @@
 // The shader contracts described once in C++ (render/render_interface.h) and generated into
-// "render_interface.glsl": the generated text names what the C++ names, and no shader file
-// declares them again by hand.
+// "render_interface.glsl" (blocks, debug-view ids, BRDF term ids, tone mappers): the generated
+// text names what the C++ names, and no shader file declares them again by hand.
 #include "render/render_interface.h"
 #include "render_test_util.h"
 
@@ -34,6 +34,15 @@ private slots:
         for (int v = 0; v < count; ++v)
             lightViews += render::isLightView(render::DebugView(v));
         QCOMPARE(lightViews, 7); // Final, LightsPerPixel and the five lobe views
+        // The term ids and tone mappers are the enums' numbers.
+        for (const std::string d :
+             {"#define DISTRIBUTION_BECKMANN " + std::to_string(int(Distribution::Beckmann)),
+              "#define VISIBILITY_KELEMEN " + std::to_string(int(Visibility::Kelemen)),
+              "#define FRESNEL_EXACT_DIELECTRIC " + std::to_string(int(Fresnel::ExactDielectric)),
+              "#define DIFFUSE_BURLEY " + std::to_string(int(Diffuse::Burley)),
+              "#define SHEEN_CHARLIE_NEUBELT " + std::to_string(int(SheenModel::CharlieNeubelt)),
+              "#define TONEMAP_LINEAR " + std::to_string(int(render::ToneMapper::Linear))})
+            QVERIFY2(glsl.find(d + "\n") != std::string::npos, d.c_str());
     }
 
     // One copy: no shader file declares the frame or IBL block, or a debug-view id, itself.
@@ -50,6 +59,14 @@ private slots:
             QVERIFY2(!std::regex_search(text, std::regex("#define DEBUG_[A-Z_]+ [0-9]")),
                      name.c_str());
             QVERIFY2(text.find("#define MAX_LIGHTS") == std::string::npos, name.c_str());
+            QVERIFY2(!std::regex_search(
+                         text, std::regex("#define (DISTRIBUTION|VISIBILITY|FRESNEL|DIFFUSE|"
+                                          "SHEEN_CHARLIE)_[A-Z_]+ [0-9]")),
+                     name.c_str());
+            QVERIFY2(!std::regex_search(
+                         text, std::regex("#define TONEMAP_(PBR_NEUTRAL|ACES_FITTED|REINHARD|"
+                                          "LINEAR) [0-9]")),
+                     name.c_str());
         }
         QVERIFY(files > 10);
     }
