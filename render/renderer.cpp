@@ -15,6 +15,7 @@
 #include "render/material_table.h"
 #include "render/mesh_cache.h"
 #include "render/post_chain.h"
+#include "render/scene_copy.h"
 #include "render/shader_program.h"
 #include "render/texture_set.h"
 
@@ -33,36 +34,6 @@ constexpr double kIblFrameBudgetMs = 12.0;
 double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
-}
-
-/// Takes into @p dst the parts of @p src that @p parts names, and nothing else (a part the mask
-/// does not name keeps the renderer's own, so what is drawn is what was uploaded).
-void copyParts(Scene& dst, const Scene& src, ScenePart parts) {
-    if (touches(parts, ScenePart::Camera))
-        dst.camera = src.camera;
-    if (touches(parts, ScenePart::Material)) {
-        // The values (parameters, BRDF terms, names) from the side the mask names; texture slots
-        // and the graph each from theirs.
-        Material m = touches(parts, ScenePart::MaterialValues) ? src.material : dst.material;
-        const Material& structure =
-            touches(parts, ScenePart::MaterialStructure) ? src.material : dst.material;
-        for (int i = 0; i < kTextureSlotCount; ++i)
-            m.setTexture(TextureSlot(i), structure.texture(TextureSlot(i)));
-        m.graph = touches(parts, ScenePart::Graph) ? src.material.graph : dst.material.graph;
-        dst.material = std::move(m);
-        if (touches(parts, ScenePart::MaterialValues))
-            dst.materialPreset = src.materialPreset;
-    }
-    if (touches(parts, ScenePart::Mesh))
-        dst.mesh = src.mesh;
-    if (touches(parts, ScenePart::Environment))
-        dst.environment = src.environment;
-    if (touches(parts, ScenePart::Lights))
-        dst.lights = src.lights;
-    if (touches(parts, ScenePart::PostChain))
-        dst.post = src.post;
-    if (touches(parts, ScenePart::Atlases))
-        dst.atlases = src.atlases;
 }
 
 } // namespace
@@ -404,7 +375,7 @@ void Renderer::setScene(const Scene& scene, Problems* problems) {
 
 void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     Impl& d = *m_impl;
-    copyParts(d.scene, scene, parts);
+    takeSceneParts(d.scene, scene, parts);
     d.haveScene = true;
     if (!d.initialized)
         return; // uploaded by initialize()
@@ -632,17 +603,6 @@ Renderer::EnvironmentBakeStats Renderer::environmentBakeStats() const {
             m_impl->ibl.warmUpMs(),
             m_impl->ibl.warmUpFrames(),
             m_impl->ibl.worstWarmUpFrameMs()};
-}
-
-bool graphOutputIsPerPixel(std::string_view field) {
-    // What gbuffer.frag reads back from velvetGraph(): keep in step with it.
-    static constexpr std::string_view kPerPixel[] = {
-        "baseColor", "metallic",          "roughness",     "normal",          "normalScale",
-        "occlusion", "occlusionStrength", "emissionColor", "emissionStrength"};
-    for (std::string_view f : kPerPixel)
-        if (f == field)
-            return true;
-    return false;
 }
 
 } // namespace velvet::render
