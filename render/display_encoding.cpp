@@ -2,7 +2,6 @@
 
 #include "render/ocio_gpu.h"
 
-#include <cstdio>
 #include <epoxy/gl.h>
 
 namespace velvet::render {
@@ -26,10 +25,12 @@ GpuTransformOptions DisplayEncoding::options() {
 DisplayEncoding::DisplayEncoding() = default;
 DisplayEncoding::~DisplayEncoding() = default;
 
-bool DisplayEncoding::select(const GpuDisplayTransform& encoding, std::string* error) {
+bool DisplayEncoding::select(const GpuDisplayTransform& encoding, std::string* error,
+                             Problems* warnings) {
     if (encoding.isFallback()) { // the config has no encoding view for the display
-        if (!encoding.fallbackWarning.empty() && m_warned.insert(encoding.fallbackWarning).second)
-            std::fprintf(stderr, "velvet: warning: %s\n", encoding.fallbackWarning.c_str());
+        if (!encoding.fallbackWarning.empty() && m_warned.insert(encoding.fallbackWarning).second &&
+            warnings)
+            warnings->warning("", "display", encoding.fallbackWarning);
         selectFallback();
         return true;
     }

@@ -10,10 +10,11 @@
 /// When no OCIO config can be loaded at all, selectFallback() gives the hand-written
 /// IEC 61966-2-1 sRGB OETF of common_math.glsl (cache id ""); select() takes it too for the empty
 /// transform gpuDisplayEncoding() returns when the config has no encoding view (OCIO v1), and
-/// prints that transform's warning once. Needs a current OpenGL 4.5 context from construction to
-/// destruction.
+/// reports that transform's warning once (to the caller's problem list, never to stderr). Needs a
+/// current OpenGL 4.5 context from construction to destruction.
 
 #include "core/color_management.h"
+#include "core/diagnostics.h"
 #include "render/shader_program.h"
 
 #include <map>
@@ -37,9 +38,10 @@ public:
 
     /// Makes @p encoding current, uploading its LUTs the first time its cache id is seen. False +
     /// message when the context lacks texture units for its LUTs (the selection stays). An empty
-    /// transform (GpuDisplayTransform::isFallback) selects the fallback; its fallbackWarning is
-    /// printed to stderr the first time this object sees it.
-    bool select(const GpuDisplayTransform& encoding, std::string* error);
+    /// transform (GpuDisplayTransform::isFallback) selects the fallback; its fallbackWarning goes
+    /// to @p warnings (path "display") the first time this object sees it.
+    bool select(const GpuDisplayTransform& encoding, std::string* error,
+                Problems* warnings = nullptr);
     /// Switches to an encoding seen before (the fallback's id "" always); false when @p cacheId
     /// is unknown.
     bool selectCached(const std::string& cacheId);
@@ -62,7 +64,7 @@ private:
     struct Entry;
     std::map<std::string, std::unique_ptr<Entry>> m_entries;
     std::string m_current;
-    std::set<std::string> m_warned; ///< fallback warnings printed already
+    std::set<std::string> m_warned; ///< fallback warnings reported already
 };
 
 } // namespace velvet::render

@@ -2,8 +2,8 @@
 
 #include "render/gl_util.h"
 
-#include <cstdio>
 #include <epoxy/gl.h>
+#include <utility>
 
 namespace velvet::render {
 
@@ -22,14 +22,28 @@ const ColorManagement* DisplayOutput::config() {
         if (loaded->loadDefault(&message)) {
             m_config = std::move(loaded);
         } else {
-            m_configFailed = true;
-            std::fprintf(stderr,
-                         "velvet: warning: no OpenColorIO config could be loaded (%s); the "
-                         "display is encoded with the built-in sRGB curve instead of OCIO\n",
-                         message.c_str());
+            m_configFailed = true; // warned once: not tried again until another config is set
+            m_warnings.warning(ColorManagement::defaultConfigPath().string(), "",
+                               "no OpenColorIO config could be loaded (" + message +
+                                   "); the display is encoded with the built-in sRGB curve "
+                                   "instead of OCIO");
         }
     }
     return m_config.get();
+}
+
+std::shared_ptr<const ColorManagement> DisplayOutput::sharedConfig() {
+    if (config())
+        return m_config;
+    // The default config failed: an unloaded one, so that the texture slots report their colour
+    // space problems without loading the same file again.
+    if (!m_unloaded)
+        m_unloaded = std::make_shared<ColorManagement>();
+    return m_unloaded;
+}
+
+Problems DisplayOutput::takeWarnings() {
+    return std::exchange(m_warnings, {});
 }
 
 bool DisplayOutput::initialize(std::string* error) {
@@ -76,7 +90,7 @@ bool DisplayOutput::selectEncoding(const std::string& display, std::string* erro
         return true;
     const std::optional<GpuDisplayTransform> t =
         cm->gpuDisplayEncoding(display, error, DisplayEncoding::options());
-    if (!t || !m_encoding.select(*t, error))
+    if (!t || !m_encoding.select(*t, error, &m_warnings))
         return false;
     m_encodingIds[display] = t->cacheId;
     return true;

@@ -9,6 +9,7 @@
 /// and the tone-map programs, one per encoding.
 
 #include "core/color_management.h"
+#include "core/diagnostics.h"
 #include "render/display_encoding.h"
 #include "render/display_transform.h"
 #include "render/renderer.h"
@@ -42,8 +43,15 @@ public:
     /// (compiled programs stay valid: same cache id, same shader).
     void setColorManagement(std::shared_ptr<const ColorManagement> colorManagement);
     /// The config, loading the default the first time; null when it cannot be loaded (frames
-    /// then use the hand-written sRGB OETF; warned once).
+    /// then use the hand-written sRGB OETF; warned once, through takeWarnings()).
     const ColorManagement* config();
+    /// The same config for the renderer's other users (the texture slots' input colour spaces),
+    /// so the file is loaded once: config(), or when it failed an unloaded ColorManagement
+    /// (each texture then reports its colour space problem) rather than a second attempt.
+    std::shared_ptr<const ColorManagement> sharedConfig();
+    /// Warnings found since the last call (no config could be loaded; the config has no
+    /// encoding view for a display), each reported once.
+    Problems takeWarnings();
 
     /// Selects the default display's encoding and builds its tone-map program, so that the
     /// first frame and every value edit after it compile nothing. Needs a current context.
@@ -73,6 +81,8 @@ private:
 
     std::shared_ptr<const ColorManagement> m_config;
     bool m_configFailed = false;
+    std::shared_ptr<const ColorManagement> m_unloaded; ///< sharedConfig() after a failure
+    Problems m_warnings;
     // The display transforms (programs cached by OCIO cache id inside DisplayTransform) and
     // which (display, view, look) maps to which cache id, so that switching back to a view asks
     // OCIO for nothing.

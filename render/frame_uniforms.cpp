@@ -24,11 +24,11 @@ FrameBlock makeFrameBlock(const Scene& scene, const Camera& cam, const GpuEnviro
                           const FrameSettings& fs) {
     FrameBlock b{};
     const float aspect = float(fs.width) / float(std::max(fs.height, 1));
-    b.view = viewMatrix(cam);
-    b.proj = projectionMatrix(cam, aspect);
-    b.invProj = glm::inverse(b.proj);
-    b.invView = glm::inverse(b.view);
-    b.viewProj = b.proj * b.view;
+    b.viewMatrix = viewMatrix(cam);
+    b.projMatrix = projectionMatrix(cam, aspect);
+    b.invProjMatrix = glm::inverse(b.projMatrix);
+    b.invViewMatrix = glm::inverse(b.viewMatrix);
+    b.viewProjMatrix = b.projMatrix * b.viewMatrix;
     b.cameraPosition = glm::vec4(cameraEye(cam), cam.orthographic ? 1.0f : 0.0f);
     b.viewport = glm::vec4(float(fs.width), float(fs.height), 1.0f / float(fs.width),
                            1.0f / float(fs.height));

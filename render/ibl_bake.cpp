@@ -128,6 +128,7 @@ bool IblBaker::initialize(std::string* error) {
         !(m_prefilterProgram = buildCompute("ibl_prefilter.comp", error)) ||
         !(m_dfgProgram = buildCompute("ibl_dfg.comp", error)))
         return false;
+    m_compileCount += 4;
 
     // Sheen albedo, one channel per SheenModel (core/brdf.cpp integrates them on the CPU, the
     // same tables the C++ twin looks up).
@@ -189,6 +190,7 @@ bool IblBaker::reload(std::string* error, int* compiled) {
         }
         glDeleteProgram(*p.program);
         *p.program = program;
+        ++m_compileCount;
         if (compiled)
             ++*compiled;
     }

@@ -98,6 +98,9 @@ public:
     /// fails keeps its last good build, and the warm-up runs again. False + every failure's
     /// message (file:line); @p compiled counts the programs rebuilt.
     bool reload(std::string* error, int* compiled = nullptr);
+    /// Compute programs built since construction: initialize() builds the four (equirect to
+    /// cube, downsample, prefilter, DFG), each reload() the ones it rebuilt.
+    int compileCount() const { return m_compileCount; }
 
     /// @name Read-backs for tests
     /// @{
@@ -152,6 +155,7 @@ private:
     int m_warmUpFrames = 0;
     double m_worstWarmUpFrameMs = 0;
     bool m_warmedUp = false;
+    int m_compileCount = 0;
     /// The warm-up's own tiny bake, carried from frame to frame.
     struct WarmUp {
         bool started = false, jobsDone = false;

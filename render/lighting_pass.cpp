@@ -5,16 +5,10 @@
 
 namespace velvet::render {
 
-bool isLightView(DebugView view) {
-    return view == DebugView::Final || view == DebugView::LightsPerPixel ||
-           (view >= DebugView::DiffuseOnly && view <= DebugView::ClearcoatOnly);
-}
-
 LightingPass::Variant LightingPass::variantFor(DebugView view) {
     if (view == DebugView::Final)
         return kFinal;
-    if (view == DebugView::LightsPerPixel ||
-        (view >= DebugView::DiffuseOnly && view <= DebugView::ClearcoatOnly))
+    if (isLightView(view)) // the lobe views and LightsPerPixel
         return kLobeViews;
     return kGBufferViews;
 }

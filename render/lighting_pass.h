@@ -8,15 +8,13 @@
 /// for the other.
 
 #include "core/scene.h"
+#include "render/render_interface.h"
 #include "render/renderer.h"
 #include "render/shader_program.h"
 
 #include <string>
 
 namespace velvet::render {
-
-/// Views the point, spot and area lights contribute to (debug_views.glsl, isLightView).
-bool isLightView(DebugView view);
 
 class LightingPass {
 public:

@@ -2,6 +2,7 @@
 
 #include "core/texture_cache.h"
 #include "render/graph_texture.h"
+#include "render/renderer.h"
 
 #include <algorithm>
 #include <epoxy/gl.h>
@@ -177,6 +178,17 @@ void MaterialGraphProgram::buildPending(TextureCache& cache, bool wait) {
     m_pending = {};
     uploadValues();
     refreshTextures(cache, nullptr);
+}
+
+bool graphOutputIsPerPixel(std::string_view field) {
+    // What gbuffer.frag reads back from velvetGraph(): keep in step with it.
+    static constexpr std::string_view kPerPixel[] = {
+        "baseColor", "metallic",          "roughness",     "normal",          "normalScale",
+        "occlusion", "occlusionStrength", "emissionColor", "emissionStrength"};
+    for (std::string_view f : kPerPixel)
+        if (f == field)
+            return true;
+    return false;
 }
 
 } // namespace velvet::render

@@ -49,6 +49,9 @@ bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Ima
             *linear = renderer.readLinear();
         if (display)
             *display = renderer.readDisplay();
+        if (problems) // no OCIO config, no encoding view: reported once, never printed here
+            for (Problem& p : renderer.takeWarnings().items)
+                problems->items.push_back(std::move(p));
         ok = true;
     }
     return ok;

@@ -15,6 +15,7 @@
 #include "render/material_table.h"
 #include "render/mesh_cache.h"
 #include "render/post_chain.h"
+#include "render/scene_copy.h"
 #include "render/shader_program.h"
 #include "render/texture_set.h"
 
@@ -40,7 +41,6 @@ double msSince(std::chrono::steady_clock::time_point start) {
 struct Renderer::Impl {
     bool initialized = false;
     bool parallelShaderCompile = false; ///< GL_KHR_parallel_shader_compile (shader_program.h)
-    int iblCompiles = 0;                ///< the IBL bake's compute programs
 
     /// @name The passes, in pipeline order
     /// @{
@@ -212,7 +212,7 @@ void Renderer::Impl::uploadLights(Problems* problems) {
     if (!problems)
         return;
     // The full-screen pass has a fixed array of directional lights (MAX_LIGHTS in
-    // common_frame.glsl); makeFrameBlock() draws the first kMaxDirectionalLights and drops the
+    // render_interface.glsl); makeFrameBlock() draws the first kMaxDirectionalLights and drops the
     // rest.
     int directional = 0;
     for (size_t i = 0; i < scene.lights.size(); ++i)
@@ -238,11 +238,11 @@ bool Renderer::Impl::runPost(const FrameSettings& fs, const FrameBlock& b, unsig
     in.hdrTexture = targets.hdr().texture();
     in.width = fs.width;
     in.height = fs.height;
-    in.viewProj = b.viewProj;
-    in.proj = b.proj;
+    in.viewProj = b.viewProjMatrix;
+    in.proj = b.projMatrix;
     in.prevViewProj = fs.hasPreviousViewProj ? fs.previousViewProj
                       : haveLastViewProj     ? lastViewProj
-                                             : b.viewProj;
+                                             : b.viewProjMatrix;
     in.time = fs.time;
     in.exposureEv = fs.exposureEv;
     // The tonemap effect's operator indices: pbr-neutral, aces, reinhard, …, linear (5).
@@ -308,6 +308,9 @@ bool Renderer::initialize(std::string* error) {
     // after it compile nothing (the encoding comes from the config, loaded here if none is set).
     if (!d.display.initialize(error))
         return false;
+    // The texture slots look their input colour spaces up in the same config, loaded once.
+    if (!d.colorManagement)
+        d.textures.setColorManagement(d.display.sharedConfig());
     d.uniforms.initialize();
     glCreateVertexArrays(1, &d.emptyVao);
     glCreateQueries(GL_TIMESTAMP, 4, d.queries);
@@ -318,7 +321,6 @@ bool Renderer::initialize(std::string* error) {
         d.uploadLights(nullptr);
     if (!d.ibl.initialize(error))
         return false;
-    d.iblCompiles += 3; // the IBL bake's compute programs
     d.selectMesh(nullptr);
     d.refreshTextureSlots(nullptr);
     d.uploadMaterial();
@@ -345,7 +347,7 @@ bool Renderer::reloadShaders(std::string* error) {
     std::string message;
     collect(d.buildPrograms(&message, /*keepGoing=*/true), message);
     collect(d.lights.reload(&message), message);
-    collect(d.ibl.reload(&message, &d.iblCompiles), message);
+    collect(d.ibl.reload(&message), message);
     collect(d.display.reload(&message), message);
     collect(d.post.reload(&message), message); // counted by shaderCompileCount() through post
     if (!errors.empty())
@@ -357,8 +359,10 @@ void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorMa
     Impl& d = *m_impl;
     d.colorManagement = std::move(colorManagement);
     d.display.setColorManagement(d.colorManagement);
-    // Input colour space names are looked up in the new config too.
-    d.textures.setColorManagement(d.colorManagement);
+    // Input colour space names are looked up in the new config too (without one, in the
+    // display's default, loaded once by the display at initialize()).
+    d.textures.setColorManagement(d.colorManagement || !d.initialized ? d.colorManagement
+                                                                      : d.display.sharedConfig());
     if (d.initialized) {
         d.refreshTextureSlots(nullptr);
         d.uploadMaterial();
@@ -371,7 +375,7 @@ void Renderer::setScene(const Scene& scene, Problems* problems) {
 
 void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     Impl& d = *m_impl;
-    copyParts(d.scene, scene, parts);
+    takeSceneParts(d.scene, scene, parts);
     d.haveScene = true;
     if (!d.initialized)
         return; // uploaded by initialize()
@@ -393,6 +397,10 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     // Camera: the stored camera is all (makeFrameBlock reads it when FrameSettings::camera is
     // unset). Atlases: nothing in the renderer today — atlas regions reach it as texture slots
     // (MaterialStructure), and scene.atlases only names the document the editor loads.
+}
+
+Problems Renderer::takeWarnings() {
+    return m_impl->display.takeWarnings();
 }
 
 UploadStats Renderer::uploadStats() const {
@@ -484,7 +492,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         glViewport(0, 0, fs.width, fs.height);
         glBindVertexArray(d.emptyVao);
     }
-    d.lastViewProj = block.viewProj;
+    d.lastViewProj = block.viewProjMatrix;
     d.haveLastViewProj = true;
 
     // 6. Display, into the target (unless the chain's tone map and LDR effects did it).
@@ -549,7 +557,7 @@ bool Renderer::parallelShaderCompile() const {
 int Renderer::shaderCompileCount() const {
     const Impl& d = *m_impl;
     return d.graph.compileCount() + d.lighting.compileCount() + d.lights.compileCount() +
-           d.iblCompiles + d.display.compileCount() + d.post.compileCount();
+           d.ibl.compileCount() + d.display.compileCount() + d.post.compileCount();
 }
 
 PostChainRenderer& Renderer::postChain() {
@@ -595,17 +603,6 @@ Renderer::EnvironmentBakeStats Renderer::environmentBakeStats() const {
             m_impl->ibl.warmUpMs(),
             m_impl->ibl.warmUpFrames(),
             m_impl->ibl.worstWarmUpFrameMs()};
-}
-
-bool graphOutputIsPerPixel(std::string_view field) {
-    // What gbuffer.frag reads back from velvetGraph(): keep in step with it.
-    static constexpr std::string_view kPerPixel[] = {
-        "baseColor", "metallic",          "roughness",     "normal",          "normalScale",
-        "occlusion", "occlusionStrength", "emissionColor", "emissionStrength"};
-    for (std::string_view f : kPerPixel)
-        if (f == field)
-            return true;
-    return false;
 }
 
 } // namespace velvet::render

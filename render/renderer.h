@@ -25,7 +25,7 @@ namespace velvet::render {
 
 class PostChainRenderer;
 
-/// Directional lights the lighting pass draws (MAX_LIGHTS in resources/shaders/common_frame.glsl);
+/// Directional lights the lighting pass draws (MAX_LIGHTS in the generated render_interface.glsl);
 /// update() with ScenePart::Lights reports each one past this as a warning naming its JSON path
 /// ("lights[i]").
 inline constexpr int kMaxDirectionalLights = 16;
@@ -107,8 +107,8 @@ struct FrameSettings {
     /// piecewise curve, Display P3: primaries and curve). A tone-mapping view (ACES, AgX), a view
     /// without a view transform (Raw) or a look is OCIO's whole transform instead (exposure, look,
     /// view) and toneMapper is not used. Only when no config can be loaded at all does the
-    /// hand-written sRGB OETF encode (a warning is printed once). Debug views use the display's
-    /// encoding or their own fixed mappings.
+    /// hand-written sRGB OETF encode (warned once, Renderer::takeWarnings()). Debug views use the
+    /// display's encoding or their own fixed mappings.
     /// @{
     std::string display;
     std::string displayView;
@@ -207,8 +207,18 @@ public:
     UploadStats uploadStats() const;
     /// @}
 
-    /// The OpenColorIO config the display encoding and transforms come from. Without one,
-    /// initialize() loads ColorManagement::defaultConfigPath() ($OCIO or the shipped config).
+    /// Warnings the renderer found outside update()'s problem list, since the last call: no
+    /// OpenColorIO config could be loaded (Problem::file names the config path; the display
+    /// then uses the built-in sRGB curve), or the config has no encoding view for a display
+    /// (path "display"). Each is reported once per renderer (again only after
+    /// setColorManagement()), and nothing is printed: the host drains this after initialize()
+    /// and render() and shows the items (the editor's Log; renderSceneOffscreen appends them to
+    /// its problems, which the CLI prints).
+    Problems takeWarnings();
+
+    /// The OpenColorIO config the display encoding, the display transforms and the texture
+    /// slots' input colour spaces come from. Without one, initialize() loads
+    /// ColorManagement::defaultConfigPath() ($OCIO or the shipped config), once for all of them.
     void setColorManagement(std::shared_ptr<const ColorManagement> colorManagement);
 
     /// Renders one frame into framebuffer @p targetFbo (0: the default framebuffer) at

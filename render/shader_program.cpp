@@ -2,6 +2,7 @@
 
 #include "core/resources.h"
 #include "render/gbuffer_layout.h"
+#include "render/render_interface.h"
 
 #include <epoxy/gl.h>
 #include <fstream>
@@ -38,6 +39,10 @@ bool readSource(const std::string& name, const GeneratedSources& generated, std:
         }
     if (name == "gbuffer_layout.glsl") {
         text = gbufferGlsl();
+        return true;
+    }
+    if (name == "render_interface.glsl") {
+        text = renderInterfaceGlsl();
         return true;
     }
     if (name == "render_bindings.glsl") {

@@ -13,30 +13,10 @@
 #define SHEEN_LUT_SIZE 32.0
 
 // ---- Configuration ----
-// Term ids: the values of the enums in core/material.h, as packed in GpuMaterial.terms (D, V, F,
-// diffuse) and terms2.x (sheen model).
-#define DISTRIBUTION_GGX 0
-#define DISTRIBUTION_BECKMANN 1
-#define DISTRIBUTION_BLINN_PHONG 2
-
-#define VISIBILITY_SMITH_GGX_SEPARABLE 0
-#define VISIBILITY_SMITH_GGX_CORRELATED 1
-#define VISIBILITY_SCHLICK_GGX 2
-#define VISIBILITY_COOK_TORRANCE 3
-#define VISIBILITY_IMPLICIT 4
-#define VISIBILITY_NEUMANN 5
-#define VISIBILITY_KELEMEN 6
-
-#define FRESNEL_SCHLICK 0
-#define FRESNEL_SCHLICK_SPHERICAL_GAUSSIAN 1
-#define FRESNEL_EXACT_DIELECTRIC 2
-
-#define DIFFUSE_LAMBERT 0
-#define DIFFUSE_BURLEY 1
-
-#define SHEEN_CHARLIE_CONTY_KULLA 0
-#define SHEEN_CHARLIE_ASHIKHMIN 1
-#define SHEEN_CHARLIE_NEUBELT 2
+// Term ids (DISTRIBUTION_*, VISIBILITY_*, FRESNEL_*, DIFFUSE_*, SHEEN_CHARLIE_*): the values of
+// the enums in core/material.h, as packed in GpuMaterial.terms (D, V, F, diffuse) and terms2.x
+// (sheen model), generated into render_interface.glsl from render/render_interface.cpp.
+#include "render_interface.glsl"
 
 layout(binding = BINDING_SHEEN_LUT_TEX) uniform sampler2D uSheenLut;
 

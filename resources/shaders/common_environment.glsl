@@ -9,12 +9,7 @@ layout(binding = BINDING_ENVIRONMENT_TEX) uniform sampler2D uEnvironment;
 layout(binding = BINDING_IBL_SPECULAR_TEX) uniform samplerCube uSpecularCube;
 layout(binding = BINDING_IBL_DFG_TEX) uniform sampler2D uDfgLut;
 
-// Mirrors struct IblBlock in render/renderer.cpp (std140, vec4 only).
-layout(std140, binding = BINDING_IBL_UBO) uniform IblBlock {
-    vec4 state;      // x: prefiltered cube ready, y: its last level, z: DFG LUT ready,
-                     // w: multiple-scattering compensation on
-    vec4 background; // x: level of the blurred background, y: time in seconds (FBM), zw unused
-} ibl;
+// IblBlock (instance `ibl`) is generated into render_interface.glsl (common_frame.glsl).
 
 // Direction of equirect coordinates (u, v), v = 0 at +Y, u = 0.5 looking down -Z.
 // Must match velvet::equirectDirection() in core/spherical_harmonics.cpp.

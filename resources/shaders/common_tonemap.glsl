@@ -33,10 +33,9 @@ vec3 toneMapAcesFitted(vec3 color) {
 // Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images" (simple operator)
 vec3 toneMapReinhard(vec3 color) { return color / (1.0 + color); }
 
-#define TONEMAP_PBR_NEUTRAL 0
-#define TONEMAP_ACES_FITTED 1
-#define TONEMAP_REINHARD 2
-#define TONEMAP_LINEAR 3
+// TONEMAP_PBR_NEUTRAL .. TONEMAP_LINEAR: render::ToneMapper's numbers, generated into
+// render_interface.glsl from render/render_interface.cpp.
+#include "render_interface.glsl"
 
 vec3 toneMap(vec3 color, int op) {
     color = max(color, vec3(0.0));

@@ -1,24 +1,10 @@
-// Debug views added after common_frame.glsl's first seven (DEBUG_FINAL .. DEBUG_POSITION); the
-// numbers mirror render::DebugView in render/renderer.h. Raw values go to the linear image;
-// debugDisplay() maps them for the display image.
+// Debug views: the ids (DEBUG_FINAL .. DEBUG_CLEARCOAT_ONLY, render::DebugView's numbers) and
+// isLightView() / isLobeView() are generated into render_interface.glsl (render/renderer.h
+// documents what each view shows). Raw values go to the linear image; debugDisplay() maps them
+// for the display image.
 #include "common_math.glsl"
+#include "common_frame.glsl"
 
-#define DEBUG_SPECULAR 7          // rgb: specular colour x weight (KHR_materials_specular)
-#define DEBUG_CLEARCOAT 8         // r: clearcoat weight, g: clearcoat roughness
-#define DEBUG_SHEEN 9             // rgb: sheen colour x weight
-#define DEBUG_OCCLUSION 10        // r = g = b: ambient occlusion
-#define DEBUG_EMISSIVE 11         // rgb: emissive colour x strength
-#define DEBUG_MATERIAL_ID 12      // r = g = b: material id (integer)
-#define DEBUG_LIGHTS_PER_PIXEL 13 // r = g = b: number of point/spot/area lights reaching the pixel
-#define DEBUG_DIFFUSE_ONLY 14     // direct light (analytic lights), diffuse lobe only
-#define DEBUG_SPECULAR_ONLY 15    // direct light, every specular lobe (base + sheen + clearcoat)
-#define DEBUG_BASE_SPECULAR 16    // direct light, base specular lobe alone
-#define DEBUG_SHEEN_ONLY 17       // direct light, sheen lobe alone
-#define DEBUG_CLEARCOAT_ONLY 18   // direct light, clearcoat lobe alone
-
-bool isLobeView(int view) { return view >= DEBUG_DIFFUSE_ONLY && view <= DEBUG_CLEARCOAT_ONLY; }
-// Views to which the analytic lights contribute (the local-light passes run for these).
-bool isLightView(int view) { return view == DEBUG_FINAL || view == DEBUG_LIGHTS_PER_PIXEL || isLobeView(view); }
 
 // Heat map for lights per pixel: black at 0, then blue, cyan, green, yellow, red at 32 and above.
 vec3 heatMap(float count) {

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -119,6 +120,27 @@ private slots:
         std::string error;
         QVERIFY2(test::headlessContext(&error), error.c_str());
         m_envPath = writeTestEnvironment(m_dir.path());
+    }
+
+    // IblBaker reports the compute programs it builds (Renderer::shaderCompileCount adds its
+    // count): one per ibl_*.comp shader the bake uses, at initialize() and again at reload().
+    void compileCountIsWhatIsBuilt() {
+        int files = 0;
+        for (const auto& e : std::filesystem::directory_iterator(
+                 std::filesystem::path(VELVET_SOURCE_DIR) / "resources/shaders")) {
+            const std::string name = e.path().filename().string();
+            files += name.rfind("ibl_", 0) == 0 && e.path().extension() == ".comp";
+        }
+        QCOMPARE(files, 4); // equirect to cube, downsample, prefilter, DFG
+        render::IblBaker baker;
+        QCOMPARE(baker.compileCount(), 0);
+        std::string error;
+        QVERIFY2(baker.initialize(&error), error.c_str());
+        QCOMPARE(baker.compileCount(), files);
+        int rebuilt = 0;
+        QVERIFY2(baker.reload(&error, &rebuilt), error.c_str());
+        QCOMPARE(rebuilt, files);
+        QCOMPARE(baker.compileCount(), 2 * files);
     }
 
     // The DFG LUT made on the GPU (Hammersley importance sampling, ibl_dfg.comp) matches an
