@@ -15,7 +15,6 @@
 #include "render/material_table.h"
 #include "render/mesh_cache.h"
 #include "render/post_chain.h"
-#include "render/scene_copy.h"
 #include "render/shader_program.h"
 #include "render/texture_set.h"
 
@@ -375,7 +374,7 @@ void Renderer::setScene(const Scene& scene, Problems* problems) {
 
 void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     Impl& d = *m_impl;
-    takeSceneParts(d.scene, scene, parts);
+    copyParts(d.scene, scene, parts);
     d.haveScene = true;
     if (!d.initialized)
         return; // uploaded by initialize()
