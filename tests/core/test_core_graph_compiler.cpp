@@ -210,6 +210,15 @@ private slots:
         QVERIFY(compileGraph(b.g).glsl != original);
     }
 
+    // The noise helpers use the shaders' one hash (resources/shaders/common_hash.glsl) instead
+    // of a copy of their own (test_render_shader_sources: the folder defines it once).
+    void noiseUsesTheSharedHash() {
+        const std::string glsl = compileGraph(basicGraph().g).glsl;
+        QVERIFY(glsl.find("#include \"common_hash.glsl\"") != std::string::npos);
+        QVERIFY(glsl.find("pcg2d(") != std::string::npos);
+        QVERIFY(glsl.find("1013904223u") == std::string::npos); // no hash body of its own
+    }
+
     // Same graph, byte-identical text: built in another order, copied, read back from JSON.
     void deterministic() {
         const Basic b = basicGraph();
