@@ -120,9 +120,8 @@ void TestUiAtlasAb::initTestCase() {
 
     m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
     m_doc = m_window->controller();
-    test::showMainWindow(*m_window, {1000, 700}, /*activate=*/false);
-    if (QTest::currentTestFailed())
-        return;
+    const QString up = test::showWithFirstFrame(m_window.get(), {1000, 700});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
     ViewportWidget* viewport = m_window->viewport();
     // The environment bake runs in slices: wait for the finished lighting.
     QTRY_VERIFY_WITH_TIMEOUT(viewport->environmentProgress() < 0.0 ||

@@ -85,9 +85,8 @@ private:
 void TestUiGraph::initTestCase() {
     m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
     m_doc = m_window->controller();
-    test::showMainWindow(*m_window, {900, 700}, /*activate=*/false);
-    if (QTest::currentTestFailed())
-        return;
+    const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
     m_panel = m_window->findChild<GraphPanel*>();
     QVERIFY(m_panel);
     m_view = m_panel->view();

@@ -148,7 +148,8 @@ void TestUiScene::initTestCase() {
     m_doc = m_window->controller();
     m_scene = m_window->scenePanel();
     QVERIFY(m_scene);
-    test::showMainWindow(*m_window, {900, 700}, /*activate=*/true);
+    const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
 }
 
 void TestUiScene::cleanupTestCase() {

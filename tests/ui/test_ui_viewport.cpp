@@ -137,7 +137,8 @@ void TestUiViewport::initTestCase() {
 
     m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
     m_doc = m_window->controller();
-    test::showMainWindow(*m_window, {800, 600}, /*activate=*/true);
+    const QString up = test::showWithFirstFrame(m_window.get(), {800, 600});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
 }
 
 void TestUiViewport::cleanupTestCase() {

@@ -1,14 +1,11 @@
 #pragma once
-// Shared helpers of the widget tests (run under xvfb-run): the real main window shown and waited
-// for, pixels read from a grabbed viewport, and where a user grabs a slider.
+// Shared helpers of the widget tests (run under xvfb-run): pixels read from a grabbed viewport
+// and where a user grabs a slider; bringing the main window up is ui_test_window.h's.
 
-#include "ui/main_window.h"
-#include "ui/viewport_widget.h"
+#include "ui_test_window.h"
 
-#include <QApplication>
 #include <QColor>
 #include <QImage>
-#include <QSignalSpy>
 #include <QSlider>
 #include <QStyle>
 #include <QStyleOptionSlider>
@@ -18,9 +15,6 @@
 #include <cmath>
 
 namespace velvet::test {
-
-/// llvmpipe: the first frame compiles every shader.
-inline constexpr int kFrameTimeoutMs = 120000;
 
 /// Mean colour of a 5x5 block around the centre (on the preview mesh), in 0..255 units.
 inline QVector<double> centrePixel(const QImage& image) {
@@ -59,27 +53,6 @@ inline QPoint handleCentre(QSlider* slider) {
     return slider->style()
         ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
         .center();
-}
-
-/// Shows @p window at @p size and waits until its viewport has drawn its first frame (a render
-/// failure fails the test with the viewport's message). With @p activate the window is also made
-/// the active one, so shortcuts reach it: Xvfb has no window manager to activate it. A failure
-/// is recorded in the current test (check QTest::currentTestFailed()).
-inline void showMainWindow(ui::MainWindow& window, QSize size, bool activate) {
-    ui::ViewportWidget* viewport = window.viewport();
-    QSignalSpy frames(viewport, &ui::ViewportWidget::frameCompleted);
-    QSignalSpy failures(viewport, &ui::ViewportWidget::renderFailed);
-    window.resize(size);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    if (activate) {
-        window.activateWindow();
-        QApplication::setActiveWindow(&window);
-        QTRY_VERIFY(window.isActiveWindow());
-    }
-    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() || !failures.isEmpty(), kFrameTimeoutMs);
-    QVERIFY2(failures.isEmpty(), qPrintable(viewport->errorMessage()));
-    QVERIFY(viewport->renderer() != nullptr);
 }
 
 } // namespace velvet::test
