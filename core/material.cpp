@@ -23,99 +23,54 @@ constexpr std::array<std::string_view, 2> kDiffuseNames{"lambert", "burley"};
 constexpr std::array<std::string_view, 3> kSheenModelNames{"charlie-conty-kulla",
                                                            "charlie-ashikhmin", "charlie-neubelt"};
 
-constexpr ParamMeta scalar(std::string_view id, std::string_view label, std::string_view group,
-                           float min, float max, float def, std::string_view unit,
-                           std::string_view tooltip, float softMax = 0.0f) {
-    ParamMeta m{};
-    m.id = id;
-    m.label = label;
-    m.group = group;
-    m.type = ParamType::Float;
-    m.min = min;
-    m.max = max;
-    m.defaultValue = glm::vec3(def);
-    m.unit = unit;
-    m.tooltip = tooltip;
-    m.softMax = softMax;
-    return m;
-}
-
-constexpr ParamMeta color(std::string_view id, std::string_view label, std::string_view group,
-                          glm::vec3 def, std::string_view tooltip) {
-    ParamMeta m{};
-    m.id = id;
-    m.label = label;
-    m.group = group;
-    m.type = ParamType::Color;
-    m.min = 0.0f;
-    m.max = 1.0f;
-    m.defaultValue = def;
-    m.colorSpace = ColorSpace::Linear;
-    m.tooltip = tooltip;
-    return m;
-}
-
-template <size_t N>
-constexpr ParamMeta choice(std::string_view id, std::string_view label,
-                           const std::array<std::string_view, N>& names, std::string_view tooltip) {
-    ParamMeta m{};
-    m.id = id;
-    m.label = label;
-    m.group = "BRDF";
-    m.type = ParamType::Choice;
-    m.min = 0.0f;
-    m.max = static_cast<float>(N - 1);
-    m.defaultValue = glm::vec3(0.0f);
-    m.tooltip = tooltip;
-    m.choices = std::span<const std::string_view>(names.data(), N);
-    return m;
-}
-
 // Ranges and defaults follow glTF 2.0 and its KHR_materials_* extensions, so that a preset with
 // defaults exports as a plain glTF material.
 const std::array<ParamMeta, kParamCount> kParams{
-    color("lobes.base.color", "Base colour", "Base", glm::vec3(0.8f),
-          "Diffuse albedo of dielectrics, specular colour of metals (glTF baseColorFactor)."),
-    scalar("lobes.base.metallic", "Metallic", "Base", 0, 1, 0, "",
-           "0 for dielectrics, 1 for metals (glTF metallicFactor)."),
-    scalar("lobes.base.roughness", "Roughness", "Base", 0, 1, 0.5f, "",
-           "Perceptual roughness; alpha = roughness^2 (glTF roughnessFactor)."),
-    scalar("lobes.base.specularWeight", "Specular weight", "Base", 0, 1, 1, "",
-           "Strength of the dielectric specular reflection (KHR_materials_specular)."),
-    color("lobes.base.specularColor", "Specular colour", "Base", glm::vec3(1.0f),
-          "Tint of the dielectric F0 (KHR_materials_specular specularColorFactor)."),
-    scalar("lobes.base.ior", "IOR", "Base", 1, 3, 1.5f, "",
-           "Index of refraction; 1.5 gives F0 = 0.04 (KHR_materials_ior)."),
-    scalar("lobes.base.normalScale", "Normal strength", "Base", 0, 2, 1, "",
-           "Scale of the normal map's XY (glTF normalTexture.scale)."),
-    scalar("lobes.base.occlusionStrength", "Occlusion strength", "Base", 0, 1, 1, "",
-           "How much the occlusion map darkens indirect light (glTF occlusionTexture.strength)."),
-    color("lobes.emission.color", "Emissive colour", "Emission", glm::vec3(0.0f),
-          "Emitted radiance before strength (glTF emissiveFactor)."),
-    scalar("lobes.emission.strength", "Emissive strength", "Emission", 0, 1000, 1, "nits",
-           "Multiplier on the emissive colour (KHR_materials_emissive_strength).", 20.0f),
-    scalar("lobes.clearcoat.weight", "Clearcoat", "Clearcoat", 0, 1, 0, "",
-           "Weight of the clear coat layer over the base (KHR_materials_clearcoat)."),
-    scalar("lobes.clearcoat.roughness", "Clearcoat roughness", "Clearcoat", 0, 1, 0.03f, "",
-           "Perceptual roughness of the coat (clearcoatRoughnessFactor)."),
-    scalar("lobes.clearcoat.normalScale", "Clearcoat normal strength", "Clearcoat", 0, 2, 1, "",
-           "Scale of the clearcoat normal map's XY."),
-    scalar("lobes.sheen.weight", "Sheen", "Sheen", 0, 1, 0, "",
-           "Weight of the sheen lobe; the exported sheenColorFactor is weight x colour."),
-    color("lobes.sheen.color", "Sheen colour", "Sheen", glm::vec3(1.0f),
-          "Colour of the fibre retro-reflection (KHR_materials_sheen sheenColorFactor)."),
-    scalar("lobes.sheen.roughness", "Sheen roughness", "Sheen", 0, 1, 0.3f, "",
-           "Spread of the sheen lobe (KHR_materials_sheen sheenRoughnessFactor)."),
-    choice("brdf.distribution", "Distribution (D)", kDistributionNames,
-           "Microfacet normal distribution: GGX (Walter 2007), Beckmann (1963), Blinn-Phong."),
-    choice("brdf.visibility", "Geometry (G/V)", kVisibilityNames,
-           "Masking-shadowing term; the glTF specification uses separable Smith-GGX."),
-    choice("brdf.fresnel", "Fresnel (F)", kFresnelNames,
-           "Fresnel reflectance: Schlick 1994, its spherical-gaussian form, or exact dielectric."),
-    choice("brdf.diffuse", "Diffuse", kDiffuseNames,
-           "Diffuse term: Lambert, or Burley 2012 (Disney) with retro-reflection."),
-    choice("brdf.sheen", "Sheen model", kSheenModelNames,
-           "Charlie D (Estevez & Kulla 2017) with Conty-Kulla, Ashikhmin or Neubelt visibility."),
+    colorParam("lobes.base.color", "Base colour", "Base", 0, 1, glm::vec3(0.8f),
+               "Diffuse albedo of dielectrics, specular colour of metals (glTF baseColorFactor)."),
+    floatParam("lobes.base.metallic", "Metallic", "Base", 0, 1, 0, "",
+               "0 for dielectrics, 1 for metals (glTF metallicFactor)."),
+    floatParam("lobes.base.roughness", "Roughness", "Base", 0, 1, 0.5f, "",
+               "Perceptual roughness; alpha = roughness^2 (glTF roughnessFactor)."),
+    floatParam("lobes.base.specularWeight", "Specular weight", "Base", 0, 1, 1, "",
+               "Strength of the dielectric specular reflection (KHR_materials_specular)."),
+    colorParam("lobes.base.specularColor", "Specular colour", "Base", 0, 1, glm::vec3(1.0f),
+               "Tint of the dielectric F0 (KHR_materials_specular specularColorFactor)."),
+    floatParam("lobes.base.ior", "IOR", "Base", 1, 3, 1.5f, "",
+               "Index of refraction; 1.5 gives F0 = 0.04 (KHR_materials_ior)."),
+    floatParam("lobes.base.normalScale", "Normal strength", "Base", 0, 2, 1, "",
+               "Scale of the normal map's XY (glTF normalTexture.scale)."),
+    floatParam(
+        "lobes.base.occlusionStrength", "Occlusion strength", "Base", 0, 1, 1, "",
+        "How much the occlusion map darkens indirect light (glTF occlusionTexture.strength)."),
+    colorParam("lobes.emission.color", "Emissive colour", "Emission", 0, 1, glm::vec3(0.0f),
+               "Emitted radiance before strength (glTF emissiveFactor)."),
+    floatParam("lobes.emission.strength", "Emissive strength", "Emission", 0, 1000, 1, "nits",
+               "Multiplier on the emissive colour (KHR_materials_emissive_strength).", 20.0f),
+    floatParam("lobes.clearcoat.weight", "Clearcoat", "Clearcoat", 0, 1, 0, "",
+               "Weight of the clear coat layer over the base (KHR_materials_clearcoat)."),
+    floatParam("lobes.clearcoat.roughness", "Clearcoat roughness", "Clearcoat", 0, 1, 0.03f, "",
+               "Perceptual roughness of the coat (clearcoatRoughnessFactor)."),
+    floatParam("lobes.clearcoat.normalScale", "Clearcoat normal strength", "Clearcoat", 0, 2, 1, "",
+               "Scale of the clearcoat normal map's XY."),
+    floatParam("lobes.sheen.weight", "Sheen", "Sheen", 0, 1, 0, "",
+               "Weight of the sheen lobe; the exported sheenColorFactor is weight x colour."),
+    colorParam("lobes.sheen.color", "Sheen colour", "Sheen", 0, 1, glm::vec3(1.0f),
+               "Colour of the fibre retro-reflection (KHR_materials_sheen sheenColorFactor)."),
+    floatParam("lobes.sheen.roughness", "Sheen roughness", "Sheen", 0, 1, 0.3f, "",
+               "Spread of the sheen lobe (KHR_materials_sheen sheenRoughnessFactor)."),
+    choiceParam("brdf.distribution", "Distribution (D)", "BRDF", kDistributionNames, 0,
+                "Microfacet normal distribution: GGX (Walter 2007), Beckmann (1963), Blinn-Phong."),
+    choiceParam("brdf.visibility", "Geometry (G/V)", "BRDF", kVisibilityNames, 0,
+                "Masking-shadowing term; the glTF specification uses separable Smith-GGX."),
+    choiceParam(
+        "brdf.fresnel", "Fresnel (F)", "BRDF", kFresnelNames, 0,
+        "Fresnel reflectance: Schlick 1994, its spherical-gaussian form, or exact dielectric."),
+    choiceParam("brdf.diffuse", "Diffuse", "BRDF", kDiffuseNames, 0,
+                "Diffuse term: Lambert, or Burley 2012 (Disney) with retro-reflection."),
+    choiceParam(
+        "brdf.sheen", "Sheen model", "BRDF", kSheenModelNames, 0,
+        "Charlie D (Estevez & Kulla 2017) with Conty-Kulla, Ashikhmin or Neubelt visibility."),
 };
 
 const std::array<TextureSlotMeta, kTextureSlotCount> kSlots{{

@@ -39,4 +39,58 @@ struct ParamMeta {
     float softMax = 0.0f; ///< slider end when smaller than max (0: same as max)
 };
 
+/// @name Builders of the metadata tables
+/// The one way the tables (core/material.cpp's parameters, the post-effect catalogue, the graph
+/// nodes' inputs shown as parameters) fill a ParamMeta, so a field added here reaches them all.
+/// @{
+/// A scalar in [@p min, @p max] (the slider ends at @p softMax when that is smaller than max).
+constexpr ParamMeta floatParam(std::string_view id, std::string_view label, std::string_view group,
+                               float min, float max, float def, std::string_view unit,
+                               std::string_view tooltip, float softMax = 0.0f) {
+    ParamMeta m{};
+    m.id = id;
+    m.label = label;
+    m.group = group;
+    m.type = ParamType::Float;
+    m.min = min;
+    m.max = max;
+    m.defaultValue = glm::vec3(def);
+    m.unit = unit;
+    m.tooltip = tooltip;
+    m.softMax = softMax;
+    return m;
+}
+/// A scene-linear RGB colour, each channel in [@p min, @p max].
+constexpr ParamMeta colorParam(std::string_view id, std::string_view label, std::string_view group,
+                               float min, float max, glm::vec3 def, std::string_view tooltip) {
+    ParamMeta m{};
+    m.id = id;
+    m.label = label;
+    m.group = group;
+    m.type = ParamType::Color;
+    m.min = min;
+    m.max = max;
+    m.defaultValue = def;
+    m.colorSpace = ColorSpace::Linear;
+    m.tooltip = tooltip;
+    return m;
+}
+/// One of @p names (static storage), stored as its index; @p def is the default index.
+constexpr ParamMeta choiceParam(std::string_view id, std::string_view label, std::string_view group,
+                                std::span<const std::string_view> names, int def,
+                                std::string_view tooltip) {
+    ParamMeta m{};
+    m.id = id;
+    m.label = label;
+    m.group = group;
+    m.type = ParamType::Choice;
+    m.min = 0.0f;
+    m.max = float(names.size() - 1);
+    m.defaultValue = glm::vec3(float(def));
+    m.tooltip = tooltip;
+    m.choices = names;
+    return m;
+}
+/// @}
+
 } // namespace velvet

@@ -1,5 +1,7 @@
 #include "render/brdf_probe.h"
 
+#include "render/sheen_lut.h"
+
 #include <algorithm>
 #include <epoxy/gl.h>
 
@@ -45,21 +47,8 @@ bool BrdfProbe::initialize(std::string* error) {
     release();
     if (!m_program.build("brdf_probe.comp", {}, {}, error))
         return false;
-    // The sheen albedo tables exactly as render/ibl_bake.cpp uploads them (channel = model).
-    constexpr int N = brdf::kSheenLutSize;
-    std::vector<float> rgba(size_t(N) * N * 4, 0.0f);
-    for (int m = 0; m < 3; ++m) {
-        const auto& t = brdf::sheenAlbedoLut(SheenModel(m));
-        for (size_t i = 0; i < t.size(); ++i)
-            rgba[i * 4 + size_t(m)] = t[i];
-    }
-    glCreateTextures(GL_TEXTURE_2D, 1, &m_sheenLut);
-    glTextureStorage2D(m_sheenLut, 1, GL_RGBA32F, N, N);
-    glTextureSubImage2D(m_sheenLut, 0, 0, 0, N, N, GL_RGBA, GL_FLOAT, rgba.data());
-    glTextureParameteri(m_sheenLut, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(m_sheenLut, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(m_sheenLut, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(m_sheenLut, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    // The same sheen albedo texture the lighting binds (render/sheen_lut.h).
+    m_sheenLut = createSheenAlbedoLut();
     return true;
 }
 

@@ -4,6 +4,7 @@
 #include "core/brdf.h"
 #include "core/ibl.h"
 #include "render/shader_program.h"
+#include "render/sheen_lut.h"
 
 #include <algorithm>
 #include <chrono>
@@ -130,28 +131,17 @@ bool IblBaker::initialize(std::string* error) {
         return false;
     m_compileCount += 4;
 
-    // Sheen albedo, one channel per SheenModel (core/brdf.cpp integrates them on the CPU, the
-    // same tables the C++ twin looks up).
-    constexpr int N = brdf::kSheenLutSize;
-    std::vector<float> rgba(size_t(N) * N * 4, 0.0f);
-    for (int m = 0; m < 3; ++m) {
-        const auto& t = brdf::sheenAlbedoLut(SheenModel(m));
-        for (size_t i = 0; i < t.size(); ++i)
-            rgba[i * 4 + size_t(m)] = t[i];
-    }
-    glCreateTextures(GL_TEXTURE_2D, 1, &m_sheenLut);
-    glTextureStorage2D(m_sheenLut, 1, GL_RGBA32F, N, N);
-    glTextureSubImage2D(m_sheenLut, 0, 0, 0, N, N, GL_RGBA, GL_FLOAT, rgba.data());
+    // Sheen albedo, one channel per SheenModel (render/sheen_lut.h: the tables the C++ twin
+    // looks up).
+    m_sheenLut = createSheenAlbedoLut();
 
     constexpr int D = ibl::kDfgLutSize;
     glCreateTextures(GL_TEXTURE_2D, 1, &m_dfgLut);
     glTextureStorage2D(m_dfgLut, 1, GL_RG32F, D, D);
-    for (GLuint t : {m_sheenLut, m_dfgLut}) {
-        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
+    glTextureParameteri(m_dfgLut, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(m_dfgLut, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(m_dfgLut, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(m_dfgLut, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
     // The DFG LUT from the cache when it holds exactly this version; else made on the GPU first.
     const std::string header = cacheHeader();

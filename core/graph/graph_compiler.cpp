@@ -26,22 +26,13 @@ vec2 velvetGraphUvTransform(vec2 uv, vec2 scale, vec2 offset, float rotationDeg)
 )";
 
 constexpr std::string_view kNoiseGlsl =
-    R"(// pcg2d: Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", JCGT 9(3), 21-38.
-uvec2 velvetGraphHash(uvec2 v) {
-    v = v * 1664525u + 1013904223u;
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v = v ^ (v >> 16u);
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v = v ^ (v >> 16u);
-    return v;
-}
+    R"(// pcg2d, the shaders' one integer hash (resources/shaders/common_hash.glsl).
+#include "common_hash.glsl"
 
 // A unit gradient per lattice point, its angle taken from the hash (replacing the permutation
 // table and the 12 fixed gradients of Perlin's reference implementation).
 vec2 velvetGraphGradient(ivec2 cell) {
-    uvec2 h = velvetGraphHash(uvec2(cell));
+    uvec2 h = pcg2d(uvec2(cell));
     float a = float(h.x >> 8u) * (6.28318530718 / 16777216.0);
     return vec2(cos(a), sin(a));
 }

@@ -61,7 +61,7 @@ struct SettingSpec {
 enum Helper : unsigned {
     HelperNone = 0,
     HelperUvTransform = 1u << 0, ///< velvetGraphUvTransform
-    HelperNoise = 1u << 1,       ///< velvetGraphHash, velvetGraphPerlin, velvetGraphFbm
+    HelperNoise = 1u << 1,       ///< common_hash.glsl, velvetGraphPerlin, velvetGraphFbm
 };
 
 /// What a snippet generator is given. Input expressions are already converted to the input's type;

@@ -4,6 +4,7 @@
 #include "common_math.glsl"
 #include "common_frame.glsl"
 #include "common_brdf.glsl"
+#include "common_hash.glsl"
 
 layout(binding = BINDING_ENVIRONMENT_TEX) uniform sampler2D uEnvironment;
 layout(binding = BINDING_IBL_SPECULAR_TEX) uniform samplerCube uSpecularCube;
@@ -91,18 +92,8 @@ vec3 specularAlbedo(vec3 f0, vec2 dfg) {
 // ---- Procedural background (seed 004: Perlin noise made smoky by FBM; in HSV a hue that turns
 // with time, a fixed value, the saturation from the noise) ----
 
-// An integer hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", pcg2d): the same
-// bits on every GPU, so a fixed time gives a fixed image.
-uvec2 pcg2d(uvec2 v) {
-    v = v * 1664525u + 1013904223u;
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v = v ^ (v >> 16u);
-    v.x += v.y * 1664525u;
-    v.y += v.x * 1664525u;
-    v = v ^ (v >> 16u);
-    return v;
-}
+// A unit gradient per lattice point from pcg2d (common_hash.glsl): the same bits on every GPU,
+// so a fixed time gives a fixed image.
 vec2 gradientAt(ivec2 cell) {
     uvec2 h = pcg2d(uvec2(cell + 32768));
     float a = float(h.x & 0xffffu) / 65536.0 * 2.0 * PI;

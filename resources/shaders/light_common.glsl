@@ -1,9 +1,7 @@
 // Point, spot and area lights shared by the three many-light paths (light_volume.*,
 // light_tiled.comp, light_brute.frag): the light buffer, the G-buffer read of one pixel, and one
 // light's contribution. CPU twins of the light functions: core/lights.cpp. Units: docs/units.md.
-#include "common_frame.glsl"
-#include "common_gbuffer.glsl"
-#include "common_material.glsl"
+#include "gbuffer_read.glsl"
 #include "light_lobes.glsl"
 #include "light_bindings.glsl"
 
@@ -68,43 +66,12 @@ void rectangleAxes(vec3 normal, out vec3 ax, out vec3 ay) {
     ay = cross(normal, ax);
 }
 
-// One pixel of the G-buffer, ready to shade.
-struct ShadingPoint {
-    Surface s;
-    vec3 n;
-    vec3 v;
-    vec3 posWorld;
-};
-
+// One pixel of the G-buffer, ready to shade (gbuffer_read.glsl); false at the far plane.
 bool loadShadingPoint(ivec2 pixel, out ShadingPoint p) {
     float depth = texelFetch(gDepthTex, pixel, 0).r;
     if (depth >= 1.0)
         return false;
-    vec2 ndcXY = (vec2(pixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
-    vec4 pv = frame.invProjMatrix * vec4(ndcXY, depth * 2.0 - 1.0, 1.0);
-    vec3 posView = pv.xyz / pv.w;
-    p.posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
-    vec3 toEyeView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, 1.0) : -posView;
-    p.v = normalize((frame.invViewMatrix * vec4(toEyeView, 0.0)).xyz);
-
-    vec4 rt0 = texelFetch(gBaseColorOcclusionTex, pixel, 0);
-    vec2 rt1 = texelFetch(gNormalTex, pixel, 0).rg;
-    vec4 rt2 = texelFetch(gMaterialTex, pixel, 0);
-    GpuMaterial m = materials[decodeMaterialId(rt2.b)];
-    p.s.baseColor = decodeBaseColor(rt0.rgb);
-    p.s.metallic = rt2.r;
-    p.s.roughness = rt2.g;
-    p.s.specularWeight = m.specularColorWeight.a;
-    p.s.specularColor = m.specularColorWeight.rgb;
-    p.s.ior = m.roughIorOcclusionNormal.y;
-    p.s.sheenColor = m.sheenColorRoughness.rgb;
-    p.s.sheenRoughness = m.sheenColorRoughness.a;
-    p.s.clearcoat = m.clearcoat.x;
-    p.s.clearcoatRoughness = m.clearcoat.y;
-    p.s.emissive = m.emissive.rgb * m.emissive.a;
-    p.s.terms = m.terms;
-    p.s.sheenModel = m.terms2.x;
-    p.n = octDecodeUnorm16(rt1);
+    p = readShadingPoint(pixel, depth);
     return true;
 }
 

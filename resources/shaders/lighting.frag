@@ -15,21 +15,11 @@
 // blend as result = outColor.rgb + target.rgb * outColor.a (glBlendFuncSeparate(ONE, SRC_ALPHA,
 // ZERO, ONE) in renderer.cpp), so alpha is how much of the emission stays: 1 - the clearcoat's
 // Fresnel in the final image, 0 in debug views (their value replaces it), 1 in the emissive view.
-#include "common_frame.glsl"
-#include "common_gbuffer.glsl"
-#include "common_material.glsl"
-#include "common_brdf.glsl"
+#include "gbuffer_read.glsl"
 #include "common_environment.glsl"
 #include "light_lobes.glsl"
 
 layout(location = 0) out vec4 outColor;
-
-// View-space position from the hardware depth through the inverse projection (works for
-// perspective and orthographic projections alike).
-vec3 viewPositionFromDepth(vec2 ndcXY, float depth) {
-    vec4 p = frame.invProjMatrix * vec4(ndcXY, depth * 2.0 - 1.0, 1.0);
-    return p.xyz / p.w;
-}
 
 vec3 background(vec2 ndcXY) {
     vec3 dirView = frame.cameraPosition.w > 0.5
@@ -47,36 +37,14 @@ void main() {
 #else
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
-    float depth = texelFetch(gDepthTex, pixel, 0).r;
     int view = frame.modes.y;
-
-    vec4 rt0 = texelFetch(gBaseColorOcclusionTex, pixel, 0);
-    vec2 rt1 = texelFetch(gNormalTex, pixel, 0).rg;
-    vec4 rt2 = texelFetch(gMaterialTex, pixel, 0);
-    GpuMaterial m = materials[decodeMaterialId(rt2.b)];
-
-    Surface s;
-    s.baseColor = decodeBaseColor(rt0.rgb);
-    s.metallic = rt2.r;
-    s.roughness = rt2.g;
-    s.specularWeight = m.specularColorWeight.a;
-    s.specularColor = m.specularColorWeight.rgb;
-    s.ior = m.roughIorOcclusionNormal.y;
-    s.sheenColor = m.sheenColorRoughness.rgb;
-    s.sheenRoughness = m.sheenColorRoughness.a;
-    s.clearcoat = m.clearcoat.x;
-    s.clearcoatRoughness = m.clearcoat.y;
-    s.emissive = m.emissive.rgb * m.emissive.a; // the emissive debug view's fallback
-    s.terms = m.terms;
-    s.sheenModel = m.terms2.x;
-    float occlusion = rt0.a;
-    vec3 n = octDecodeUnorm16(rt1);
-
-    vec3 posView = viewPositionFromDepth(ndcXY, depth);
-    vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
-    vec3 toEyeView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, 1.0) : -posView;
-    vec3 v = normalize((frame.invViewMatrix * vec4(toEyeView, 0.0)).xyz);
+    // Drawn only where there is geometry (see the header), so the depth is never the far plane.
+    ShadingPoint p = readShadingPoint(pixel, texelFetch(gDepthTex, pixel, 0).r);
+    Surface s = p.s;
+    vec3 n = p.n;
+    vec3 v = p.v;
+    vec3 posView = p.posView;
+    float occlusion = p.occlusion;
 
 #if defined(LIGHTING_LOBE_VIEWS)
     {
@@ -95,13 +63,13 @@ void main() {
                      : view == DEBUG_DEPTH     ? vec3(-posView.z)
                      : view == DEBUG_ROUGHNESS ? vec3(s.roughness)
                      : view == DEBUG_METALLIC  ? vec3(s.metallic)
-                     : view == DEBUG_POSITION  ? posWorld
+                     : view == DEBUG_POSITION  ? p.posWorld
                      : view == DEBUG_SPECULAR  ? s.specularColor * s.specularWeight
                      : view == DEBUG_CLEARCOAT ? vec3(s.clearcoat, s.clearcoatRoughness, 0.0)
                      : view == DEBUG_SHEEN     ? s.sheenColor
                      : view == DEBUG_OCCLUSION ? vec3(occlusion)
                      : view == DEBUG_EMISSIVE  ? vec3(0.0)
-                                               : vec3(float(decodeMaterialId(rt2.b)));
+                                               : vec3(float(p.materialId));
         // Alpha 0 replaces the emission the geometry pass wrote; the emissive view keeps it
         // (alpha 1, nothing added): the per-pixel emission itself.
         outColor = vec4(value, view == DEBUG_EMISSIVE ? 1.0 : 0.0);

@@ -2,6 +2,7 @@
 // from the generated "post_params.glsl" (one #define per catalogue parameter, core/post_effects.cpp).
 #include "post_params.glsl"
 #include "common_gbuffer.glsl"
+#include "common_hash.glsl"
 
 // Each parameter of an effect is one vec4 slot (scalars and choices in x, colours in xyz); fused
 // passes give each effect its own base slot.
@@ -30,13 +31,6 @@ layout(std140, binding = POST_FRAME_UBO) uniform PostFrame {
 } post;
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
-
-// Hoskins 2014, "Hash without Sine" (hash13): stable white noise in [0, 1).
-float hash13(vec3 p3) {
-    p3 = fract(p3 * 0.1031);
-    p3 += dot(p3, p3.zyx + 31.32);
-    return fract((p3.x + p3.y) * p3.z);
-}
 
 // Hardware depth at a pixel (1: background).
 float sceneDepth(ivec2 px) { return texelFetch(gDepthTex, px, 0).r; }

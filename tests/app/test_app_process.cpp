@@ -5,6 +5,7 @@
 // cases that need no display remove DISPLAY themselves.
 #include "core/color_management.h"
 #include "core/image.h"
+#include "core/tone_curves.h"
 #include "run_velvet.h"
 
 #include <QDir>
@@ -32,19 +33,7 @@ Result runVelvet(const QStringList& args, Display display = Display::None,
 
 /// Khronos PBR Neutral (the default built-in curve), clamped to [0, 1].
 glm::vec3 pbrNeutral(glm::vec3 c) {
-    c = glm::max(c, glm::vec3(0.0f));
-    const float start = 0.76f, desaturation = 0.15f;
-    const float x = std::min(c.r, std::min(c.g, c.b));
-    c -= x < 0.08f ? x - 6.25f * x * x : 0.04f;
-    const float peak = std::max(c.r, std::max(c.g, c.b));
-    if (peak >= start) {
-        const float d = 1.0f - start;
-        const float newPeak = 1.0f - d * d / (peak + d - start);
-        c *= newPeak / peak;
-        const float g = 1.0f - 1.0f / (desaturation * (peak - newPeak) + 1.0f);
-        c = glm::mix(c, glm::vec3(newPeak), g);
-    }
-    return glm::clamp(c, 0.0f, 1.0f);
+    return glm::clamp(velvet::tone::khronosPbrNeutral(glm::max(c, glm::vec3(0.0f))), 0.0f, 1.0f);
 }
 
 /// A grey 8-bit PNG whose pixel (x, y) is ((x * 7 + y * 13 + seed) mod 256) / 255.

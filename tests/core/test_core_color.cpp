@@ -5,6 +5,7 @@
 // complete data; exposure is a scene-linear multiplication by 2^EV.
 #include "core/color_management.h"
 #include "core/image.h"
+#include "core/tone_curves.h"
 
 #include <QTemporaryDir>
 #include <QtTest>
@@ -12,6 +13,8 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
 
 using namespace velvet;
 
@@ -67,6 +70,23 @@ class TestCoreColor : public QObject {
     }
 
 private slots:
+    // Khronos PBR Neutral (core/tone_curves.h), the twin the render and CLI tests compare the
+    // GPU's default curve with: worked by hand from the specification's formula.
+    void pbrNeutralKnownAnswers() {
+        const auto near = [](glm::vec3 a, glm::vec3 b) {
+            return glm::all(glm::lessThan(glm::abs(a - b), glm::vec3(1e-5f)));
+        };
+        // Below the compression start only the toe's offset applies: 0.04 above x = 0.08 ...
+        QVERIFY(near(tone::khronosPbrNeutral(glm::vec3(0.5f)), glm::vec3(0.46f)));
+        // ... and x - 6.25 x^2 below it (x = 0.02: 0.0175 off).
+        QVERIFY(near(tone::khronosPbrNeutral(glm::vec3(0.02f)), glm::vec3(0.0025f)));
+        // White: 0.96 compressed to 1 - 0.24^2 / 0.44, grey stays grey.
+        QVERIFY(near(tone::khronosPbrNeutral(glm::vec3(1.0f)), glm::vec3(1.0f - 0.0576f / 0.44f)));
+        // Bright colours approach 1 at their peak and never pass it; hue order is kept.
+        const glm::vec3 hot = tone::khronosPbrNeutral({40.0f, 10.0f, 2.0f});
+        QVERIFY(hot.r < 1.0f && hot.r > 0.99f);
+        QVERIFY(hot.r > hot.g && hot.g > hot.b);
+    }
     void initTestCase() {
         OcioEnvGuard noOcio(nullptr); // the shipped config, whatever the developer's shell says
         std::string error;

@@ -4,12 +4,16 @@
 #include "core/graph/graph.h"
 #include "core/graph/graph_json.h"
 #include "core/graph/node_catalogue.h"
+#include "graph_test_util.h"
 
 #include <QtTest>
 #include <set>
 
 using namespace velvet;
 using namespace velvet::graph;
+using velvet::test::add;
+using velvet::test::inputPort;
+using velvet::test::link;
 
 namespace {
 
@@ -18,32 +22,6 @@ struct Recorder : GraphListener {
     std::vector<Change> changes;
     void graphChanged(const Change& c) override { changes.push_back(c); }
 };
-
-PortIndex in(const Graph& g, NodeId id, std::string_view name) {
-    const int i = g.node(id)->type->inputIndex(name);
-    if (i < 0)
-        qFatal("no input %s", std::string(name).c_str());
-    return PortIndex(i);
-}
-
-PortIndex out(const Graph& g, NodeId id, std::string_view name) {
-    const int i = g.node(id)->type->outputIndex(name);
-    if (i < 0)
-        qFatal("no output %s", std::string(name).c_str());
-    return PortIndex(i);
-}
-
-Connection link(const Graph& g, NodeId from, std::string_view output, NodeId to,
-                std::string_view input) {
-    return {from, out(g, from, output), to, in(g, to, input)};
-}
-
-NodeId add(Graph& g, std::string_view type) {
-    const EditResult r = g.addNode(type);
-    if (!r)
-        qFatal("addNode %s: %s", std::string(type).c_str(), r.message.c_str());
-    return r.node;
-}
 
 /// A graph using every node type, with values and settings off their defaults.
 Graph everyNodeGraph() {
@@ -56,12 +34,14 @@ Graph everyNodeGraph() {
     g.moveNode(ids["math.mix"], {-120.5f, 33.25f});
     g.setInputValue(ids["constant.float"], 0, glm::vec4(0.3f));
     g.setInputValue(ids["constant.color"], 0, glm::vec4(0.1f, 0.2f, 0.3f, 0.0f));
-    g.setInputValue(ids["texture.image"], in(g, ids["texture.image"], "scale"), {4, 2, 0, 0});
-    g.setInputValue(ids["texture.image"], in(g, ids["texture.image"], "rotation"), {30, 0, 0, 0});
+    g.setInputValue(ids["texture.image"], inputPort(g, ids["texture.image"], "scale"),
+                    {4, 2, 0, 0});
+    g.setInputValue(ids["texture.image"], inputPort(g, ids["texture.image"], "rotation"),
+                    {30, 0, 0, 0});
     g.setSetting(ids["texture.image"], "file", "textures/denim.png");
     g.setSetting(ids["texture.image"], "colorSpace", "sRGB texture");
     g.setSetting(ids["texture.atlasRegion"], "file", "atlas.png");
-    g.setInputValue(ids["texture.atlasRegion"], in(g, ids["texture.atlasRegion"], "region"),
+    g.setInputValue(ids["texture.atlasRegion"], inputPort(g, ids["texture.atlasRegion"], "region"),
                     {64, 0, 64, 32});
     auto connect = [&](Connection c) {
         const EditResult r = g.connect(c);
@@ -353,18 +333,18 @@ private slots:
         Graph g;
         const NodeId m = add(g, "math.mix");
         const NodeId o = add(g, kOutputTypeId);
-        const PortIndex factor = in(g, m, "factor");
+        const PortIndex factor = inputPort(g, m, "factor");
         QCOMPARE(g.node(m)->inputValues[factor].x, 0.5f);
         QVERIFY(g.setInputValue(m, factor, {2.0f, 7.0f, 7.0f, 7.0f})); // clamped, unused zeroed
         QCOMPARE(g.node(m)->inputValues[factor], glm::vec4(1, 0, 0, 0));
         EditResult r = g.setInputValue(m, factor, glm::vec4(std::nanf("")));
         QVERIFY2(!r && r.message.find("finite") != std::string::npos, r.message.c_str());
         QVERIFY(!g.setInputValue(m, 42, glm::vec4(0)));
-        r = g.setInputValue(o, in(g, o, "roughness"), glm::vec4(0.2f));
+        r = g.setInputValue(o, inputPort(g, o, "roughness"), glm::vec4(0.2f));
         QVERIFY2(!r && r.message.find("material's parameter") != std::string::npos,
                  r.message.c_str());
         const NodeId t = add(g, "texture.image");
-        QVERIFY(!g.setInputValue(t, in(g, t, "uv"), glm::vec4(0)));
+        QVERIFY(!g.setInputValue(t, inputPort(g, t, "uv"), glm::vec4(0)));
     }
 
     void copyAndCompare() {

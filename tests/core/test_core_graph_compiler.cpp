@@ -6,6 +6,7 @@
 #include "core/graph/graph_compiler.h"
 #include "core/graph/graph_json.h"
 #include "render/shader_program.h"
+#include "tests/core/graph_test_util.h"
 #include "tests/render/render_test_util.h"
 
 #include <QtTest>
@@ -13,30 +14,11 @@
 
 using namespace velvet;
 using namespace velvet::graph;
+using velvet::test::add;
+using velvet::test::link;
+using velvet::test::mustConnect;
 
 namespace {
-
-NodeId add(Graph& g, std::string_view type) {
-    const EditResult r = g.addNode(type);
-    if (!r)
-        qFatal("addNode %s: %s", std::string(type).c_str(), r.message.c_str());
-    return r.node;
-}
-
-Connection link(const Graph& g, NodeId from, std::string_view output, NodeId to,
-                std::string_view input) {
-    const int o = g.node(from)->type->outputIndex(output);
-    const int i = g.node(to)->type->inputIndex(input);
-    if (o < 0 || i < 0)
-        qFatal("bad port %s / %s", std::string(output).c_str(), std::string(input).c_str());
-    return {from, PortIndex(o), to, PortIndex(i)};
-}
-
-void mustConnect(Graph& g, const Connection& c) {
-    const EditResult r = g.connect(c);
-    if (!r)
-        qFatal("connect: %s", r.message.c_str());
-}
 
 /// constant colour -> mix.a, noise -> mix.factor, mix -> baseColor; float -> roughness.
 struct Basic {
@@ -208,6 +190,15 @@ private slots:
         QCOMPARE(compileGraph(b.g).glsl, original);
         QVERIFY(b.g.removeNode(b.value));
         QVERIFY(compileGraph(b.g).glsl != original);
+    }
+
+    // The noise helpers use the shaders' one hash (resources/shaders/common_hash.glsl) instead
+    // of a copy of their own (test_render_shader_sources: the folder defines it once).
+    void noiseUsesTheSharedHash() {
+        const std::string glsl = compileGraph(basicGraph().g).glsl;
+        QVERIFY(glsl.find("#include \"common_hash.glsl\"") != std::string::npos);
+        QVERIFY(glsl.find("pcg2d(") != std::string::npos);
+        QVERIFY(glsl.find("1013904223u") == std::string::npos); // no hash body of its own
     }
 
     // Same graph, byte-identical text: built in another order, copied, read back from JSON.

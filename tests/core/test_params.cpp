@@ -4,6 +4,7 @@
 #include "core/scene.h"
 
 #include <QtTest>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -14,6 +15,38 @@ using namespace velvet;
 class TestParams : public QObject {
     Q_OBJECT
 private slots:
+    // core/param_meta.h's builders, the one way the metadata tables fill a ParamMeta.
+    void metadataBuilders() {
+        const ParamMeta f = floatParam("a.b", "A", "G", -1, 4, 0.5f, "nits", "tip", 2.0f);
+        QCOMPARE(f.type, ParamType::Float);
+        QCOMPARE(f.id, std::string_view("a.b"));
+        QCOMPARE(f.group, std::string_view("G"));
+        QCOMPARE(f.min, -1.0f);
+        QCOMPARE(f.max, 4.0f);
+        QCOMPARE(f.defaultValue, glm::vec3(0.5f));
+        QCOMPARE(f.unit, std::string_view("nits"));
+        QCOMPARE(f.softMax, 2.0f);
+        QCOMPARE(f.colorSpace, ColorSpace::None);
+        const ParamMeta c = colorParam("c", "C", "G", 0, 8, glm::vec3(1, 2, 3), "tip");
+        QCOMPARE(c.type, ParamType::Color);
+        QCOMPARE(c.colorSpace, ColorSpace::Linear);
+        QCOMPARE(c.max, 8.0f);
+        QCOMPARE(c.defaultValue, glm::vec3(1, 2, 3));
+        static constexpr std::array<std::string_view, 3> names{"x", "y", "z"};
+        const ParamMeta k = choiceParam("k", "K", "G", names, 2, "tip");
+        QCOMPARE(k.type, ParamType::Choice);
+        QCOMPARE(k.min, 0.0f);
+        QCOMPARE(k.max, 2.0f);
+        QCOMPARE(k.defaultValue.x, 2.0f);
+        QCOMPARE(k.choices.size(), size_t(3));
+        QCOMPARE(k.choices[1], std::string_view("y"));
+        // The material table is built with them: its choices and colours read as above.
+        const ParamMeta& distribution = paramMeta(ParamId::Distribution);
+        QCOMPARE(distribution.group, std::string_view("BRDF"));
+        QCOMPARE(distribution.max, float(distribution.choices.size() - 1));
+        QCOMPARE(paramMeta(ParamId::BaseColor).colorSpace, ColorSpace::Linear);
+        QCOMPARE(paramMeta(ParamId::EmissiveStrength).softMax, 20.0f);
+    }
     void everyParamIdHasMeta() {
         QCOMPARE(static_cast<int>(paramMetas().size()), kParamCount);
         for (int i = 0; i < kParamCount; ++i) {

@@ -36,6 +36,47 @@ inline Scene shippedDefaultScene() {
     return scene;
 }
 
+/// The known-answer tests' scene: an orthographic front view of the default unit sphere (each
+/// pixel's normal and view direction known in closed form) under a black environment, no lights.
+inline Scene blackOrthographicScene() {
+    Scene scene;
+    scene.camera.orthographic = true;
+    scene.camera.pitchDeg = 0.0f;
+    scene.camera.yawDeg = 0.0f;
+    scene.environment.hdri.clear();
+    scene.environment.color = glm::vec3(0.0f);
+    scene.lights.clear();
+    return scene;
+}
+
+/// The directional light the known-answer tests compare with the CPU twins (from the upper left,
+/// in front of the sphere, warm).
+inline Light analyticKeyLight() {
+    Light light;
+    light.type = LightType::Directional;
+    light.intensity = 2.5f;
+    light.color = {1.0f, 0.9f, 0.8f};
+    light.direction = {-0.4f, -0.5f, -0.75f};
+    return light;
+}
+
+/// Makes a resources root in @p root whose shaders/ folder is a copy (the rest links to the real
+/// files) the one core::resources reads (VELVET_RESOURCES), so a test can break and mend shader
+/// files. Returns the copy's shaders folder.
+inline std::filesystem::path useShaderCopy(const std::filesystem::path& root) {
+    namespace fs = std::filesystem;
+    const fs::path real = fs::path(VELVET_SOURCE_DIR) / "resources";
+    for (const auto& entry : fs::directory_iterator(real)) {
+        const fs::path name = entry.path().filename();
+        if (name == "shaders")
+            fs::copy(entry.path(), root / name, fs::copy_options::recursive);
+        else
+            fs::create_directory_symlink(entry.path(), root / name);
+    }
+    qputenv("VELVET_RESOURCES", QByteArray::fromStdString(root.string()));
+    return root / "shaders";
+}
+
 /// A whole text file (shader sources the reload tests break and mend); empty when unreadable.
 inline std::string readText(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);

@@ -10,11 +10,13 @@
 // GPU and twin differed by up to 4e-3 below roughness 0.2.
 #include "core/brdf.h"
 #include "render/brdf_probe.h"
+#include "render/sheen_lut.h"
 #include "render_test_util.h"
 
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
+#include <epoxy/gl.h>
 #include <glm/geometric.hpp>
 #include <random>
 #include <string>
@@ -216,6 +218,41 @@ private slots:
         std::string error;
         QVERIFY2(test::headlessContext(&error), error.c_str());
         QVERIFY2(m_probe.initialize(&error), error.c_str());
+    }
+
+    // The one sheen albedo texture (render/sheen_lut.h, bound by the lighting and by this probe)
+    // holds core's tables bit for bit, channel m = SheenModel m, and is sampled as the C++ twin
+    // looks it up (bilinear, clamp to edge).
+    void sheenLutHoldsTheCppTables() {
+        const GLuint lut = render::createSheenAlbedoLut();
+        QVERIFY(lut != 0);
+        constexpr int N = brdf::kSheenLutSize;
+        GLint width = 0, height = 0, minFilter = 0, wrapS = 0, wrapT = 0;
+        glGetTextureLevelParameteriv(lut, 0, GL_TEXTURE_WIDTH, &width);
+        glGetTextureLevelParameteriv(lut, 0, GL_TEXTURE_HEIGHT, &height);
+        glGetTextureParameteriv(lut, GL_TEXTURE_MIN_FILTER, &minFilter);
+        glGetTextureParameteriv(lut, GL_TEXTURE_WRAP_S, &wrapS);
+        glGetTextureParameteriv(lut, GL_TEXTURE_WRAP_T, &wrapT);
+        QCOMPARE(width, N);
+        QCOMPARE(height, N);
+        QCOMPARE(minFilter, GLint(GL_LINEAR));
+        QCOMPARE(wrapS, GLint(GL_CLAMP_TO_EDGE));
+        QCOMPARE(wrapT, GLint(GL_CLAMP_TO_EDGE));
+        std::vector<float> rgba(size_t(N) * N * 4, -1.0f);
+        glGetTextureImage(lut, 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)),
+                          rgba.data());
+        glDeleteTextures(1, &lut);
+        int differing = 0;
+        for (int m = 0; m < 3; ++m) {
+            const std::vector<float>& table = brdf::sheenAlbedoLut(SheenModel(m));
+            QCOMPARE(table.size(), size_t(N) * N);
+            for (size_t i = 0; i < table.size(); ++i)
+                differing += rgba[i * 4 + size_t(m)] != table[i];
+        }
+        QCOMPARE(differing, 0);
+        // The conty-kulla table is not the other two (the channels are not one table copied).
+        QVERIFY(brdf::sheenAlbedoLut(SheenModel::CharlieContyKulla) !=
+                brdf::sheenAlbedoLut(SheenModel::CharlieAshikhmin));
     }
 
     // Every term choice x every material, roughness over the UI's whole range (half of the

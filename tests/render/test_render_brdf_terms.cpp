@@ -117,18 +117,8 @@ const std::vector<TermChoice>& termChoices() {
 }
 
 Scene analyticScene(const Material& m) {
-    Scene scene;
-    scene.camera.orthographic = true;
-    scene.camera.pitchDeg = 0.0f;
-    scene.camera.yawDeg = 0.0f;
-    scene.environment.hdri.clear();
-    scene.environment.color = glm::vec3(0.0f);
-    Light light;
-    light.type = LightType::Directional;
-    light.intensity = 2.5f;
-    light.color = {1.0f, 0.9f, 0.8f};
-    light.direction = {-0.4f, -0.5f, -0.75f};
-    scene.lights = {light};
+    Scene scene = test::blackOrthographicScene();
+    scene.lights = {test::analyticKeyLight()};
     scene.material = m;
     return scene;
 }

@@ -4,6 +4,7 @@
 #include "core/color_management.h"
 #include "core/post_chain.h"
 #include "core/post_effects.h"
+#include "core/tone_curves.h"
 #include "render/display_encoding.h"
 #include "render/display_transform.h"
 #include "render/offscreen.h"
@@ -108,20 +109,7 @@ Image gpuDisplay(render::DisplayTransform& dt, const Image& linear, const Displa
 /// Khronos PBR Neutral (Khronos Group 2024, "PBR Neutral" specification), the reference formula,
 /// as the renderer's default built-in curve computes it, then clamped to [0, 1].
 glm::vec3 pbrNeutral(glm::vec3 c) {
-    c = glm::max(c, glm::vec3(0.0f));
-    const float start = 0.8f - 0.04f, desaturation = 0.15f;
-    const float x = std::min(c.r, std::min(c.g, c.b));
-    const float offset = x < 0.08f ? x - 6.25f * x * x : 0.04f;
-    c -= offset;
-    const float peak = std::max(c.r, std::max(c.g, c.b));
-    if (peak >= start) {
-        const float d = 1.0f - start;
-        const float newPeak = 1.0f - d * d / (peak + d - start);
-        c *= newPeak / peak;
-        const float g = 1.0f - 1.0f / (desaturation * (peak - newPeak) + 1.0f);
-        c = glm::mix(c, glm::vec3(newPeak), g);
-    }
-    return glm::clamp(c, 0.0f, 1.0f);
+    return glm::clamp(tone::khronosPbrNeutral(glm::max(c, glm::vec3(0.0f))), 0.0f, 1.0f);
 }
 
 /// What the built-in path should show: @p curve on linear x 2^ev, then OCIO's CPU processor for

@@ -7,6 +7,7 @@
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
+#include "tests/core/graph_test_util.h"
 
 #include <QElapsedTimer>
 #include <QTemporaryDir>
@@ -17,6 +18,7 @@
 
 using namespace velvet;
 using namespace velvet::graph;
+using velvet::test::link;
 namespace fs = std::filesystem;
 
 namespace {
@@ -33,12 +35,6 @@ glm::vec3 centre(const Image& img) {
 
 bool samePixels(const Image& a, const Image& b) {
     return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
-}
-
-Connection link(const Graph& g, NodeId from, std::string_view output, NodeId to,
-                std::string_view input) {
-    return {from, PortIndex(g.node(from)->type->outputIndex(output)), to,
-            PortIndex(g.node(to)->type->inputIndex(input))};
 }
 
 /// constant.color (colour @p c) -> output.material baseColor; ids 1 and 2.

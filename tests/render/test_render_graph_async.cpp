@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "render/shader_program.h"
 #include "render_test_util.h"
+#include "tests/core/graph_test_util.h"
 
 #include <QElapsedTimer>
 #include <QTemporaryDir>
@@ -24,6 +25,7 @@
 
 using namespace velvet;
 using namespace velvet::graph;
+using velvet::test::link;
 namespace fs = std::filesystem;
 
 namespace {
@@ -37,12 +39,6 @@ float centreRed(const Image& img) {
 
 bool samePixels(const Image& a, const Image& b) {
     return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
-}
-
-Connection link(const Graph& g, NodeId from, std::string_view output, NodeId to,
-                std::string_view input) {
-    return {from, PortIndex(g.node(from)->type->outputIndex(output)), to,
-            PortIndex(g.node(to)->type->inputIndex(input))};
 }
 
 /// constant.float @p v -> output.material roughness (ids 1 and 2).
@@ -143,17 +139,7 @@ private slots:
         QVERIFY(qputenv("MESA_SHADER_CACHE_DISABLE", "true"));
         m_dir = std::make_unique<QTemporaryDir>();
         QVERIFY(m_dir->isValid());
-        const fs::path root = m_dir->path().toStdString();
-        const fs::path real = fs::path(VELVET_SOURCE_DIR) / "resources";
-        for (const auto& entry : fs::directory_iterator(real)) {
-            const fs::path name = entry.path().filename();
-            if (name == "shaders")
-                fs::copy(entry.path(), root / name, fs::copy_options::recursive);
-            else
-                fs::create_directory_symlink(entry.path(), root / name);
-        }
-        m_shaders = root / "shaders";
-        QVERIFY(qputenv("VELVET_RESOURCES", QByteArray::fromStdString(root.string())));
+        m_shaders = test::useShaderCopy(m_dir->path().toStdString());
         QCOMPARE(resources::path("shaders"), m_shaders);
         std::string error;
         QVERIFY2(test::headlessContext(&error), error.c_str());

@@ -113,17 +113,8 @@ private slots:
     }
     void directionalLightMatchesCpuTwin() {
         QFETCH(int, which);
-        Scene scene;
-        scene.camera.orthographic = true;
-        scene.camera.pitchDeg = 0.0f;
-        scene.camera.yawDeg = 0.0f;
-        scene.environment.hdri.clear();
-        scene.environment.color = glm::vec3(0.0f);
-        Light light;
-        light.type = LightType::Directional;
-        light.intensity = 2.5f;
-        light.color = {1.0f, 0.9f, 0.8f};
-        light.direction = {-0.4f, -0.5f, -0.75f};
+        Scene scene = test::blackOrthographicScene();
+        const Light light = test::analyticKeyLight();
         scene.lights = {light};
         Material& m = scene.material;
         m.setColor(ParamId::BaseColor, {0.8f, 0.3f, 0.2f});

@@ -69,13 +69,7 @@ Frame renderFrame(const Scene& scene, int size, render::DebugView view = render:
 
 /// Orthographic unit sphere, black environment, no lights yet.
 Scene analyticScene() {
-    Scene scene;
-    scene.camera.orthographic = true;
-    scene.camera.pitchDeg = 0.0f;
-    scene.camera.yawDeg = 0.0f;
-    scene.environment.hdri.clear();
-    scene.environment.color = glm::vec3(0.0f);
-    scene.lights.clear();
+    Scene scene = test::blackOrthographicScene();
     Material& m = scene.material;
     m.setColor(ParamId::BaseColor, {0.8f, 0.3f, 0.2f});
     m.setScalar(ParamId::Roughness, 0.4f);

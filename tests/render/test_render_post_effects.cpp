@@ -7,6 +7,7 @@
 // rewrites tests/render/golden/post_*.png; commit them.
 #include "core/image.h"
 #include "core/post_effects.h"
+#include "core/tone_curves.h"
 #include "render/offscreen.h"
 #include "render/post_chain.h"
 #include "render/post_effect.h"
@@ -150,20 +151,6 @@ float srgbDecode(float c) {
 /// @name C++ twins of the tone curves (resources/shaders/common_tonemap.glsl,
 /// post_tonemap_curve.frag), in the operator order of the tonemap effect's choice.
 /// @{
-glm::vec3 pbrNeutral(glm::vec3 c) {
-    const float start = 0.8f - 0.04f, desaturation = 0.15f;
-    const float x = std::min(c.r, std::min(c.g, c.b));
-    const float offset = x < 0.08f ? x - 6.25f * x * x : 0.04f;
-    c -= offset;
-    const float peak = std::max(c.r, std::max(c.g, c.b));
-    if (peak < start)
-        return c;
-    const float d = 1.0f - start;
-    const float newPeak = 1.0f - d * d / (peak + d - start);
-    c *= newPeak / peak;
-    const float g = 1.0f - 1.0f / (desaturation * (peak - newPeak) + 1.0f);
-    return glm::mix(c, glm::vec3(newPeak), g);
-}
 glm::vec3 acesFitted(glm::vec3 c) {
     const glm::mat3 in(0.59719f, 0.07600f, 0.02840f, 0.35458f, 0.90834f, 0.13383f, 0.04823f,
                        0.01566f, 0.83777f);
@@ -201,7 +188,7 @@ glm::vec3 toneCurve(int op, glm::vec3 c) {
     c = glm::max(c, glm::vec3(0.0f));
     switch (op) {
     case 0:
-        return glm::clamp(pbrNeutral(c), 0.0f, 1.0f);
+        return glm::clamp(tone::khronosPbrNeutral(c), 0.0f, 1.0f);
     case 1:
         return acesFitted(c);
     case 2:

@@ -57,17 +57,7 @@ private slots:
         // A resources root whose shaders are a copy (the rest links to the real files).
         m_dir = std::make_unique<QTemporaryDir>();
         QVERIFY(m_dir->isValid());
-        const fs::path root = m_dir->path().toStdString();
-        const fs::path real = fs::path(VELVET_SOURCE_DIR) / "resources";
-        for (const auto& entry : fs::directory_iterator(real)) {
-            const fs::path name = entry.path().filename();
-            if (name == "shaders")
-                fs::copy(entry.path(), root / name, fs::copy_options::recursive);
-            else
-                fs::create_directory_symlink(entry.path(), root / name);
-        }
-        m_shaders = root / "shaders";
-        QVERIFY(qputenv("VELVET_RESOURCES", QByteArray::fromStdString(root.string())));
+        m_shaders = test::useShaderCopy(m_dir->path().toStdString());
         QCOMPARE(resources::path("shaders"), m_shaders);
     }
 

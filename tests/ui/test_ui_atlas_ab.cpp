@@ -16,6 +16,7 @@
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_util.h"
 
 #include <QAction>
 #include <QApplication>
@@ -33,10 +34,9 @@
 
 using namespace velvet;
 using namespace velvet::ui;
+using velvet::test::kFrameTimeoutMs;
 
 namespace {
-
-constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
 
 AtlasEntry solid(const QString& name, int w, int h, glm::vec4 colour) {
     AtlasEntry e;
@@ -120,14 +120,9 @@ void TestUiAtlasAb::initTestCase() {
 
     m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
     m_doc = m_window->controller();
+    const QString up = test::showWithFirstFrame(m_window.get(), {1000, 700});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
     ViewportWidget* viewport = m_window->viewport();
-    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
-    QSignalSpy failures(viewport, &ViewportWidget::renderFailed);
-    m_window->resize(1000, 700);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() || !failures.isEmpty(), kFrameTimeoutMs);
-    QVERIFY2(failures.isEmpty(), qPrintable(viewport->errorMessage()));
     // The environment bake runs in slices: wait for the finished lighting.
     QTRY_VERIFY_WITH_TIMEOUT(viewport->environmentProgress() < 0.0 ||
                                  viewport->environmentProgress() >= 1.0,

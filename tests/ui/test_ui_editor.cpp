@@ -13,6 +13,7 @@
 #include "ui/properties/property_panel.h"
 #include "ui/properties/texture_slot_editor.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_util.h"
 
 #include <QApplication>
 #include <QComboBox>
@@ -34,58 +35,22 @@
 
 using namespace velvet;
 using namespace velvet::ui;
+using velvet::test::centrePixel;
+using velvet::test::handleCentre;
+using velvet::test::kFrameTimeoutMs;
+using velvet::test::maxDifference;
 
 namespace {
 
-constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
 const QString kRoughness = QStringLiteral("param:lobes.base.roughness");
-
-/// Mean colour of a 5x5 block around the centre, in 0..255 units.
-QVector<double> centrePixel(const QImage& image) {
-    QVector<double> sum(3, 0.0);
-    const int cx = image.width() / 2, cy = image.height() / 2;
-    for (int y = cy - 2; y <= cy + 2; ++y)
-        for (int x = cx - 2; x <= cx + 2; ++x) {
-            const QColor c = image.pixelColor(x, y);
-            sum[0] += c.red();
-            sum[1] += c.green();
-            sum[2] += c.blue();
-        }
-    for (double& s : sum)
-        s /= 25.0;
-    return sum;
-}
 
 /// The spin box shows 3 decimals of the stored float.
 bool shows(const QDoubleSpinBox* spin, float value) {
     return std::abs(spin->value() - value) < 5e-4;
 }
 
-double maxDifference(const QVector<double>& a, const QVector<double>& b) {
-    double d = 0.0;
-    for (int i = 0; i < 3; ++i)
-        d = std::max(d, std::abs(a[i] - b[i]));
-    return d;
-}
-
 QString describe(const QVector<double>& p) {
     return QStringLiteral("(%1, %2, %3)").arg(p[0]).arg(p[1]).arg(p[2]);
-}
-
-/// Centre of the slider's handle, from the style (where a user would grab it).
-QPoint handleCentre(QSlider* slider) {
-    QStyleOptionSlider option;
-    option.initFrom(slider);
-    option.orientation = slider->orientation();
-    option.minimum = slider->minimum();
-    option.maximum = slider->maximum();
-    option.sliderPosition = slider->sliderPosition();
-    option.sliderValue = slider->value();
-    option.upsideDown = false;
-    option.subControls = QStyle::SC_SliderGroove | QStyle::SC_SliderHandle;
-    return slider->style()
-        ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
-        .center();
 }
 
 } // namespace
@@ -130,19 +95,8 @@ private:
 void TestUiEditor::initTestCase() {
     m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
     m_doc = m_window->controller();
-    ViewportWidget* viewport = m_window->viewport();
-    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
-    QSignalSpy failures(viewport, &ViewportWidget::renderFailed);
-    m_window->resize(800, 600);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-    // Shortcuts go to the active window. Xvfb has no window manager to activate it: ask directly.
-    m_window->activateWindow();
-    QApplication::setActiveWindow(m_window.get());
-    QTRY_VERIFY(m_window->isActiveWindow());
-    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() || !failures.isEmpty(), kFrameTimeoutMs);
-    QVERIFY2(failures.isEmpty(), qPrintable(viewport->errorMessage()));
-    QVERIFY(viewport->renderer() != nullptr);
+    const QString up = test::showWithFirstFrame(m_window.get(), {800, 600});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
 }
 
 void TestUiEditor::cleanupTestCase() {

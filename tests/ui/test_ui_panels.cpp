@@ -25,6 +25,7 @@
 #include "ui/properties/param_editor.h"
 #include "ui/properties/property_panel.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_util.h"
 
 #include <QApplication>
 #include <QDir>
@@ -54,49 +55,14 @@
 
 using namespace velvet;
 using namespace velvet::ui;
+using velvet::test::centrePixel;
+using velvet::test::handleCentre;
+using velvet::test::kFrameTimeoutMs;
+using velvet::test::maxDifference;
 
 namespace {
 
 constexpr int kThumbnailTimeoutMs = 180000; // llvmpipe, two shared cores, shaders compiled once
-constexpr int kFrameTimeoutMs = 120000;     // llvmpipe: the first frame compiles every shader
-
-/// Mean colour of a 5x5 block around the centre, in 0..255 units.
-QVector<double> centrePixel(const QImage& image) {
-    QVector<double> sum(3, 0.0);
-    const int cx = image.width() / 2, cy = image.height() / 2;
-    for (int y = cy - 2; y <= cy + 2; ++y)
-        for (int x = cx - 2; x <= cx + 2; ++x) {
-            const QColor c = image.pixelColor(x, y);
-            sum[0] += c.red();
-            sum[1] += c.green();
-            sum[2] += c.blue();
-        }
-    for (double& v : sum)
-        v /= 25.0;
-    return sum;
-}
-
-double maxDifference(const QVector<double>& a, const QVector<double>& b) {
-    double d = 0.0;
-    for (int i = 0; i < 3; ++i)
-        d = std::max(d, std::abs(a[i] - b[i]));
-    return d;
-}
-
-/// Centre of the slider's handle, from the style (where a user would grab it).
-QPoint handleCentre(QSlider* slider) {
-    QStyleOptionSlider option;
-    option.initFrom(slider);
-    option.orientation = slider->orientation();
-    option.minimum = slider->minimum();
-    option.maximum = slider->maximum();
-    option.sliderPosition = slider->sliderPosition();
-    option.sliderValue = slider->value();
-    option.subControls = QStyle::SC_SliderGroove | QStyle::SC_SliderHandle;
-    return slider->style()
-        ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
-        .center();
-}
 
 /// A left-button drag of @p slider's handle by @p dx pixels, in small steps (one gesture).
 void dragHandle(QSlider* slider, int dx) {

@@ -14,6 +14,7 @@
 #include "ui/post_chain/post_chain_panel.h"
 #include "ui/scene/scene_panel.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_util.h"
 
 #include <QAbstractButton>
 #include <QApplication>
@@ -46,8 +47,6 @@ using namespace velvet;
 using namespace velvet::ui;
 
 namespace {
-
-constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
 
 /// Mean luma of a 9x9 block around the centre (on the sphere), 0..255.
 double centreLuma(const QImage& image) {
@@ -149,14 +148,8 @@ void TestUiScene::initTestCase() {
     m_doc = m_window->controller();
     m_scene = m_window->scenePanel();
     QVERIFY(m_scene);
-    QSignalSpy frames(m_window->viewport(), &ViewportWidget::frameCompleted);
-    m_window->resize(900, 700);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-    m_window->activateWindow();
-    QApplication::setActiveWindow(m_window.get());
-    QTRY_VERIFY(m_window->isActiveWindow());
-    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), kFrameTimeoutMs);
+    const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
 }
 
 void TestUiScene::cleanupTestCase() {

@@ -19,6 +19,7 @@
 #include "ui/screenshot.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_util.h"
 
 #include <QApplication>
 #include <QComboBox>
@@ -43,33 +44,11 @@
 
 using namespace velvet;
 using namespace velvet::ui;
+using velvet::test::centrePixel;
+using velvet::test::kFrameTimeoutMs;
+using velvet::test::maxDifference;
 
 namespace {
-
-constexpr int kFrameTimeoutMs = 120000; // llvmpipe: the first frame compiles every shader
-
-/// Mean colour of a 5x5 block around the centre (on the sphere), in 0..255 units.
-QVector<double> centrePixel(const QImage& image) {
-    QVector<double> sum(3, 0.0);
-    const int cx = image.width() / 2, cy = image.height() / 2;
-    for (int y = cy - 2; y <= cy + 2; ++y)
-        for (int x = cx - 2; x <= cx + 2; ++x) {
-            const QColor c = image.pixelColor(x, y);
-            sum[0] += c.red();
-            sum[1] += c.green();
-            sum[2] += c.blue();
-        }
-    for (double& s : sum)
-        s /= 25.0;
-    return sum;
-}
-
-double maxDifference(const QVector<double>& a, const QVector<double>& b) {
-    double d = 0.0;
-    for (int i = 0; i < 3; ++i)
-        d = std::max(d, std::abs(a[i] - b[i]));
-    return d;
-}
 
 double luma(const QVector<double>& p) {
     return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
@@ -158,18 +137,8 @@ void TestUiViewport::initTestCase() {
 
     m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
     m_doc = m_window->controller();
-    ViewportWidget* viewport = m_window->viewport();
-    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
-    QSignalSpy failures(viewport, &ViewportWidget::renderFailed);
-    m_window->resize(800, 600);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
-    m_window->activateWindow();
-    QApplication::setActiveWindow(m_window.get());
-    QTRY_VERIFY(m_window->isActiveWindow());
-    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty() || !failures.isEmpty(), kFrameTimeoutMs);
-    QVERIFY2(failures.isEmpty(), qPrintable(viewport->errorMessage()));
-    QVERIFY(viewport->renderer() != nullptr);
+    const QString up = test::showWithFirstFrame(m_window.get(), {800, 600});
+    QVERIFY2(up.isEmpty(), qPrintable(up));
 }
 
 void TestUiViewport::cleanupTestCase() {

@@ -21,8 +21,8 @@ void ReplaceAtlasCommand::redo() {
 SetAtlasRegionCommand::SetAtlasRegionCommand(AtlasModel* model, AtlasKind kind, int index,
                                              AtlasRegion oldValue, AtlasRegion newValue,
                                              int mergeKey, QUndoCommand* parent)
-    : QUndoCommand(parent), m_model(model), m_kind(kind), m_index(index), m_old(oldValue),
-      m_new(newValue), m_mergeKey(mergeKey) {
+    : ValueEditCommand(oldValue, newValue, mergeKey, parent), m_model(model), m_kind(kind),
+      m_index(index) {
     const bool moved = oldValue.width == newValue.width && oldValue.height == newValue.height;
     setText(moved ? QObject::tr("Move %1 region").arg(AtlasModel::kindLabel(kind))
                   : QObject::tr("Resize %1 region").arg(AtlasModel::kindLabel(kind)));
@@ -34,18 +34,6 @@ void SetAtlasRegionCommand::undo() {
 
 void SetAtlasRegionCommand::redo() {
     m_model->setRegion(m_kind, m_index, m_new);
-}
-
-bool SetAtlasRegionCommand::mergeWith(const QUndoCommand* other) {
-    if (other->id() != id())
-        return false;
-    const auto* o = static_cast<const SetAtlasRegionCommand*>(other);
-    if (m_mergeKey == 0 || o->m_mergeKey != m_mergeKey || o->m_kind != m_kind ||
-        o->m_index != m_index)
-        return false;
-    m_new = o->m_new;
-    setObsolete(m_new == m_old);
-    return true;
 }
 
 SetTextureCommand::SetTextureCommand(DocumentController* controller, TextureSlot slot,

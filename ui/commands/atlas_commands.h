@@ -4,6 +4,7 @@
 
 #include "core/texture_ref.h"
 #include "ui/atlas/atlas_model.h"
+#include "ui/commands/value_edit_command.h"
 
 #include <QUndoCommand>
 
@@ -29,23 +30,23 @@ private:
 
 /// Moves or resizes one region. Commands on the same atlas and region with the same non-zero
 /// merge key (one drag) merge; a drag back to where it started makes the command obsolete.
-class SetAtlasRegionCommand : public QUndoCommand {
+class SetAtlasRegionCommand : public ValueEditCommand<SetAtlasRegionCommand, AtlasRegion> {
 public:
     static constexpr int kId = 0xa71a; ///< distinct from every other command's id (merging)
     SetAtlasRegionCommand(AtlasModel* model, AtlasKind kind, int index, AtlasRegion oldValue,
                           AtlasRegion newValue, int mergeKey, QUndoCommand* parent = nullptr);
     void undo() override;
     void redo() override;
-    int id() const override { return kId; }
-    bool mergeWith(const QUndoCommand* other) override;
 
 private:
+    friend ValueEditCommand;
+    bool sameTarget(const SetAtlasRegionCommand& next) const {
+        return next.m_kind == m_kind && next.m_index == m_index;
+    }
+
     AtlasModel* m_model;
     AtlasKind m_kind;
     int m_index;
-    AtlasRegion m_old;
-    AtlasRegion m_new;
-    int m_mergeKey;
 };
 
 /// Sets one texture slot of the material (e.g. an atlas region as base colour).

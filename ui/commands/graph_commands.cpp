@@ -189,8 +189,10 @@ void DisconnectCommand::undo() {
 SetNodeInputCommand::SetNodeInputCommand(GraphModel* model, graph::NodeId node,
                                          graph::PortIndex input, glm::vec4 oldValue,
                                          glm::vec4 newValue, int mergeKey, QUndoCommand* parent)
-    : QUndoCommand(QObject::tr("Set node input"), parent), m_model(model), m_node(node),
-      m_input(input), m_old(oldValue), m_new(newValue), m_mergeKey(mergeKey) {}
+    : ValueEditCommand(oldValue, newValue, mergeKey, parent), m_model(model), m_node(node),
+      m_input(input) {
+    setText(QObject::tr("Set node input"));
+}
 
 void SetNodeInputCommand::redo() {
     const graph::EditResult r = m_model->editableGraph().setInputValue(m_node, m_input, m_new);
@@ -200,18 +202,6 @@ void SetNodeInputCommand::redo() {
 
 void SetNodeInputCommand::undo() {
     m_model->editableGraph().setInputValue(m_node, m_input, m_old);
-}
-
-bool SetNodeInputCommand::mergeWith(const QUndoCommand* other) {
-    if (other->id() != id())
-        return false;
-    const auto* o = static_cast<const SetNodeInputCommand*>(other);
-    if (m_mergeKey == 0 || o->m_mergeKey != m_mergeKey || o->m_node != m_node ||
-        o->m_input != m_input)
-        return false;
-    m_new = o->m_new;
-    setObsolete(m_new == m_old);
-    return true;
 }
 
 SetNodeSettingCommand::SetNodeSettingCommand(GraphModel* model, graph::NodeId node,

@@ -6,6 +6,7 @@
 /// redo, so later commands that name them stay valid.
 
 #include "core/graph/graph.h"
+#include "ui/commands/value_edit_command.h"
 
 #include <QUndoCommand>
 #include <glm/vec2.hpp>
@@ -115,7 +116,7 @@ private:
 
 /// Sets an input's value. Commands with the same node, input and non-zero merge key (one slider
 /// drag) merge.
-class SetNodeInputCommand : public QUndoCommand {
+class SetNodeInputCommand : public ValueEditCommand<SetNodeInputCommand, glm::vec4> {
 public:
     static constexpr int kId = 0x6a02;
     SetNodeInputCommand(GraphModel* model, graph::NodeId node, graph::PortIndex input,
@@ -123,15 +124,16 @@ public:
                         QUndoCommand* parent = nullptr);
     void redo() override;
     void undo() override;
-    int id() const override { return kId; }
-    bool mergeWith(const QUndoCommand* other) override;
 
 private:
+    friend ValueEditCommand;
+    bool sameTarget(const SetNodeInputCommand& next) const {
+        return next.m_node == m_node && next.m_input == m_input;
+    }
+
     GraphModel* m_model;
     graph::NodeId m_node;
     graph::PortIndex m_input;
-    glm::vec4 m_old, m_new;
-    int m_mergeKey;
 };
 
 /// Sets a string setting of a node (an image file, a colour space): a texture rebind, never a

@@ -126,8 +126,8 @@ SetEffectParamCommand::SetEffectParamCommand(DocumentController* controller, siz
                                              std::string param, std::vector<float> oldValue,
                                              std::vector<float> newValue, int mergeKey,
                                              QUndoCommand* parent)
-    : QUndoCommand(parent), m_controller(controller), m_index(index), m_param(std::move(param)),
-      m_oldValue(std::move(oldValue)), m_newValue(std::move(newValue)), m_mergeKey(mergeKey) {
+    : ValueEditCommand(std::move(oldValue), std::move(newValue), mergeKey, parent),
+      m_controller(controller), m_index(index), m_param(std::move(param)) {
     QString label = QString::fromStdString(m_param);
     const auto& effects = controller->scene().post.effects;
     if (index < effects.size())
@@ -151,23 +151,11 @@ void SetEffectParamCommand::apply(const std::vector<float>& value) {
 }
 
 void SetEffectParamCommand::redo() {
-    apply(m_newValue);
+    apply(m_new);
 }
 
 void SetEffectParamCommand::undo() {
-    apply(m_oldValue);
-}
-
-bool SetEffectParamCommand::mergeWith(const QUndoCommand* other) {
-    if (other->id() != id())
-        return false;
-    const auto* next = static_cast<const SetEffectParamCommand*>(other);
-    if (m_mergeKey == 0 || next->m_mergeKey != m_mergeKey || next->m_index != m_index ||
-        next->m_param != m_param)
-        return false;
-    m_newValue = next->m_newValue;
-    setObsolete(m_newValue == m_oldValue);
-    return true;
+    apply(m_old);
 }
 
 ReplacePostChainCommand::ReplacePostChainCommand(DocumentController* controller, PostChain oldChain,

@@ -6,6 +6,7 @@
 /// DocumentController::setPostChain, using the chain operations of core/post_effects.h.
 
 #include "core/post_chain.h"
+#include "ui/commands/value_edit_command.h"
 
 #include <QUndoCommand>
 #include <cstddef>
@@ -88,7 +89,7 @@ private:
 
 /// Sets one parameter of the effect at an index. Commands with the same effect, parameter and
 /// non-zero merge key (one slider drag) merge; a drag back to the old value is obsolete.
-class SetEffectParamCommand : public QUndoCommand {
+class SetEffectParamCommand : public ValueEditCommand<SetEffectParamCommand, std::vector<float>> {
 public:
     static constexpr int kId = 0x5f0;
 
@@ -97,18 +98,19 @@ public:
                           QUndoCommand* parent = nullptr);
     void undo() override;
     void redo() override;
-    int id() const override { return kId; }
-    bool mergeWith(const QUndoCommand* other) override;
 
 private:
+    friend ValueEditCommand;
+    bool sameTarget(const SetEffectParamCommand& next) const {
+        return next.m_index == m_index && next.m_param == m_param;
+    }
+    /// Sets the parameter to @p value; an empty value (m_old when the parameter was absent)
+    /// removes it, so the effect falls back to its default.
     void apply(const std::vector<float>& value);
 
     DocumentController* m_controller;
     size_t m_index;
     std::string m_param;
-    std::vector<float> m_oldValue; ///< empty: the parameter was absent (its default)
-    std::vector<float> m_newValue;
-    int m_mergeKey;
 };
 
 /// Replaces the whole chain (a chain preset loaded).

@@ -3,8 +3,8 @@
 /// Undoable change of one material parameter.
 
 #include "core/material.h"
+#include "ui/commands/value_edit_command.h"
 
-#include <QUndoCommand>
 #include <glm/vec3.hpp>
 
 namespace velvet::ui {
@@ -14,7 +14,7 @@ class DocumentController;
 /// Sets one parameter through DocumentController::setParam. Commands with the same parameter and
 /// the same non-zero merge key (one slider drag) merge; a merge back to the old value makes the
 /// command obsolete, so the stack drops it.
-class SetParamCommand : public QUndoCommand {
+class SetParamCommand : public ValueEditCommand<SetParamCommand, glm::vec3> {
 public:
     /// Command id for QUndoCommand::id(): merging is further restricted by parameter and key.
     static constexpr int kId = 0x5e7;
@@ -24,19 +24,17 @@ public:
 
     void undo() override;
     void redo() override;
-    int id() const override { return kId; }
-    bool mergeWith(const QUndoCommand* other) override;
 
     ParamId param() const { return m_param; }
-    glm::vec3 oldValue() const { return m_oldValue; }
-    glm::vec3 newValue() const { return m_newValue; }
+    glm::vec3 oldValue() const { return m_old; }
+    glm::vec3 newValue() const { return m_new; }
 
 private:
+    friend ValueEditCommand;
+    bool sameTarget(const SetParamCommand& next) const { return next.m_param == m_param; }
+
     DocumentController* m_controller;
     ParamId m_param;
-    glm::vec3 m_oldValue;
-    glm::vec3 m_newValue;
-    int m_mergeKey;
 };
 
 } // namespace velvet::ui

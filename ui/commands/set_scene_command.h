@@ -4,6 +4,7 @@
 /// rotation), the preview mesh and the lights.
 
 #include "core/scene.h"
+#include "ui/commands/value_edit_command.h"
 #include "ui/document_controller.h"
 
 #include <QUndoCommand>
@@ -11,10 +12,13 @@
 namespace velvet::ui {
 
 /// Replaces one value of the scene through a DocumentController setter (@p Apply). Commands of
-/// the same kind (@p Id) with the same non-zero merge key (one drag, one typing session) merge; a
-/// merge back to the old value makes the command obsolete, so the gesture leaves nothing behind.
+/// the same kind (@p Id) with the same non-zero merge key (one drag, one typing session) merge
+/// (ValueEditCommand); a merge back to the old value makes the command obsolete, so the gesture
+/// leaves nothing behind.
 template <class T, void (DocumentController::*Apply)(const T&), int Id>
-class MergingSceneCommand : public QUndoCommand {
+class MergingSceneCommand : public ValueEditCommand<MergingSceneCommand<T, Apply, Id>, T> {
+    using Base = ValueEditCommand<MergingSceneCommand<T, Apply, Id>, T>;
+
 public:
     static constexpr int kId = Id;
     /// A merge key no other gesture of this kind has used (one per drag).
@@ -25,28 +29,20 @@ public:
 
     MergingSceneCommand(DocumentController* controller, T oldValue, T newValue, const QString& text,
                         int mergeKey, QUndoCommand* parent = nullptr)
-        : QUndoCommand(text, parent), m_controller(controller), m_oldValue(std::move(oldValue)),
-          m_newValue(std::move(newValue)), m_mergeKey(mergeKey) {}
-
-    void undo() override { (m_controller->*Apply)(m_oldValue); }
-    void redo() override { (m_controller->*Apply)(m_newValue); }
-    int id() const override { return kId; }
-    bool mergeWith(const QUndoCommand* other) override {
-        if (other->id() != id())
-            return false;
-        const auto* next = static_cast<const MergingSceneCommand*>(other);
-        if (m_mergeKey == 0 || next->m_mergeKey != m_mergeKey)
-            return false;
-        m_newValue = next->m_newValue;
-        setObsolete(m_newValue == m_oldValue);
-        return true;
+        : Base(std::move(oldValue), std::move(newValue), mergeKey, parent),
+          m_controller(controller) {
+        this->setText(text);
     }
 
+    void undo() override { (m_controller->*Apply)(this->m_old); }
+    void redo() override { (m_controller->*Apply)(this->m_new); }
+
 private:
+    friend Base;
+    /// The scene has one value of this kind: every command of the kind targets it.
+    bool sameTarget(const MergingSceneCommand&) const { return true; }
+
     DocumentController* m_controller;
-    T m_oldValue;
-    T m_newValue;
-    int m_mergeKey;
 };
 
 /// Replaces the scene's Environment (HDRI, intensity, rotation, background); rotation and slider

@@ -1,0 +1,32 @@
+#include "render/sheen_lut.h"
+
+#include "core/brdf.h"
+
+#include <epoxy/gl.h>
+#include <vector>
+
+namespace velvet::render {
+
+unsigned createSheenAlbedoLut() {
+    // One channel per SheenModel: core/brdf.cpp integrates the tables on the CPU once, and its
+    // lookup (the C++ twin) and the GPU read the same values.
+    constexpr int N = brdf::kSheenLutSize;
+    constexpr int kModels = 3;
+    std::vector<float> rgba(size_t(N) * N * 4, 0.0f);
+    for (int m = 0; m < kModels; ++m) {
+        const auto& t = brdf::sheenAlbedoLut(SheenModel(m));
+        for (size_t i = 0; i < t.size(); ++i)
+            rgba[i * 4 + size_t(m)] = t[i];
+    }
+    GLuint lut = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &lut);
+    glTextureStorage2D(lut, 1, GL_RGBA32F, N, N);
+    glTextureSubImage2D(lut, 0, 0, 0, N, N, GL_RGBA, GL_FLOAT, rgba.data());
+    glTextureParameteri(lut, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(lut, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(lut, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(lut, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return lut;
+}
+
+} // namespace velvet::render

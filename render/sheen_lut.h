@@ -1,0 +1,14 @@
+#pragma once
+/// @file sheen_lut.h
+/// The sheen albedo table on the GPU: one texture that both the lighting (through IblBaker) and
+/// the BRDF probe bind, so the shaders and the C++ twin read the same numbers.
+
+namespace velvet::render {
+
+/// Creates a kSheenLutSize^2 RGBA32F texture whose channel m holds
+/// brdf::sheenAlbedoLut(SheenModel(m)) (alpha unused), row-major (row = roughness), sampled
+/// bilinearly with clamp to edge as core/brdf.h's lookup does. Needs a current GL 4.5 context;
+/// the caller owns (and deletes) the returned texture name.
+unsigned createSheenAlbedoLut();
+
+} // namespace velvet::render

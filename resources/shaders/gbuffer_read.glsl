@@ -1,0 +1,57 @@
+// One pixel of the G-buffer read back and decoded, ready to shade: the one decode the full-screen
+// lighting (lighting.frag) and the many-light paths (light_common.glsl) share. The encodings are
+// common_gbuffer.glsl's; what is per material comes from the material table by the pixel's id.
+#include "common_frame.glsl"
+#include "common_gbuffer.glsl"
+#include "common_material.glsl"
+#include "common_brdf.glsl"
+
+// View-space position from the hardware depth through the inverse projection (works for
+// perspective and orthographic projections alike).
+vec3 viewPositionFromDepth(vec2 ndcXY, float depth) {
+    vec4 p = frame.invProjMatrix * vec4(ndcXY, depth * 2.0 - 1.0, 1.0);
+    return p.xyz / p.w;
+}
+
+struct ShadingPoint {
+    Surface s;
+    vec3 n;          // world normal
+    vec3 v;          // world direction to the eye
+    vec3 posView;    // view-space position
+    vec3 posWorld;   // world position
+    float occlusion; // ambient occlusion (RT0 alpha)
+    int materialId;  // index into the material table
+};
+
+// Decodes @p pixel, whose hardware depth is @p depth (read by the caller, which decides what the
+// far plane means for it).
+ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
+    ShadingPoint p;
+    vec2 ndcXY = (vec2(pixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+    p.posView = viewPositionFromDepth(ndcXY, depth);
+    p.posWorld = (frame.invViewMatrix * vec4(p.posView, 1.0)).xyz;
+    vec3 toEyeView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, 1.0) : -p.posView;
+    p.v = normalize((frame.invViewMatrix * vec4(toEyeView, 0.0)).xyz);
+
+    vec4 rt0 = texelFetch(gBaseColorOcclusionTex, pixel, 0);
+    vec2 rt1 = texelFetch(gNormalTex, pixel, 0).rg;
+    vec4 rt2 = texelFetch(gMaterialTex, pixel, 0);
+    p.materialId = decodeMaterialId(rt2.b);
+    GpuMaterial m = materials[p.materialId];
+    p.s.baseColor = decodeBaseColor(rt0.rgb);
+    p.s.metallic = rt2.r;
+    p.s.roughness = rt2.g;
+    p.s.specularWeight = m.specularColorWeight.a;
+    p.s.specularColor = m.specularColorWeight.rgb;
+    p.s.ior = m.roughIorOcclusionNormal.y;
+    p.s.sheenColor = m.sheenColorRoughness.rgb;
+    p.s.sheenRoughness = m.sheenColorRoughness.a;
+    p.s.clearcoat = m.clearcoat.x;
+    p.s.clearcoatRoughness = m.clearcoat.y;
+    p.s.emissive = m.emissive.rgb * m.emissive.a; // the emissive debug view's fallback
+    p.s.terms = m.terms;
+    p.s.sheenModel = m.terms2.x;
+    p.occlusion = rt0.a;
+    p.n = octDecodeUnorm16(rt1);
+    return p;
+}

@@ -1,0 +1,58 @@
+#pragma once
+// Shared helpers of the widget tests (run under xvfb-run): pixels read from a grabbed viewport
+// and where a user grabs a slider; bringing the main window up is ui_test_window.h's.
+
+#include "ui_test_window.h"
+
+#include <QColor>
+#include <QImage>
+#include <QSlider>
+#include <QStyle>
+#include <QStyleOptionSlider>
+#include <QTest>
+#include <QVector>
+#include <algorithm>
+#include <cmath>
+
+namespace velvet::test {
+
+/// Mean colour of a 5x5 block around the centre (on the preview mesh), in 0..255 units.
+inline QVector<double> centrePixel(const QImage& image) {
+    QVector<double> sum(3, 0.0);
+    const int cx = image.width() / 2, cy = image.height() / 2;
+    for (int y = cy - 2; y <= cy + 2; ++y)
+        for (int x = cx - 2; x <= cx + 2; ++x) {
+            const QColor c = image.pixelColor(x, y);
+            sum[0] += c.red();
+            sum[1] += c.green();
+            sum[2] += c.blue();
+        }
+    for (double& s : sum)
+        s /= 25.0;
+    return sum;
+}
+
+/// Largest per-channel difference of two centrePixel() results.
+inline double maxDifference(const QVector<double>& a, const QVector<double>& b) {
+    double d = 0.0;
+    for (int i = 0; i < 3; ++i)
+        d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+/// Centre of the slider's handle, from the style (where a user would grab it).
+inline QPoint handleCentre(QSlider* slider) {
+    QStyleOptionSlider option;
+    option.initFrom(slider);
+    option.orientation = slider->orientation();
+    option.minimum = slider->minimum();
+    option.maximum = slider->maximum();
+    option.sliderPosition = slider->sliderPosition();
+    option.sliderValue = slider->value();
+    option.subControls = QStyle::SC_SliderGroove | QStyle::SC_SliderHandle;
+    return slider->style()
+        ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
+        .center();
+}
+
+} // namespace velvet::test
