@@ -39,4 +39,10 @@ struct ParamMeta {
     float softMax = 0.0f; ///< slider end when smaller than max (0: same as max)
 };
 
+/// The value rules of an edit, one place for every editor (the material's setValue, the post
+/// chain's setEffectParam, the property panel through them): each channel clamped to
+/// [min, max] (a non-finite one takes the default's x), a choice rounded to the nearest index.
+/// Loaders do not use it: a file value out of range is an error, never silently clamped.
+glm::vec3 constrainParamValue(const ParamMeta& meta, glm::vec3 value);
+
 } // namespace velvet
