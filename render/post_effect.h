@@ -187,11 +187,6 @@ public:
     std::string glslFunction() const;
     /// vec4 slots the effect's uniforms take (one per parameter).
     int slotCount() const { return int(meta().params.size()); }
-    /// Whether @p effect runs as a shader function (true) or as a step of its own (the tone map
-    /// drawn by the OCIO display transform).
-    virtual bool fuses(const EffectInstance& /*effect*/, bool /*forceDisplayTransform*/) const {
-        return true;
-    }
     /// Whether the function calls displayEncode() (the generated include
     /// "display_encode.glsl", render/display_encoding.h): a fused pass containing it is built
     /// per display encoding.

@@ -14,13 +14,7 @@ class ToneMapEffect final : public FusableEffect {
 public:
     ToneMapEffect() : FusableEffect("tonemap", "post_tonemap_curve.frag") {}
 
-    bool fuses(const EffectInstance& effect, bool forceDisplayTransform) const override {
-        return !forceDisplayTransform && effectFloat(effect, "operator") != kDisplayOperator;
-    }
     bool displayEncodes() const override { return true; }
-
-private:
-    static constexpr float kDisplayOperator = 6.0f; ///< "display" in the operator choices
 };
 
 } // namespace

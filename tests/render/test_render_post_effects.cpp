@@ -1,4 +1,4 @@
-// Each post effect's defining property on a small synthetic input (render/post_chain.h's apply
+// Each post effect's defining property on a small synthetic input (post_test_harness.h
 // runs the real chain on float textures), plus pooling, fusion, ordering and one golden per
 // effect.
 //
@@ -7,6 +7,7 @@
 // rewrites tests/render/golden/post_*.png; commit them.
 #include "core/image.h"
 #include "core/post_effects.h"
+#include "post_test_harness.h"
 #include "render/offscreen.h"
 #include "render/post_chain.h"
 #include "render/post_effect.h"
@@ -20,7 +21,7 @@
 #include <set>
 
 using namespace velvet;
-using render::PostTestInput;
+using test::PostTestInput;
 
 namespace {
 
@@ -271,7 +272,7 @@ class TestRenderPostEffects : public QObject {
     Image run(const PostChain& chain, const PostTestInput& in) {
         Image out;
         std::string error;
-        if (!m_post->apply(chain, in, out, &error))
+        if (!test::applyPostChain(*m_post, chain, in, out, &error))
             qFatal("post chain failed: %s", error.c_str());
         return out;
     }
