@@ -562,7 +562,7 @@ struct Renderer::Impl {
     }
 
     bool buildTonemap(ShaderProgram& program, const std::string& encodingId, std::string* error) {
-        if (!program.build("fullscreen.vert", "post_tonemap.frag", {}, encoding.sources(encodingId),
+        if (!program.build("fullscreen.vert", "display_output.frag", {}, encoding.sources(encodingId),
                            error))
             return false;
         encoding.setUniforms(program.id(), encodingId);

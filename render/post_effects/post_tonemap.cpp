@@ -1,4 +1,4 @@
-// Tone mapping as a chain stage: post_tonemap() in resources/shaders/post_tonemap_curve.frag
+// Tone mapping as a chain stage: post_tonemap() in resources/shaders/post_tonemap.glsl
 // (exposure, a curve, then OCIO's display encoding), fused with its pointwise neighbours; the
 // "display" operator is instead drawn by the OpenColorIO display transform
 // (render/display_transform.cpp) as a step of its own, run by render/post_chain.cpp through
@@ -12,7 +12,7 @@ namespace {
 /// linear; uniforms: uParams[base + TONEMAP_EXPOSURE], uParams[base + TONEMAP_OPERATOR].
 class ToneMapEffect final : public FusableEffect {
 public:
-    ToneMapEffect() : FusableEffect("tonemap", "post_tonemap_curve.frag") {}
+    ToneMapEffect() : FusableEffect("tonemap") {}
 
     bool displayEncodes() const override { return true; }
 };

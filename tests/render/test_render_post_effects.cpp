@@ -149,7 +149,7 @@ float srgbDecode(float c) {
 }
 
 /// @name C++ twins of the tone curves (resources/shaders/common_tonemap.glsl,
-/// post_tonemap_curve.frag), in the operator order of the tonemap effect's choice.
+/// post_tonemap.glsl), in the operator order of the tonemap effect's choice.
 /// @{
 glm::vec3 pbrNeutral(glm::vec3 c) {
     const float start = 0.8f - 0.04f, desaturation = 0.15f;
@@ -905,9 +905,9 @@ private slots:
         QVERIFY(maxDiff(run(plain, b), b.color) < 2e-3f);
     }
 
-    // One renderer class per catalogue effect; the pointwise ones are fusable, and every shader
-    // their passes name ships.
-    void everyEffectHasItsClass() {
+    // One renderer per catalogue effect (built from the entry, or the effect's own class); the
+    // pointwise ones are fusable, and every shader their passes name ships.
+    void everyEffectHasARenderer() {
         for (const EffectMeta& m : postEffectCatalogue()) {
             const std::string type(m.type);
             const std::unique_ptr<render::PostEffect> e = render::makePostEffect(m.type);

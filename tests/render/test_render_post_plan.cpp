@@ -1,11 +1,15 @@
 // The post chain's plan (render/post_plan.h) without a GL context: which effects fuse into which
 // passes, what is skipped, where the implicit tone map goes, when the display transform draws a
-// tone map, where fusion stops for lack of parameter slots, and that a still chain plans once.
+// tone map, where fusion stops for lack of parameter slots, and that a still chain plans once;
+// and that shader files are named by role.
 #include "core/post_effects.h"
 #include "render/post_effect.h"
 #include "render/post_plan.h"
 
 #include <QtTest>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 using namespace velvet;
 using namespace velvet::render;
@@ -128,6 +132,40 @@ private slots:
         QCOMPARE(cache.buildCount(), 3);
         QCOMPARE(shape(cache.plan(chain, {0, true})), QString("bloom | tonemap (display) | fxaa"));
         QCOMPARE(cache.buildCount(), 3);
+    }
+
+    /// docs/post-effects.md, "Shader files by role": a file with a main() is a stage (.frag,
+    /// .vert, .comp), one without is include-only (.glsl); post_* files are chain effects, one
+    /// per catalogue type (post_<type>.glsl when pointwise, else post_<type>.frag), besides the
+    /// shared post_common.glsl.
+    void shaderFilesAreNamedByRole() {
+        namespace fs = std::filesystem;
+        const fs::path dir = fs::path(VELVET_SOURCE_DIR) / "resources" / "shaders";
+        int files = 0;
+        for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+            const std::string name = entry.path().filename().string();
+            const std::string ext = entry.path().extension().string();
+            std::ifstream in(entry.path());
+            std::stringstream text;
+            text << in.rdbuf();
+            const bool hasMain = text.str().find("void main(") != std::string::npos;
+            QVERIFY2(hasMain == (ext == ".frag" || ext == ".vert" || ext == ".comp"),
+                     qPrintable(QString::fromStdString(name) +
+                                (hasMain ? ": has a main(), so not .glsl" : ": include-only")));
+            ++files;
+            if (name.rfind("post_", 0) != 0 || name == "post_common.glsl")
+                continue;
+            const std::string type = entry.path().stem().string().substr(5);
+            const EffectMeta* meta = findPostEffect(type);
+            QVERIFY2(meta, qPrintable(QString::fromStdString(name) + ": no such effect"));
+            QCOMPARE(QString::fromStdString(ext), meta->pointwise ? QString(".glsl") : ".frag");
+        }
+        QVERIFY(files > 20);
+        for (const EffectMeta& m : postEffectCatalogue()) {
+            const std::string file =
+                "post_" + std::string(m.type) + (m.pointwise ? ".glsl" : ".frag");
+            QVERIFY2(fs::exists(dir / file), file.c_str());
+        }
     }
 };
 
