@@ -86,13 +86,15 @@ private:
     bool m_enabled;
 };
 
-/// Sets one parameter of the effect at an index. Commands with the same effect, parameter and
-/// non-zero merge key (one slider drag) merge; a drag back to the old value is obsolete.
+/// Sets one parameter of the effect with an id (wherever the effect has moved to meanwhile):
+/// built by DocumentController::editEffectParam with values core's rules already constrained.
+/// Commands with the same effect, parameter and non-zero merge key (one slider drag) merge; a
+/// drag back to the old value is obsolete.
 class SetEffectParamCommand : public QUndoCommand {
 public:
     static constexpr int kId = 0x5f0;
 
-    SetEffectParamCommand(DocumentController* controller, size_t index, std::string param,
+    SetEffectParamCommand(DocumentController* controller, EffectId effect, std::string param,
                           std::vector<float> oldValue, std::vector<float> newValue, int mergeKey,
                           QUndoCommand* parent = nullptr);
     void undo() override;
@@ -104,7 +106,7 @@ private:
     void apply(const std::vector<float>& value);
 
     DocumentController* m_controller;
-    size_t m_index;
+    EffectId m_effect;
     std::string m_param;
     std::vector<float> m_oldValue; ///< empty: the parameter was absent (its default)
     std::vector<float> m_newValue;

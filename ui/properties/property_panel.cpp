@@ -3,7 +3,6 @@
 #include "core/graph/graph.h"
 #include "core/post_effects.h"
 #include "ui/commands/graph_commands.h"
-#include "ui/commands/post_chain_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_model.h"
 #include "ui/properties/color_param_editor.h"
@@ -172,13 +171,13 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
     connect(m_controller, &DocumentController::postChainChanged, this, [this] {
         if (m_subject != Subject::Effect)
             return;
-        const auto& effects = m_controller->scene().post.effects;
-        if (m_effectIndex < 0 || m_effectIndex >= int(effects.size()))
+        const int index = effectIndex();
+        if (index < 0) // removed (or its addition undone)
             showMaterial();
-        else if (effects[size_t(m_effectIndex)].type != m_effectType)
-            showEffect(m_effectIndex);
+        else if (m_controller->scene().post.effects[size_t(index)].type != m_effectType)
+            showEffect(m_effectId);
         else
-            refreshEffect();
+            refreshEffect(); // the title names the effect's position, which a move changes
     });
     refreshAll();
     setSubject(Subject::Material, tr("Material"));
@@ -265,7 +264,7 @@ void PropertyPanel::showMaterial() {
         disconnect(m_graphConnection), disconnect(m_graphResetConnection);
     m_graph = nullptr;
     m_node = graph::kInvalidNodeId;
-    m_effectIndex = -1;
+    m_effectId = 0;
     m_effectType.clear();
     if (m_subject != Subject::Material || m_title->text().isEmpty())
         setSubject(Subject::Material, tr("Material"));
@@ -273,11 +272,16 @@ void PropertyPanel::showMaterial() {
 
 // ---- Post effects -------------------------------------------------------------------------------
 
-void PropertyPanel::showEffect(int index) {
+int PropertyPanel::effectIndex() const {
+    return m_subject == Subject::Effect
+               ? int(findEffectIndex(m_controller->scene().post, m_effectId))
+               : -1;
+}
+
+void PropertyPanel::showEffect(EffectId effect) {
     const auto& effects = m_controller->scene().post.effects;
-    const EffectMeta* meta = index >= 0 && index < int(effects.size())
-                                 ? findPostEffect(effects[size_t(index)].type)
-                                 : nullptr;
+    const long index = effect ? findEffectIndex(m_controller->scene().post, effect) : -1;
+    const EffectMeta* meta = index >= 0 ? findPostEffect(effects[size_t(index)].type) : nullptr;
     if (!meta) {
         showMaterial();
         return;
@@ -286,7 +290,7 @@ void PropertyPanel::showEffect(int index) {
         disconnect(m_graphConnection), disconnect(m_graphResetConnection);
     m_graph = nullptr;
     m_node = graph::kInvalidNodeId;
-    m_effectIndex = index;
+    m_effectId = effect;
     m_effectType = effects[size_t(index)].type;
     const QString label = fromView(meta->label);
     QWidget* box =
@@ -313,18 +317,19 @@ void PropertyPanel::showEffect(int index) {
     if (meta->params.empty())
         form->addRow(new QLabel(tr("This effect has no parameters."), box));
     applyColorSpace(m_subjectPage);
-    refreshEffect();
     setSubject(Subject::Effect, tr("%1 (post effect %2)").arg(label).arg(index + 1));
+    refreshEffect();
 }
 
 void PropertyPanel::refreshEffect() {
-    const auto& effects = m_controller->scene().post.effects;
-    if (m_effectIndex < 0 || m_effectIndex >= int(effects.size()))
+    const int index = effectIndex();
+    if (index < 0)
         return;
-    const EffectInstance& effect = effects[size_t(m_effectIndex)];
+    const EffectInstance& effect = m_controller->scene().post.effects[size_t(index)];
     const EffectMeta* meta = findPostEffect(effect.type);
     if (!meta)
         return;
+    m_title->setText(tr("%1 (post effect %2)").arg(fromView(meta->label)).arg(index + 1));
     const bool was = m_refreshing;
     m_refreshing = true;
     for (const ParamMeta& p : meta->params)
@@ -335,34 +340,13 @@ void PropertyPanel::refreshEffect() {
 
 void PropertyPanel::editEffectParam(const std::string& id, glm::vec4 value, int mergeKey,
                                     bool reset) {
+    // The controller applies core's value rules and builds the undo command.
     if (m_refreshing || m_subject != Subject::Effect)
         return;
-    const auto& effects = m_controller->scene().post.effects;
-    if (m_effectIndex < 0 || m_effectIndex >= int(effects.size()))
-        return;
-    const EffectInstance& effect = effects[size_t(m_effectIndex)];
-    const EffectMeta* meta = findPostEffect(effect.type);
-    const ParamMeta* p = meta ? findEffectParam(*meta, id) : nullptr;
-    if (!p)
-        return;
-    glm::vec3 next = reset ? p->defaultValue : glm::vec3(value);
-    next = glm::clamp(next, glm::vec3(p->min), glm::vec3(p->max));
-    if (p->type == ParamType::Choice)
-        next.x = std::round(next.x);
-    const int n = paramComponents(*p);
-    const glm::vec3 current = effectValue(effect, *p);
-    if (n == 3 ? next == current : next.x == current.x)
-        return;
-    std::vector<float> newValue;
-    for (int k = 0; k < n; ++k)
-        newValue.push_back(next[k]);
-    const auto it = effect.params.find(id);
-    std::vector<float> old = it == effect.params.end() ? std::vector<float>{} : it->second;
-    auto* cmd = new SetEffectParamCommand(m_controller, size_t(m_effectIndex), id, std::move(old),
-                                          std::move(newValue), mergeKey);
     if (reset)
-        cmd->setText(tr("Reset %1 %2").arg(fromView(meta->label), fromView(p->label)));
-    m_controller->undoStack()->push(cmd);
+        m_controller->resetEffectParam(m_effectId, id);
+    else
+        m_controller->editEffectParam(m_effectId, id, glm::vec3(value), mergeKey);
 }
 
 // ---- Graph nodes --------------------------------------------------------------------------------
@@ -389,7 +373,7 @@ void PropertyPanel::showGraphNode(GraphModel* model, graph::NodeId id) {
                 showGraphNode(m_graph, m_node);
         });
     }
-    m_effectIndex = -1;
+    m_effectId = 0;
     m_effectType.clear();
     m_node = id;
     const graph::NodeType& type = *node->type;
