@@ -2,7 +2,6 @@
 
 #include "core/graph/graph.h"
 #include "core/post_effects.h"
-#include "ui/commands/graph_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_model.h"
 #include "ui/properties/color_param_editor.h"
@@ -519,35 +518,16 @@ void PropertyPanel::onGraphChanged(const graph::Change& change) {
 }
 
 void PropertyPanel::editNodeInput(int input, glm::vec4 value, int mergeKey, bool reset) {
-    if (m_refreshing || m_subject != Subject::GraphNode || !m_graph)
+    // The graph model applies core's value rules and builds the undo command.
+    if (m_refreshing || m_subject != Subject::GraphNode || !m_graph || input < 0)
         return;
-    const graph::Node* node = m_graph->graph().node(m_node);
-    if (!node || input < 0 || input >= int(node->type->inputs.size()))
-        return;
-    const graph::InputSpec& in = node->type->inputs[size_t(input)];
-    glm::vec4 next = reset ? in.defaultValue : value;
-    const int n = graph::portTypeComponents(in.type);
-    for (int k = 0; k < 4; ++k)
-        next[k] = k < n ? std::clamp(next[k], in.min, in.max) : 0.0f;
-    const glm::vec4 old = node->inputValues[size_t(input)];
-    if (next == old)
-        return;
-    auto* cmd =
-        new SetNodeInputCommand(m_graph, m_node, graph::PortIndex(input), old, next, mergeKey);
-    cmd->setText((reset ? tr("Reset %1 %2") : tr("Set %1 %2"))
-                     .arg(fromView(node->type->label), fromView(in.label)));
-    m_graph->undoStack()->push(cmd);
+    m_graph->editNodeInput(m_node, graph::PortIndex(input), value, mergeKey, reset);
 }
 
 void PropertyPanel::editNodeSetting(const std::string& name, const QString& value) {
     if (m_refreshing || m_subject != Subject::GraphNode || !m_graph)
         return;
-    const graph::Node* node = m_graph->graph().node(m_node);
-    const int index = node ? node->type->settingIndex(name) : -1;
-    if (index < 0 || node->settings[size_t(index)] == value.toStdString())
-        return;
-    m_graph->undoStack()->push(new SetNodeSettingCommand(
-        m_graph, m_node, name, node->settings[size_t(index)], value.toStdString()));
+    m_graph->editNodeSetting(m_node, name, value.toStdString());
 }
 
 } // namespace velvet::ui

@@ -7,8 +7,11 @@
 /// - the node selected in the Material graph (its type's inputs described as ParamMeta, and its
 ///   string settings: an image file, a colour space). Selecting the material output node, or the
 ///   "Material" button in the header, shows the material again.
-/// Every edit is one undo command (slider drags merge into one) pushed through the document's
-/// undo stack; document changes (undo, redo, open) refresh the editors without creating commands.
+/// The panel builds no command and applies no value rule itself: it asks the DocumentController
+/// (material parameters, effects by id: editParam, editEffectParam) or the GraphModel (node
+/// inputs and settings: editNodeInput, editNodeSetting) for each edit, which core's rules
+/// constrain and which becomes one undo command (slider drags merge into one); document changes
+/// (undo, redo, open) refresh the editors without creating commands.
 
 #include "core/graph/graph_types.h"
 #include "core/material.h"
