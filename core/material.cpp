@@ -121,24 +121,7 @@ Material::Material() {
 }
 
 void Material::setValue(ParamId id, glm::vec3 v) {
-    const ParamMeta& m = paramMeta(id);
-    auto clampOne = [&](float x) {
-        if (!std::isfinite(x))
-            x = m.defaultValue.x;
-        return std::clamp(x, m.min, m.max);
-    };
-    switch (m.type) {
-    case ParamType::Float:
-        v = glm::vec3(clampOne(v.x));
-        break;
-    case ParamType::Color:
-        v = glm::vec3(clampOne(v.x), clampOne(v.y), clampOne(v.z));
-        break;
-    case ParamType::Choice:
-        v = glm::vec3(std::round(clampOne(v.x)));
-        break;
-    }
-    m_values[index(id)] = v;
+    m_values[index(id)] = constrainParamValue(paramMeta(id), v);
 }
 
 void Material::resetValue(ParamId id) {

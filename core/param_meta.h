@@ -92,5 +92,10 @@ constexpr ParamMeta choiceParam(std::string_view id, std::string_view label, std
     return m;
 }
 /// @}
+/// The value rules of an edit, one place for every editor (the material's setValue, the post
+/// chain's setEffectParam, the property panel through them): each channel clamped to
+/// [min, max] (a non-finite one takes the default's x), a choice rounded to the nearest index.
+/// Loaders do not use it: a file value out of range is an error, never silently clamped.
+glm::vec3 constrainParamValue(const ParamMeta& meta, glm::vec3 value);
 
 } // namespace velvet

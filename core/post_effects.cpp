@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 
 namespace velvet {
@@ -235,6 +236,39 @@ std::string effectLabel(const PostChain& chain, size_t i) {
 
 } // namespace
 
+EffectId newEffectId() {
+    static std::atomic<EffectId> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+long findEffectIndex(const PostChain& chain, EffectId id) {
+    for (size_t i = 0; i < chain.effects.size(); ++i)
+        if (chain.effects[i].id == id)
+            return long(i);
+    return -1;
+}
+
+std::vector<float> effectParamComponents(const ParamMeta& param, glm::vec3 value) {
+    const glm::vec3 v = constrainParamValue(param, value);
+    std::vector<float> out;
+    for (int k = 0; k < paramComponents(param); ++k)
+        out.push_back(v[k]);
+    return out;
+}
+
+bool setEffectParam(PostChain& chain, EffectId id, std::string_view param, glm::vec3 value) {
+    const long index = findEffectIndex(chain, id);
+    if (index < 0)
+        return false;
+    EffectInstance& effect = chain.effects[size_t(index)];
+    const EffectMeta* meta = findPostEffect(effect.type);
+    const ParamMeta* p = meta ? findEffectParam(*meta, param) : nullptr;
+    if (!p)
+        return false;
+    effect.params[std::string(param)] = effectParamComponents(*p, value);
+    return true;
+}
+
 std::span<const EffectMeta> postEffectCatalogue() {
     return kCatalogue;
 }
@@ -351,7 +385,8 @@ bool moveEffect(PostChain& chain, size_t from, size_t to) {
 bool duplicateEffect(PostChain& chain, size_t index) {
     if (index >= chain.effects.size())
         return false;
-    const EffectInstance copy = chain.effects[index];
+    EffectInstance copy = chain.effects[index];
+    copy.id = newEffectId();
     chain.effects.insert(chain.effects.begin() + long(index) + 1, copy);
     return true;
 }

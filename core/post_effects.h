@@ -78,12 +78,23 @@ float effectFloat(const EffectInstance& effect, std::string_view id);
 /// to the next, so a viewport must keep drawing frames to show it.
 bool postChainReadsTime(const PostChain& chain);
 
+/// The index of the effect with id @p id in @p chain, or -1.
+long findEffectIndex(const PostChain& chain, EffectId id);
+
+/// Sets parameter @p param of the effect with id @p id to @p value after the value rules
+/// (constrainParamValue: clamped to the range, a choice rounded; colours take three components,
+/// the others x). False, and nothing changes, for an unknown id, type or parameter. The editor's
+/// panel and undo commands edit through this (DocumentController::editEffectParam).
+bool setEffectParam(PostChain& chain, EffectId id, std::string_view param, glm::vec3 value);
+/// @p value as parameter @p param stores it: constrainParamValue, then its components.
+std::vector<float> effectParamComponents(const ParamMeta& param, glm::vec3 value);
+
 /// @name Chain edits. Each returns false (and changes nothing) on an index out of range.
 /// @{
 bool setEffectEnabled(PostChain& chain, size_t index, bool enabled);
 /// Moves effect @p from to position @p to (the others keep their relative order).
 bool moveEffect(PostChain& chain, size_t from, size_t to);
-/// Inserts a copy right after @p index.
+/// Inserts a copy, with a new id, right after @p index.
 bool duplicateEffect(PostChain& chain, size_t index);
 bool removeEffect(PostChain& chain, size_t index);
 /// @}

@@ -2,7 +2,7 @@
 /// @file display_encoding.h
 /// The display encoding after a built-in tone-mapping curve: OCIO's own GPU shader for the
 /// current display's un-tone-mapped view (ColorManagement::gpuDisplayEncoding), composed into the
-/// tone-mapping programs (post_tonemap.frag, the chain's fused tone map) as the generated include
+/// tone-mapping programs (display_output.frag, the chain's fused tone map) as the generated include
 /// "display_encode.glsl", which defines `vec3 displayEncode(vec3 displayLinear)`. So the curve
 /// and OCIO's encoding stay one pass. Encodings are cached by OCIO's cache id (LUT textures
 /// uploaded once); a program built for an id is valid for as long as this object lives.

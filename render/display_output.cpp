@@ -110,7 +110,7 @@ ShaderProgram* DisplayOutput::tonemapProgram(std::string* error) {
 
 bool DisplayOutput::buildTonemap(ShaderProgram& program, const std::string& encodingId,
                                  std::string* error) {
-    if (!program.build("fullscreen.vert", "post_tonemap.frag", {}, m_encoding.sources(encodingId),
+    if (!program.build("fullscreen.vert", "display_output.frag", {}, m_encoding.sources(encodingId),
                        error))
         return false;
     m_encoding.setUniforms(program.id(), encodingId);

@@ -10,7 +10,7 @@
 namespace velvet::render {
 namespace {
 
-/// The generated include post_display.frag pulls OCIO's GLSL from.
+/// The generated include display_transform.frag pulls OCIO's GLSL from.
 constexpr const char* kGeneratedInclude = "ocio_display.glsl";
 
 GLenum textureTarget(int dimensions) {
@@ -139,10 +139,10 @@ struct DisplayTransform::Impl {
         return true;
     }
 
-    /// Compiles post_display.frag with @p t's GLSL into @p p (the last good program stays on
+    /// Compiles display_transform.frag with @p t's GLSL into @p p (the last good program stays on
     /// failure).
     bool compile(const GpuDisplayTransform& t, Program& p, std::string* error) {
-        if (!p.program.build("fullscreen.vert", "post_display.frag",
+        if (!p.program.build("fullscreen.vert", "display_transform.frag",
                              {"OCIO_DISPLAY " + t.functionName}, {{kGeneratedInclude, t.glsl}},
                              error))
             return false;

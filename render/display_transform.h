@@ -3,10 +3,10 @@
 /// The viewport's OpenColorIO display transform on the GPU: OCIO's own shader (not a hand-written
 /// copy) placed at the tone-mapping stage of the post chain. Takes the plain data of
 /// ColorManagement::gpuDisplayTransform (GLSL text, LUT textures, uniforms; no OCIO types),
-/// injects the GLSL into resources/shaders/post_display.frag and uploads the LUTs and uniforms.
-/// Programs are cached by OCIO's cache id: choosing a display/view/look compiles once, choosing it
-/// again later compiles nothing, and exposure is a uniform (never a recompile). GL objects stay
-/// private; needs a current OpenGL 4.5 core context from construction to destruction.
+/// injects the GLSL into resources/shaders/display_transform.frag and uploads the LUTs and
+/// uniforms. Programs are cached by OCIO's cache id: choosing a display/view/look compiles once,
+/// choosing it again later compiles nothing, and exposure is a uniform (never a recompile). GL
+/// objects stay private; needs a current OpenGL 4.5 core context from construction to destruction.
 
 #include "core/color_management.h"
 #include "core/image.h"
@@ -25,7 +25,7 @@ public:
     DisplayTransform& operator=(const DisplayTransform&) = delete;
 
     /// Makes @p transform the current one. The first time its cacheId is seen this compiles
-    /// post_display.frag with the transform's GLSL and uploads its LUT textures and uniforms;
+    /// display_transform.frag with the transform's GLSL and uploads its LUT textures and uniforms;
     /// later calls with a known cacheId only switch. False + message (file:line of the generated
     /// "ocio_display.glsl" on a compile error); the previous selection stays on failure.
     bool select(const GpuDisplayTransform& transform, std::string* error);
@@ -46,7 +46,7 @@ public:
     /// viewport. False + message when nothing is selected or GL fails.
     bool apply(const Image& linear, float exposureEv, Image& display, std::string* error);
 
-    /// Recompiles every cached program from disk (post_display.frag and its includes, with the
+    /// Recompiles every cached program from disk (display_transform.frag and its includes, with the
     /// OCIO GLSL it was built with; the editor's shader reload). A program that fails keeps its
     /// last good build. False + every failure's message (file:line).
     bool reload(std::string* error);

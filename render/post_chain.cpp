@@ -2,8 +2,8 @@
 
 #include "core/post_effects.h"
 #include "render/display_encoding.h"
-#include "render/gbuffer_layout.h"
 #include "render/post_effect.h"
+#include "render/post_plan.h"
 
 #include <algorithm>
 #include <chrono>
@@ -22,54 +22,6 @@ struct PostFrameBlock {
     glm::vec4 misc;
 };
 
-/// One pass of the plan: a fused group of pointwise effects, or one effect run by its class.
-struct Step {
-    std::vector<const EffectInstance*> fused;
-    std::vector<const FusableEffect*> fusedEffects; ///< the classes of `fused`
-    /// The display encoding the fused pass is built with ("" fallback; unused unless one of
-    /// fusedEffects displayEncodes()).
-    std::string encodingId;
-    bool encodes() const {
-        return std::any_of(fusedEffects.begin(), fusedEffects.end(),
-                           [](const FusableEffect* f) { return f->displayEncodes(); });
-    }
-    const EffectInstance* single = nullptr;
-    PostEffect* singleEffect = nullptr;
-    bool displayToneMap = false; ///< a tone map drawn by the OCIO display transform
-    size_t listIndex = 0;        ///< position of `single` among the enabled effects
-    std::string name() const {
-        if (single)
-            return single->type + (displayToneMap ? " (display)" : "");
-        std::string n;
-        for (const EffectInstance* e : fused)
-            n += (n.empty() ? "" : "+") + e->type;
-        return n;
-    }
-};
-
-GLuint makeTexture(GLenum format, const Image& img, int channels) {
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, format, img.width, img.height);
-    std::vector<float> rows(size_t(img.width) * img.height * channels, 0.0f);
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) {
-            const float* src = img.at(x, y);
-            float* dst = rows.data() + (size_t(img.height - 1 - y) * img.width + x) * channels;
-            for (int c = 0; c < channels; ++c)
-                dst[c] = c < img.channels ? src[c] : (c == 3 ? 1.0f : src[0]);
-        }
-    const GLenum layout = channels == 4 ? GL_RGBA : channels == 2 ? GL_RG : GL_RED;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    glTextureSubImage2D(tex, 0, 0, 0, img.width, img.height, layout, GL_FLOAT, rows.data());
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return tex;
-}
-
 } // namespace
 
 struct PostChainRenderer::Impl {
@@ -84,7 +36,7 @@ struct PostChainRenderer::Impl {
         bool encodes = false;
         std::string encodingId;
     };
-    /// The display encoding of the current run (null: the fallback; PostChainRenderer::apply).
+    /// The display encoding of the current run (null: the hand-written sRGB fallback).
     const DisplayEncoding* encoding = nullptr;
 
     GeneratedSources fusedSources(const std::vector<const FusableEffect*>& effects, bool encodes,
@@ -96,6 +48,7 @@ struct PostChainRenderer::Impl {
         return sources;
     }
     std::map<std::string, FusedProgram> fusedPrograms;
+    PostPlanCache plans; ///< the chain's plan, kept until the chain changes
     int compiles = 0;
     GLuint ubo = 0, vao = 0, sampler = 0;
     std::vector<PostTarget> held; ///< targets owned by the last run until endFrame()
@@ -177,25 +130,26 @@ struct PostChainRenderer::Impl {
         h.valid = true;
     }
 
-    ShaderProgram* fused(const Step& step, std::string* error) {
-        const bool encodes = step.encodes();
+    /// The program of fused step @p step, whose effects' classes are @p classes.
+    ShaderProgram* fused(const PostPlanStep& step, const std::vector<const FusableEffect*>& classes,
+                         const std::string& encodingId, std::string* error) {
+        const bool encodes = step.encodes;
         // One program per display encoding for passes that tone map (switching display compiles
         // once per encoding; exposure is a uniform and compiles nothing).
-        const std::string key = step.name() + (encodes ? "@" + step.encodingId : "");
+        const std::string key = step.name + (encodes ? "@" + encodingId : "");
         if (auto it = fusedPrograms.find(key); it != fusedPrograms.end())
             return it->second.program.get();
         auto program = std::make_unique<ShaderProgram>();
         if (!buildPostProgram(*program, "post_fused.frag",
-                              fusedSources(step.fusedEffects, encodes, step.encodingId), error,
-                              &compiles))
+                              fusedSources(classes, encodes, encodingId), error, &compiles))
             return nullptr;
         if (encodes && encoding)
-            encoding->setUniforms(program->id(), step.encodingId);
+            encoding->setUniforms(program->id(), encodingId);
         FusedProgram& f = fusedPrograms[key];
         f.program = std::move(program);
-        f.effects = step.fusedEffects;
+        f.effects = classes;
         f.encodes = encodes;
-        f.encodingId = step.encodingId;
+        f.encodingId = encodingId;
         return f.program.get();
     }
 
@@ -225,9 +179,11 @@ struct PostChainRenderer::Impl {
         return errors.empty();
     }
 
-    bool runStep(const Step& step, const PostRunInputs& in, const PostTarget& input,
+    bool runStep(const PostChain& chain, const PostPlan& plan, const PostPlanStep& step,
+                 const PostRunInputs& in, const std::string& encodingId, const PostTarget& input,
                  const PostTarget& output, std::string* error) {
-        if (step.displayToneMap) {
+        const EffectInstance& first = plan.effect(chain, step.effects.front());
+        if (step.kind == PostPlanStep::Kind::DisplayToneMap) {
             glBindFramebuffer(GL_FRAMEBUFFER, output.fbo);
             glViewport(0, 0, output.width, output.height);
             if (!in.displayTransform) {
@@ -235,10 +191,13 @@ struct PostChainRenderer::Impl {
                     *error = "post chain: the \"display\" tone map needs an OpenColorIO config";
                 return false;
             }
-            return in.displayTransform(input.texture, effectFloat(*step.single, "exposure"), error);
+            return in.displayTransform(input.texture, effectFloat(first, "exposure"), error);
         }
-        if (step.single) {
-            const bool reads = step.singleEffect->readsPreviousFrame(*step.single);
+        if (step.kind == PostPlanStep::Kind::Single) {
+            PostEffect* renderer = effect(first.type, error);
+            if (!renderer)
+                return false;
+            const bool reads = renderer->readsPreviousFrame(first);
             ctx.previousFrame = {};
             if (reads)
                 if (auto it = history.find(step.listIndex);
@@ -246,21 +205,35 @@ struct PostChainRenderer::Impl {
                     it->second.target.width == input.width &&
                     it->second.target.height == input.height)
                     ctx.previousFrame = it->second.target;
-            step.singleEffect->run(ctx, *step.single, input, output);
+            renderer->run(ctx, first, input, output);
             ctx.previousFrame = {};
             if (reads)
                 keepHistory(step.listIndex, input);
             return true;
         }
-        ShaderProgram* program = fused(step, error);
+        std::vector<const FusableEffect*> classes;
+        for (int index : step.effects) {
+            const std::string& type = plan.effect(chain, index).type;
+            PostEffect* renderer = effect(type, error);
+            if (!renderer)
+                return false;
+            if (!renderer->fusable()) {
+                if (error)
+                    *error = "post chain: \"" + type +
+                             "\" is pointwise in the catalogue but its renderer cannot be fused";
+                return false;
+            }
+            classes.push_back(renderer->fusable());
+        }
+        ShaderProgram* program = fused(step, classes, encodingId, error);
         if (!program)
             return false;
         int base = 0;
-        for (size_t k = 0; k < step.fused.size(); ++k) {
-            step.fusedEffects[k]->upload(program->id(), *step.fused[k], base);
-            base += step.fusedEffects[k]->slotCount();
+        for (size_t k = 0; k < classes.size(); ++k) {
+            classes[k]->upload(program->id(), plan.effect(chain, step.effects[k]), base);
+            base += classes[k]->slotCount();
         }
-        const bool encodes = step.encodes() && encoding;
+        const bool encodes = step.encodes && encoding;
         if (encodes)
             encoding->bindLuts();
         drawPostPass(ctx, program->id(), input, output, 0);
@@ -288,62 +261,20 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
     d.encoding = in.encoding;
     const std::string encodingId = in.encoding ? in.encoding->cacheId() : std::string();
 
-    // The effective list: enabled, known effects; an implicit tone map before the first LDR
-    // effect when the chain has none (validation keeps explicit ones in stage order).
-    std::vector<const EffectInstance*> list;
-    static thread_local EffectInstance implicitToneMap;
-    bool hasToneMap = false;
-    for (const EffectInstance& e : chain.effects)
-        if (e.enabled && findPostEffect(e.type))
-            hasToneMap |= e.type == "tonemap";
-    for (const EffectInstance& e : chain.effects) {
-        const EffectMeta* meta = e.enabled ? findPostEffect(e.type) : nullptr;
-        if (!meta)
-            continue;
-        if (!hasToneMap && meta->stage == PostStage::Ldr) {
-            implicitToneMap = makeEffect("tonemap");
-            implicitToneMap.params["operator"] = {float(in.implicitToneMapper)};
-            list.push_back(&implicitToneMap);
-            hasToneMap = true;
-        }
-        list.push_back(&e);
-    }
-    // The plan: consecutive fusable effects share a pass while their uniforms fit.
-    std::vector<Step> steps;
+    const PostPlan& plan = d.plans.plan(chain, {in.implicitToneMapper, in.forceDisplayTransform});
+    const std::vector<PostPlanStep>& steps = plan.steps;
+    const bool hasToneMap = plan.toneMaps;
+    // Build every renderer the plan needs before drawing (a missing one fails the run early).
     std::vector<size_t> readers; ///< list positions that read the previous frame this run
-    for (size_t i = 0; i < list.size(); ++i) {
-        const EffectInstance* e = list[i];
-        PostEffect* renderer = d.effect(e->type, error);
-        if (!renderer)
-            return false;
-        const FusableEffect* fusable = renderer->fusable();
-        if (fusable && fusable->fuses(*e, in.forceDisplayTransform)) {
-            int slots = 0;
-            if (!steps.empty() && !steps.back().fused.empty())
-                for (const FusableEffect* f : steps.back().fusedEffects)
-                    slots += f->slotCount();
-            if (!steps.empty() && !steps.back().fused.empty() &&
-                slots + fusable->slotCount() <= kPostMaxSlots) {
-                steps.back().fused.push_back(e);
-                steps.back().fusedEffects.push_back(fusable);
-            } else {
-                Step step;
-                step.fused = {e};
-                step.fusedEffects = {fusable};
-                step.encodingId = encodingId;
-                steps.push_back(std::move(step));
-            }
-        } else {
-            Step step;
-            step.single = e;
-            step.singleEffect = renderer;
-            step.displayToneMap = fusable != nullptr; // a fusable effect that does not fuse
-            step.listIndex = i;
-            steps.push_back(std::move(step));
-            if (renderer->readsPreviousFrame(*e))
-                readers.push_back(i);
+    for (const PostPlanStep& step : steps)
+        for (int index : step.effects) {
+            const EffectInstance& e = plan.effect(chain, index);
+            PostEffect* renderer = d.effect(e.type, error);
+            if (!renderer)
+                return false;
+            if (step.kind == PostPlanStep::Kind::Single && renderer->readsPreviousFrame(e))
+                readers.push_back(step.listIndex);
         }
-    }
     d.lastSteps = int(steps.size());
     // History no effect of this chain reads goes back to the pool.
     for (auto it = d.history.begin(); it != d.history.end();)
@@ -381,12 +312,12 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
         const auto start = std::chrono::steady_clock::now();
         if (d.profiling)
             glFinish();
-        ok = d.runStep(steps[i], in, current, out, error);
+        ok = d.runStep(chain, plan, steps[i], in, encodingId, current, out, error);
         if (d.profiling) {
             glFinish();
-            d.timings.push_back({steps[i].name(), std::chrono::duration<double, std::milli>(
-                                                      std::chrono::steady_clock::now() - start)
-                                                      .count()});
+            d.timings.push_back({steps[i].name, std::chrono::duration<double, std::milli>(
+                                                    std::chrono::steady_clock::now() - start)
+                                                    .count()});
         }
         if (currentPooled)
             d.pool.release(current);
@@ -418,90 +349,6 @@ void PostChainRenderer::endFrame() {
         d.pool.release(t);
     d.held.clear();
     d.pool.trim();
-}
-
-bool PostChainRenderer::apply(const PostChain& chain, const PostTestInput& input, Image& output,
-                              std::string* error) {
-    Impl& d = *m_impl;
-    d.init();
-    const int w = input.color.width, h = input.color.height;
-    if (w <= 0 || h <= 0) {
-        if (error)
-            *error = "PostChainRenderer::apply: empty input";
-        return false;
-    }
-    GLint previousFbo = 0, viewport[4] = {};
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFbo);
-    glGetIntegerv(GL_VIEWPORT, viewport);
-
-    const GLuint color = makeTexture(GL_RGBA32F, input.color, 4);
-    Image depth = input.depth;
-    if (depth.width != w || depth.height != h) {
-        depth = Image(w, h, 1);
-        std::fill(depth.pixels.begin(), depth.pixels.end(), 1.0f);
-    }
-    Image normals(w, h, 2);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            glm::vec3 n(0, 0, 1);
-            if (input.normals.width == w && input.normals.height == h)
-                n = glm::vec3(input.normals.at(x, y)[0], input.normals.at(x, y)[1],
-                              input.normals.at(x, y)[2]);
-            const glm::uvec2 q = octEncodeUnorm16(glm::normalize(n));
-            normals.at(x, y)[0] = float(q.x) / 65535.0f;
-            normals.at(x, y)[1] = float(q.y) / 65535.0f;
-        }
-    const GLuint depthTex = makeTexture(GL_R32F, depth, 1);
-    const GLuint normalTex = makeTexture(GL_RG32F, normals, 2);
-    int depthUnit = 0, normalUnit = 0;
-    for (size_t i = 0; i < gbufferAttachments().size(); ++i) {
-        if (gbufferAttachments()[i].define == "GBUFFER_DEPTH")
-            depthUnit = int(i);
-        if (gbufferAttachments()[i].define == "GBUFFER_NORMAL")
-            normalUnit = int(i);
-    }
-    glBindTextureUnit(GLuint(depthUnit), depthTex);
-    glBindTextureUnit(GLuint(normalUnit), normalTex);
-
-    GLuint outTex = 0, outFbo = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &outTex);
-    glTextureStorage2D(outTex, 1, GL_RGBA32F, w, h);
-    glCreateFramebuffers(1, &outFbo);
-    glNamedFramebufferTexture(outFbo, GL_COLOR_ATTACHMENT0, outTex, 0);
-
-    PostRunInputs in;
-    in.hdrTexture = color;
-    in.width = w;
-    in.height = h;
-    in.viewProj = input.viewProj;
-    in.prevViewProj = input.prevViewProj;
-    in.proj = input.proj;
-    in.time = input.time;
-    in.encoding = input.encoding;
-    in.finalFbo = outFbo;
-    PostRunResult result;
-    const bool ok = run(chain, in, result, error);
-    if (ok) {
-        const GLuint tex = result.displayEncoded ? outTex : result.hdrTexture;
-        std::vector<float> rows(size_t(w) * h * 4);
-        glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, GLsizei(rows.size() * sizeof(float)),
-                          rows.data());
-        output = Image(w, h, 4);
-        for (int y = 0; y < h; ++y)
-            std::copy_n(rows.data() + size_t(h - 1 - y) * w * 4, size_t(w) * 4,
-                        output.pixels.data() + size_t(y) * w * 4);
-    }
-    endFrame();
-    glBindTextureUnit(GLuint(depthUnit), 0);
-    glBindTextureUnit(GLuint(normalUnit), 0);
-    glDeleteTextures(1, &color);
-    glDeleteTextures(1, &depthTex);
-    glDeleteTextures(1, &normalTex);
-    glDeleteTextures(1, &outTex);
-    glDeleteFramebuffers(1, &outFbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previousFbo));
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    return ok;
 }
 
 int PostChainRenderer::compileCount() const {

@@ -2,16 +2,17 @@
 /// @file post_chain.h
 /// Render-private: runs a scene's post chain (core/post_chain.h) after lighting, in chain order
 /// (Filament's PostProcessManager style: each step takes an input texture and returns its output).
-/// Consecutive pointwise effects (tone mapping, colour grading, toon, vignette, night vision,
-/// film grain) are fused into one generated pass; blur-like effects run at half resolution;
-/// render targets come from a pool and are reused across frames. Effects that need depth or
-/// normals read the G-buffer textures bound at their layout units (gbuffer_layout.h). Each effect
-/// type is one class (render/post_effects/post_<type>.cpp, render/post_effect.h); an effect
-/// instance that reads the previous frame (motion blur with frame blending) gets last frame's
-/// copy of its input, kept in a pooled target only while such an instance is in the chain.
+/// Which passes a run draws is the chain's plan (render/post_plan.h: consecutive pointwise effects
+/// fused into one generated pass), computed without GL and kept until the chain changes;
+/// blur-like effects run at half resolution; render targets come from a pool and are reused
+/// across frames. Effects that need depth or normals read the G-buffer textures bound at their
+/// layout units (gbuffer_layout.h). Each effect type's renderer is built from the catalogue or is
+/// a class of its own (render/post_effect.h, makePostEffect); an effect instance that reads the
+/// previous frame (motion blur with frame blending) gets last frame's copy of its input, kept in
+/// a pooled target only while such an instance is in the chain. Tests run a chain on synthetic
+/// images through tests/render/post_test_harness.h.
 /// Needs a current OpenGL 4.5 core context from the first run to destruction.
 
-#include "core/image.h"
 #include "core/post_chain.h"
 
 #include <functional>
@@ -64,17 +65,6 @@ struct PostStepTiming {
     double ms = 0.0;
 };
 
-/// Synthetic inputs for tests: small float images, row 0 at the top (core/image.h).
-struct PostTestInput {
-    Image color;   ///< RGBA (or RGB) scene-linear
-    Image depth;   ///< 1 channel hardware depth in [0, 1]; empty: everything at depth 1
-    Image normals; ///< 3 channels world normals; empty: +Z
-    glm::mat4 viewProj{1.0f}, prevViewProj{1.0f}, proj{1.0f};
-    float time = 0.0f;
-    /// The display encoding after built-in tone curves (null: the hand-written sRGB fallback).
-    const DisplayEncoding* encoding = nullptr;
-};
-
 class PostChainRenderer {
 public:
     PostChainRenderer();
@@ -98,12 +88,6 @@ public:
     /// good build, so the chain goes on drawing; false + every message (file:line and the driver
     /// log), joined by newlines. Programs not built yet are compiled on first use as before.
     bool reload(std::string* error);
-
-    /// Test entry point: uploads @p input, runs @p chain and reads back RGBA float (row 0 at the
-    /// top): display-encoded when the chain tone maps, scene-linear otherwise. Saves and restores
-    /// the framebuffer binding and viewport.
-    bool apply(const PostChain& chain, const PostTestInput& input, Image& output,
-               std::string* error);
 
     int compileCount() const;
     /// Render-target textures allocated since construction / held now.

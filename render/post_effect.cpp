@@ -186,7 +186,7 @@ void SinglePassEffect::run(PostContext& ctx, const EffectInstance& effect, const
 
 FusableEffect::FusableEffect(std::string_view type, std::string glslFile)
     : PostEffect(type),
-      m_glslFile(glslFile.empty() ? "post_" + std::string(type) + ".frag" : std::move(glslFile)) {}
+      m_glslFile(glslFile.empty() ? "post_" + std::string(type) + ".glsl" : std::move(glslFile)) {}
 
 std::vector<PostPassInfo> FusableEffect::passes() const {
     return {{"fused pointwise pass", m_glslFile, 1}};
@@ -242,30 +242,27 @@ std::string fusedPassSource(const std::vector<const FusableEffect*>& effects) {
 }
 
 std::unique_ptr<PostEffect> makePostEffect(std::string_view type) {
+    const EffectMeta* meta = findPostEffect(type);
+    if (!meta)
+        return nullptr;
+    // Effects with passes or inputs of their own; every other effect is built from its
+    // catalogue entry: a pointwise one is a shader function fused with its neighbours
+    // (post_<type>.glsl), any other one a single pass of post_<type>.frag.
     using Factory = std::unique_ptr<PostEffect> (*)();
-    static constexpr std::pair<std::string_view, Factory> kFactories[] = {
+    static constexpr std::pair<std::string_view, Factory> kClasses[] = {
         {"bloom", makeBloomEffect},
         {"motion_blur", makeMotionBlurEffect},
         {"depth_of_field", makeDepthOfFieldEffect},
-        {"toon", makeToonEffect},
-        {"color_grading", makeColorGradingEffect},
         {"paintbrush", makePaintbrushEffect},
         {"tonemap", makeToneMapEffect},
         {"gaussian_blur", makeGaussianBlurEffect},
-        {"pixelate", makePixelateEffect},
-        {"chromatic_aberration", makeChromaticAberrationEffect},
-        {"vignette", makeVignetteEffect},
-        {"night_vision", makeNightVisionEffect},
-        {"pointillism", makePointillismEffect},
-        {"vaporwave", makeVaporwaveEffect},
-        {"film_grain", makeFilmGrainEffect},
-        {"sharpen", makeSharpenEffect},
-        {"fxaa", makeFxaaEffect},
     };
-    for (const auto& [name, factory] : kFactories)
+    for (const auto& [name, factory] : kClasses)
         if (name == type)
             return factory();
-    return nullptr;
+    if (meta->pointwise)
+        return std::make_unique<FusableEffect>(type);
+    return std::make_unique<SinglePassEffect>(type);
 }
 
 } // namespace velvet::render

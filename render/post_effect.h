@@ -115,7 +115,9 @@ struct PostPassInfo {
 
 class FusableEffect;
 
-/// One effect type, one class (render/post_effects/post_<type>.cpp), one shader file. run()
+/// The renderer of one effect type: a SinglePassEffect or FusableEffect built from the catalogue,
+/// or a class of its own (render/post_effects/post_<type>.cpp) for effects with several passes
+/// or extra inputs (makePostEffect). run()
 /// reads @p input and writes @p output (a pooled target or the final framebuffer, same size as
 /// the input); temporaries come from ctx.pool.
 class PostEffect {
@@ -149,9 +151,10 @@ private:
 };
 
 /// An effect that is one fullscreen pass of resources/shaders/post_<type>.frag with its
-/// parameters in uParams[0 …] (catalogue order). Effects that read neighbouring pixels (pixelation,
-/// motion blur, pointillism, vaporwave, chromatic aberration, sharpen, FXAA) derive from it; they
-/// cannot be fused with their neighbours.
+/// parameters in uParams[0 …] (catalogue order): every effect that is not pointwise and has no
+/// class of its own (pixelation, pointillism, vaporwave, chromatic aberration, sharpen, FXAA) is
+/// one, built from its catalogue entry; motion blur derives from it to bind the previous frame.
+/// These read neighbouring pixels, so they cannot be fused with their neighbours.
 class SinglePassEffect : public PostEffect {
 public:
     explicit SinglePassEffect(std::string_view type);
@@ -171,7 +174,9 @@ private:
     std::string m_shader;
 };
 
-/// A pointwise effect: its GLSL file defines `vec4 post_<type>(vec4 colour, ivec2 px, int base)`
+/// A pointwise effect (EffectMeta::pointwise: toon, colour grading, vignette, night vision, film
+/// grain from the catalogue alone; tone mapping derives from it): its include-only file
+/// post_<type>.glsl defines `vec4 post_<type>(vec4 colour, ivec2 px, int base)`
 /// reading parameters from uParams[base …]. Consecutive fusable effects are one pass whose main
 /// (fusedPassSource) calls each function in chain order; each effect uploads its own uniforms at
 /// its base slot. Run alone, the effect is a fused pass of one.
@@ -181,17 +186,12 @@ public:
     const FusableEffect* fusable() const override { return this; }
     std::vector<PostPassInfo> passes() const override;
 
-    /// The file defining the function (default "post_<type>.frag").
+    /// The include-only file defining the function (default "post_<type>.glsl").
     const std::string& glslFile() const { return m_glslFile; }
     /// "post_<type>"
     std::string glslFunction() const;
     /// vec4 slots the effect's uniforms take (one per parameter).
     int slotCount() const { return int(meta().params.size()); }
-    /// Whether @p effect runs as a shader function (true) or as a step of its own (the tone map
-    /// drawn by the OCIO display transform).
-    virtual bool fuses(const EffectInstance& /*effect*/, bool /*forceDisplayTransform*/) const {
-        return true;
-    }
     /// Whether the function calls displayEncode() (the generated include
     /// "display_encode.glsl", render/display_encoding.h): a fused pass containing it is built
     /// per display encoding.
@@ -215,28 +215,21 @@ private:
 /// in order, effect i reading its parameters from the sum of the slot counts before it.
 std::string fusedPassSource(const std::vector<const FusableEffect*>& effects);
 
-/// A new renderer for catalogue type @p type, or nullptr when none exists.
+/// A new renderer for catalogue type @p type (nullptr for a type not in the catalogue): the
+/// effect's class when it has one, else a FusableEffect for a pointwise type and a
+/// SinglePassEffect for any other.
 std::unique_ptr<PostEffect> makePostEffect(std::string_view type);
 
-/// @name One factory per effect class (render/post_effects/post_<type>.cpp)
+/// @name The effects with classes of their own (render/post_effects/post_<type>.cpp): several
+/// passes, a shared blur, the previous frame or the OCIO display transform. makePostEffect builds
+/// every other catalogue type from its metadata alone.
 /// @{
 std::unique_ptr<PostEffect> makeBloomEffect();
 std::unique_ptr<PostEffect> makeMotionBlurEffect();
 std::unique_ptr<PostEffect> makeDepthOfFieldEffect();
-std::unique_ptr<PostEffect> makeToonEffect();
-std::unique_ptr<PostEffect> makeColorGradingEffect();
 std::unique_ptr<PostEffect> makePaintbrushEffect();
 std::unique_ptr<PostEffect> makeToneMapEffect();
 std::unique_ptr<PostEffect> makeGaussianBlurEffect();
-std::unique_ptr<PostEffect> makePixelateEffect();
-std::unique_ptr<PostEffect> makeChromaticAberrationEffect();
-std::unique_ptr<PostEffect> makeVignetteEffect();
-std::unique_ptr<PostEffect> makeNightVisionEffect();
-std::unique_ptr<PostEffect> makePointillismEffect();
-std::unique_ptr<PostEffect> makeVaporwaveEffect();
-std::unique_ptr<PostEffect> makeFilmGrainEffect();
-std::unique_ptr<PostEffect> makeSharpenEffect();
-std::unique_ptr<PostEffect> makeFxaaEffect();
 /// @}
 
 } // namespace velvet::render

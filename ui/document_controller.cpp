@@ -1,7 +1,9 @@
 #include "ui/document_controller.h"
 
 #include "core/document_io.h"
+#include "core/post_effects.h"
 #include "ui/commands/atlas_commands.h"
+#include "ui/commands/post_chain_commands.h"
 #include "ui/commands/set_param_command.h"
 #include "ui/commands/set_scene_command.h"
 
@@ -259,6 +261,47 @@ void DocumentController::setRecoveredDocument(Scene scene, const QString& filePa
     setDocument(std::move(scene), filePath, std::move(atlases));
     m_undoStack->resetClean(); // no clean state on the stack: dirty until saved
     emit dirtyChanged(true);
+}
+
+bool DocumentController::editEffectParam(EffectId effect, const std::string& param, glm::vec3 value,
+                                         int mergeKey) {
+    // Compare against what core would store, so a no-op edit (clamped, or the same value) never
+    // creates a command.
+    PostChain probe = m_scene.post;
+    if (!setEffectParam(probe, effect, param, value))
+        return false;
+    const size_t index = size_t(findEffectIndex(probe, effect));
+    const EffectInstance& before = m_scene.post.effects[index];
+    const EffectInstance& after = probe.effects[index];
+    const ParamMeta& meta = *findEffectParam(*findPostEffect(after.type), param);
+    if (effectValue(before, meta) == effectValue(after, meta))
+        return false;
+    const auto it = before.params.find(param);
+    m_undoStack->push(new SetEffectParamCommand(
+        this, effect, param, it == before.params.end() ? std::vector<float>{} : it->second,
+        after.params.at(param), mergeKey));
+    return true;
+}
+
+bool DocumentController::resetEffectParam(EffectId effect, const std::string& param) {
+    const long index = findEffectIndex(m_scene.post, effect);
+    const EffectMeta* meta =
+        index < 0 ? nullptr : findPostEffect(m_scene.post.effects[size_t(index)].type);
+    const ParamMeta* p = meta ? findEffectParam(*meta, param) : nullptr;
+    if (!p)
+        return false;
+    const EffectInstance& current = m_scene.post.effects[size_t(index)];
+    if (effectValue(current, *p) == p->defaultValue)
+        return false;
+    const auto it = current.params.find(param);
+    auto* cmd = new SetEffectParamCommand(
+        this, effect, param, it == current.params.end() ? std::vector<float>{} : it->second,
+        effectParamComponents(*p, p->defaultValue), 0);
+    cmd->setText(tr("Reset %1 %2")
+                     .arg(QString::fromUtf8(meta->label.data(), qsizetype(meta->label.size())),
+                          QString::fromUtf8(p->label.data(), qsizetype(p->label.size()))));
+    m_undoStack->push(cmd);
+    return true;
 }
 
 } // namespace velvet::ui

@@ -128,6 +128,19 @@ signals:
     /// The undo stack left or reached its clean state.
     void dirtyChanged(bool dirty);
 
+public:
+    /// @name Post chain edits, effects addressed by id (EffectInstance::id), so an edit reaches
+    /// the same effect after a reorder. Values go through core's rules (setEffectParam: clamped,
+    /// a choice rounded); each edit is one undo command, and consecutive edits with the same
+    /// non-zero @p mergeKey (one slider drag) merge into one. False when nothing changes (an
+    /// unknown effect or parameter, or the value it already holds).
+    /// @{
+    bool editEffectParam(EffectId effect, const std::string& param, glm::vec3 value,
+                         int mergeKey = 0);
+    /// Back to the parameter's default: one command named "Reset <effect> <parameter>".
+    bool resetEffectParam(EffectId effect, const std::string& param);
+    /// @}
+
 private:
     Scene m_scene;
     AtlasSet m_atlases;

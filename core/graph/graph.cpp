@@ -162,14 +162,10 @@ EditResult Graph::setInputValue(NodeId id, PortIndex input, glm::vec4 value) {
                                   (spec.fallback == Fallback::Material
                                        ? " (it keeps the material's parameter)"
                                        : " (it reads the mesh's UVs)"));
-    const int count = portTypeComponents(spec.type);
-    glm::vec4 v(0.0f);
-    for (int i = 0; i < count; ++i) {
+    for (int i = 0; i < portTypeComponents(spec.type); ++i)
         if (!std::isfinite(value[i]))
             return EditResult::refuse(inputName(*n, input) + ": value is not a finite number");
-        v[i] = std::clamp(value[i], spec.min, spec.max);
-    }
-    n->inputValues[input] = v;
+    n->inputValues[input] = constrainInputValue(spec, value);
     Change c;
     c.what = Change::What::ValueSet;
     c.kind = ChangeKind::Value;

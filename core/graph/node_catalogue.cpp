@@ -2,6 +2,7 @@
 
 #include "core/graph/glsl_format.h"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 
@@ -472,6 +473,14 @@ int indexOf(const std::vector<Spec>& specs, std::string_view name) {
 }
 
 } // namespace
+
+glm::vec4 constrainInputValue(const InputSpec& spec, glm::vec4 value) {
+    const int count = portTypeComponents(spec.type);
+    glm::vec4 v(0.0f);
+    for (int i = 0; i < count; ++i)
+        v[i] = std::clamp(value[i], spec.min, spec.max);
+    return v;
+}
 
 int NodeType::inputIndex(std::string_view name) const {
     return indexOf(inputs, name);

@@ -98,6 +98,11 @@ struct NodeType {
     int settingIndex(std::string_view name) const;
 };
 
+/// The value rules of an input edit, next to its metadata (as constrainParamValue is for
+/// parameters): each of the port type's components clamped to [min, max], the others 0. A
+/// non-finite component is left for the caller to refuse (Graph::setInputValue does).
+glm::vec4 constrainInputValue(const InputSpec& spec, glm::vec4 value);
+
 /// Every node type, in menu order.
 std::span<const NodeType> nodeTypes();
 /// The type whose id is @p id, or nullptr.

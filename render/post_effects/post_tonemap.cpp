@@ -1,4 +1,4 @@
-// Tone mapping as a chain stage: post_tonemap() in resources/shaders/post_tonemap_curve.frag
+// Tone mapping as a chain stage: post_tonemap() in resources/shaders/post_tonemap.glsl
 // (exposure, a curve, then OCIO's display encoding), fused with its pointwise neighbours; the
 // "display" operator is instead drawn by the OpenColorIO display transform
 // (render/display_transform.cpp) as a step of its own, run by render/post_chain.cpp through
@@ -12,15 +12,9 @@ namespace {
 /// linear; uniforms: uParams[base + TONEMAP_EXPOSURE], uParams[base + TONEMAP_OPERATOR].
 class ToneMapEffect final : public FusableEffect {
 public:
-    ToneMapEffect() : FusableEffect("tonemap", "post_tonemap_curve.frag") {}
+    ToneMapEffect() : FusableEffect("tonemap") {}
 
-    bool fuses(const EffectInstance& effect, bool forceDisplayTransform) const override {
-        return !forceDisplayTransform && effectFloat(effect, "operator") != kDisplayOperator;
-    }
     bool displayEncodes() const override { return true; }
-
-private:
-    static constexpr float kDisplayOperator = 6.0f; ///< "display" in the operator choices
 };
 
 } // namespace

@@ -18,7 +18,7 @@ vec3 heatMap(float count) {
     return c;
 }
 
-// Display mapping of the views above (post_tonemap.frag); false for the views it leaves alone.
+// Display mapping of the views above (display_output.frag); false for the views it leaves alone.
 // Colour-like views come back display-linear with @p encode set: the caller encodes them with
 // the display's OCIO encoding (displayEncode), as the final view; the false-colour maps (heat
 // map, material id hues) are already display values.

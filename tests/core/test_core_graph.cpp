@@ -66,6 +66,22 @@ class TestCoreGraph : public QObject {
     Q_OBJECT
 
 private slots:
+    /// The value rules of an input edit: the port type's components clamped to the input's
+    /// range, the others 0; Graph::setInputValue stores exactly that.
+    void inputValuesAreConstrained() {
+        graph::InputSpec colour;
+        colour.type = graph::PortType::Color;
+        colour.min = 0.0f;
+        colour.max = 1.0f;
+        QCOMPARE(graph::constrainInputValue(colour, glm::vec4(-1.0f, 0.5f, 3.0f, 9.0f)),
+                 glm::vec4(0.0f, 0.5f, 1.0f, 0.0f));
+        graph::InputSpec scalar;
+        scalar.min = -2.0f;
+        scalar.max = 2.0f;
+        QCOMPARE(graph::constrainInputValue(scalar, glm::vec4(5.0f, 1.0f, 1.0f, 1.0f)),
+                 glm::vec4(2.0f, 0.0f, 0.0f, 0.0f));
+    }
+
     // The catalogue is well formed: unique ids and port names, defaults within range, snippets.
     void catalogue() {
         std::set<std::string_view> ids;

@@ -86,6 +86,60 @@ private slots:
         QVERIFY(!setEffectEnabled(c, 3, true));
     }
 
+    /// Ids: unique per created or loaded instance, kept by copies, new for a duplicate, not part
+    /// of an instance's value (a loaded chain equals the saved one), never written to a file.
+    void effectIdsAreStableIdentities() {
+        PostChain chain;
+        chain.effects = {makeEffect("bloom"), makeEffect("vignette"), makeEffect("fxaa")};
+        const std::set<EffectId> ids{chain.effects[0].id, chain.effects[1].id, chain.effects[2].id};
+        QCOMPARE(ids.size(), size_t(3));
+        QVERIFY(!ids.count(0));
+        const EffectId vignette = chain.effects[1].id;
+        QVERIFY(moveEffect(chain, 1, 2));
+        QCOMPARE(findEffectIndex(chain, vignette), 2L);
+        QCOMPARE(findEffectIndex(chain, 0), -1L);
+        const PostChain copy = chain;
+        QCOMPARE(copy.effects[2].id, vignette);
+        QVERIFY(duplicateEffect(chain, 2));
+        QCOMPARE(chain.effects[2].id, vignette);
+        QVERIFY(chain.effects[3].id != vignette && !ids.count(chain.effects[3].id));
+        QCOMPARE(chain.effects[3], chain.effects[2]); // same value, other identity
+
+        const std::string text = postChainToJson({"ids", copy});
+        QVERIFY2(text.find("\"id\"") == std::string::npos, text.c_str());
+        Problems problems;
+        const std::optional<PostChainPreset> loaded = parsePostChain(text, "ids.json", problems);
+        QVERIFY(loaded);
+        QCOMPARE(loaded->chain, copy);
+        QVERIFY(loaded->chain.effects[0].id != copy.effects[0].id); // loading creates instances
+    }
+
+    /// The value rules, in core next to the metadata: clamped per channel, a choice rounded, a
+    /// non-finite value replaced by the default; setEffectParam applies them by id.
+    void valueRulesClampAndRound() {
+        const EffectMeta& grading = *findPostEffect("color_grading");
+        const ParamMeta& gain = *findEffectParam(grading, "gain");
+        QCOMPARE(constrainParamValue(gain, glm::vec3(-1.0f, 2.0f, 9.0f)),
+                 glm::vec3(0.0f, 2.0f, gain.max));
+        const ParamMeta& curve = *findEffectParam(*findPostEffect("tonemap"), "operator");
+        QCOMPARE(constrainParamValue(curve, glm::vec3(2.5f)).x, 3.0f);
+        QCOMPARE(constrainParamValue(curve, glm::vec3(99.0f)).x, curve.max);
+        const ParamMeta& contrast = *findEffectParam(grading, "contrast");
+        QCOMPARE(constrainParamValue(contrast, glm::vec3(std::nanf(""))).x,
+                 contrast.defaultValue.x);
+
+        PostChain chain;
+        chain.effects = {makeEffect("tonemap"), makeEffect("color_grading")};
+        const EffectId id = chain.effects[1].id;
+        QVERIFY(setEffectParam(chain, id, "gain", glm::vec3(-1.0f, 2.0f, 9.0f)));
+        QCOMPARE(chain.effects[1].params["gain"], (std::vector<float>{0.0f, 2.0f, gain.max}));
+        QVERIFY(setEffectParam(chain, id, "contrast", glm::vec3(7.0f, 1.0f, 1.0f)));
+        QCOMPARE(chain.effects[1].params["contrast"], (std::vector<float>{contrast.max}));
+        QVERIFY(!setEffectParam(chain, id, "no_such_param", glm::vec3(1.0f)));
+        QVERIFY(!setEffectParam(chain, id + 1000, "contrast", glm::vec3(1.0f)));
+        QVERIFY(checkEffectParams(chain).empty()); // what the rules store, a file accepts
+    }
+
     void seedOrderIsValid() {
         // Seed 004: pre-passes, HDR effects, paintbrush, tone mapping, LDR effects.
         const PostChain c = chainOf({"bloom", "motion_blur", "depth_of_field", "paintbrush",

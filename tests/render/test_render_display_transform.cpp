@@ -5,6 +5,7 @@
 #include "core/post_chain.h"
 #include "core/post_effects.h"
 #include "core/tone_curves.h"
+#include "post_test_harness.h"
 #include "render/display_encoding.h"
 #include "render/display_transform.h"
 #include "render/offscreen.h"
@@ -325,12 +326,12 @@ private slots:
         PostChain c;
         c.effects.push_back(makeEffect("tonemap"));
         c.effects[0].params["operator"] = {5.0f}; // linear: clamp to [0, 1]
-        render::PostTestInput in;
+        test::PostTestInput in;
         in.color = ramp;
         in.encoding = &encoding;
         Image gpu;
         std::string error;
-        QVERIFY2(chain.apply(c, in, gpu, &error), error.c_str());
+        QVERIFY2(test::applyPostChain(chain, c, in, gpu, &error), error.c_str());
         const auto clamp01 = [](glm::vec3 v) { return glm::clamp(v, 0.0f, 1.0f); };
         QString where;
         const float worst =

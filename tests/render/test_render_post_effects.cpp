@@ -1,4 +1,4 @@
-// Each post effect's defining property on a small synthetic input (render/post_chain.h's apply
+// Each post effect's defining property on a small synthetic input (post_test_harness.h
 // runs the real chain on float textures), plus pooling, fusion, ordering and one golden per
 // effect.
 //
@@ -8,6 +8,7 @@
 #include "core/image.h"
 #include "core/post_effects.h"
 #include "core/tone_curves.h"
+#include "post_test_harness.h"
 #include "render/offscreen.h"
 #include "render/post_chain.h"
 #include "render/post_effect.h"
@@ -21,7 +22,7 @@
 #include <set>
 
 using namespace velvet;
-using render::PostTestInput;
+using test::PostTestInput;
 
 namespace {
 
@@ -149,7 +150,7 @@ float srgbDecode(float c) {
 }
 
 /// @name C++ twins of the tone curves (resources/shaders/common_tonemap.glsl,
-/// post_tonemap_curve.frag), in the operator order of the tonemap effect's choice.
+/// post_tonemap.glsl), in the operator order of the tonemap effect's choice.
 /// @{
 glm::vec3 acesFitted(glm::vec3 c) {
     const glm::mat3 in(0.59719f, 0.07600f, 0.02840f, 0.35458f, 0.90834f, 0.13383f, 0.04823f,
@@ -258,7 +259,7 @@ class TestRenderPostEffects : public QObject {
     Image run(const PostChain& chain, const PostTestInput& in) {
         Image out;
         std::string error;
-        if (!m_post->apply(chain, in, out, &error))
+        if (!test::applyPostChain(*m_post, chain, in, out, &error))
             qFatal("post chain failed: %s", error.c_str());
         return out;
     }
@@ -891,9 +892,9 @@ private slots:
         QVERIFY(maxDiff(run(plain, b), b.color) < 2e-3f);
     }
 
-    // One renderer class per catalogue effect; the pointwise ones are fusable, and every shader
-    // their passes name ships.
-    void everyEffectHasItsClass() {
+    // One renderer per catalogue effect (built from the entry, or the effect's own class); the
+    // pointwise ones are fusable, and every shader their passes name ships.
+    void everyEffectHasARenderer() {
         for (const EffectMeta& m : postEffectCatalogue()) {
             const std::string type(m.type);
             const std::unique_ptr<render::PostEffect> e = render::makePostEffect(m.type);

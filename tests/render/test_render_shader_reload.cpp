@@ -64,10 +64,10 @@ private slots:
     void reloadBreaksAndMendsEveryProgram_data() {
         QTest::addColumn<QString>("file");
         for (const char* f :
-             {"gbuffer.frag", "lighting.frag", "post_tonemap.frag", "light_tiled.comp",
+             {"gbuffer.frag", "lighting.frag", "display_output.frag", "light_tiled.comp",
               "light_volume.vert", "light_volume.frag", "light_brute.frag",
               "ibl_equirect_to_cube.comp", "ibl_downsample.comp", "ibl_prefilter.comp",
-              "ibl_dfg.comp", "post_display.frag", "light_common.glsl"})
+              "ibl_dfg.comp", "display_transform.frag", "light_common.glsl"})
             QTest::newRow(f) << QString(f);
     }
 
@@ -115,8 +115,8 @@ private slots:
     // pass, bloom four programs of one file, vignette and tone map one fused pass.
     void reloadBreaksAndMendsPostChainPrograms_data() {
         QTest::addColumn<QString>("file");
-        for (const char* f : {"post_pixelate.frag", "post_bloom.frag", "post_vignette.frag",
-                              "post_tonemap_curve.frag", "post_common.glsl"})
+        for (const char* f : {"post_pixelate.frag", "post_bloom.frag", "post_vignette.glsl",
+                              "post_tonemap.glsl", "post_common.glsl"})
             QTest::newRow(f) << QString(f);
     }
 

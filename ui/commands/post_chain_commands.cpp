@@ -122,27 +122,29 @@ void ToggleEffectCommand::undo() {
     m_controller->setPostChain(chain);
 }
 
-SetEffectParamCommand::SetEffectParamCommand(DocumentController* controller, size_t index,
+SetEffectParamCommand::SetEffectParamCommand(DocumentController* controller, EffectId effect,
                                              std::string param, std::vector<float> oldValue,
                                              std::vector<float> newValue, int mergeKey,
                                              QUndoCommand* parent)
     : ValueEditCommand(std::move(oldValue), std::move(newValue), mergeKey, parent),
-      m_controller(controller), m_index(index), m_param(std::move(param)) {
+      m_controller(controller), m_effect(effect), m_param(std::move(param)) {
     QString label = QString::fromStdString(m_param);
-    const auto& effects = controller->scene().post.effects;
-    if (index < effects.size())
-        if (const EffectMeta* meta = findPostEffect(effects[index].type))
-            if (const ParamMeta* p = findEffectParam(*meta, m_param))
-                label = effectLabel(effects[index].type) + QStringLiteral(" ") +
-                        QString::fromUtf8(p->label.data(), static_cast<qsizetype>(p->label.size()));
+    const PostChain& chain = controller->scene().post;
+    const long index = findEffectIndex(chain, effect);
+    const std::string type = index >= 0 ? chain.effects[size_t(index)].type : std::string();
+    if (const EffectMeta* meta = findPostEffect(type))
+        if (const ParamMeta* p = findEffectParam(*meta, m_param))
+            label = effectLabel(type) + QStringLiteral(" ") +
+                    QString::fromUtf8(p->label.data(), static_cast<qsizetype>(p->label.size()));
     setText(tr("Set %1").arg(label));
 }
 
 void SetEffectParamCommand::apply(const std::vector<float>& value) {
     PostChain chain = m_controller->scene().post;
-    if (m_index >= chain.effects.size())
+    const long index = findEffectIndex(chain, m_effect);
+    if (index < 0)
         return;
-    auto& params = chain.effects[m_index].params;
+    auto& params = chain.effects[size_t(index)].params;
     if (value.empty())
         params.erase(m_param);
     else

@@ -87,13 +87,15 @@ private:
     bool m_enabled;
 };
 
-/// Sets one parameter of the effect at an index. Commands with the same effect, parameter and
-/// non-zero merge key (one slider drag) merge; a drag back to the old value is obsolete.
+/// Sets one parameter of the effect with an id (wherever the effect has moved to meanwhile):
+/// built by DocumentController::editEffectParam with values core's rules already constrained.
+/// Commands with the same effect, parameter and non-zero merge key (one slider drag) merge; a
+/// drag back to the old value is obsolete.
 class SetEffectParamCommand : public ValueEditCommand<SetEffectParamCommand, std::vector<float>> {
 public:
     static constexpr int kId = 0x5f0;
 
-    SetEffectParamCommand(DocumentController* controller, size_t index, std::string param,
+    SetEffectParamCommand(DocumentController* controller, EffectId effect, std::string param,
                           std::vector<float> oldValue, std::vector<float> newValue, int mergeKey,
                           QUndoCommand* parent = nullptr);
     void undo() override;
@@ -102,14 +104,14 @@ public:
 private:
     friend ValueEditCommand;
     bool sameTarget(const SetEffectParamCommand& next) const {
-        return next.m_index == m_index && next.m_param == m_param;
+        return next.m_effect == m_effect && next.m_param == m_param;
     }
     /// Sets the parameter to @p value; an empty value (m_old when the parameter was absent)
     /// removes it, so the effect falls back to its default.
     void apply(const std::vector<float>& value);
 
     DocumentController* m_controller;
-    size_t m_index;
+    EffectId m_effect;
     std::string m_param;
 };
 

@@ -1,8 +1,10 @@
 #include "ui/graph/graph_model.h"
 
 #include "core/graph/graph_json.h"
+#include "ui/commands/graph_commands.h"
 #include "ui/document_controller.h"
 
+#include <QUndoStack>
 #include <algorithm>
 #include <memory>
 
@@ -46,6 +48,37 @@ void GraphModel::pushToDocument() {
 void GraphModel::graphChanged(const graph::Change& change) {
     emit changed(change);
     pushToDocument();
+}
+
+bool GraphModel::editNodeInput(graph::NodeId node, graph::PortIndex input, glm::vec4 value,
+                               int mergeKey, bool reset) {
+    const graph::Node* n = m_graph.node(node);
+    if (!n || input >= n->type->inputs.size())
+        return false;
+    const graph::InputSpec& spec = n->type->inputs[input];
+    const glm::vec4 next = graph::constrainInputValue(spec, reset ? spec.defaultValue : value);
+    const glm::vec4 old = n->inputValues[input];
+    if (next == old)
+        return false;
+    auto* cmd = new SetNodeInputCommand(this, node, input, old, next, reset ? 0 : mergeKey);
+    const auto view = [](std::string_view s) {
+        return QString::fromUtf8(s.data(), qsizetype(s.size()));
+    };
+    cmd->setText(
+        (reset ? tr("Reset %1 %2") : tr("Set %1 %2")).arg(view(n->type->label), view(spec.label)));
+    undoStack()->push(cmd);
+    return true;
+}
+
+bool GraphModel::editNodeSetting(graph::NodeId node, const std::string& name,
+                                 const std::string& value) {
+    const graph::Node* n = m_graph.node(node);
+    const int index = n ? n->type->settingIndex(name) : -1;
+    if (index < 0 || n->settings[size_t(index)] == value)
+        return false;
+    undoStack()->push(
+        new SetNodeSettingCommand(this, node, name, n->settings[size_t(index)], value));
+    return true;
 }
 
 std::string GraphModel::snapshot(const std::vector<graph::NodeId>& ids) const {

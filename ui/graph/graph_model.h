@@ -33,6 +33,16 @@ public:
     /// Reports a refused edit (the model's one-line reason) to whoever shows messages.
     void refuse(const QString& message) { emit editRefused(message); }
 
+    /// @name Edits the Properties panel asks for (one undo command each; none for a no-op)
+    /// Sets input @p input of node @p node, constrained by core (constrainInputValue); edits
+    /// with the same non-zero @p mergeKey (one slider drag) merge. @p reset: back to the input's
+    /// default. False when nothing changes.
+    /// @{
+    bool editNodeInput(graph::NodeId node, graph::PortIndex input, glm::vec4 value, int mergeKey,
+                       bool reset = false);
+    bool editNodeSetting(graph::NodeId node, const std::string& name, const std::string& value);
+    /// @}
+
     /// @name Snapshots (clipboard, delete and its undo)
     /// The nodes @p ids with their values, settings and the links among them, as the JSON text
     /// of graph_json.h.

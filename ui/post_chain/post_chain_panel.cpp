@@ -207,15 +207,15 @@ PostChainPanel::PostChainPanel(DocumentController* controller, QWidget* parent)
             &PostChainPanel::duplicateCurrent);
     connect(m_list->selectionModel(), &QItemSelectionModel::currentChanged, this, [this] {
         updateActions();
-        emit effectSelected(currentRow());
+        emit effectSelected(effectAt(currentRow()));
     });
     // A click on the row already current shows its parameters again (after a graph node was
     // shown in Properties, say).
     connect(m_list, &QAbstractItemView::clicked, this,
-            [this](const QModelIndex& index) { emit effectSelected(index.row()); });
+            [this](const QModelIndex& index) { emit effectSelected(effectAt(index.row())); });
     connect(m_model, &QAbstractItemModel::modelReset, this, [this] {
         updateActions();
-        emit effectSelected(currentRow());
+        emit effectSelected(effectAt(currentRow()));
     });
     connect(m_controller, &DocumentController::postChainChanged, this, [this] {
         updateIssues();
@@ -247,6 +247,11 @@ void PostChainPanel::buildAddMenu() {
         }
     }
     m_addMenu->setToolTipsVisible(true);
+}
+
+EffectId PostChainPanel::effectAt(int row) const {
+    const auto& effects = m_controller->scene().post.effects;
+    return row >= 0 && row < int(effects.size()) ? effects[size_t(row)].id : 0;
 }
 
 int PostChainPanel::currentRow() const {

@@ -8,6 +8,8 @@
 /// them from the effect's ParamMeta). Every change is a QUndoCommand
 /// (ui/commands/post_chain_commands.h).
 
+#include "core/post_chain.h"
+
 #include <QListView>
 #include <QString>
 #include <QStringList>
@@ -87,11 +89,14 @@ public slots:
 signals:
     /// Errors for the Log (a failed load or save), already formatted.
     void problemsReported(const QString& text);
-    /// The artist selected (or clicked) effect @p row; -1 when nothing is selected. The window
-    /// shows that effect's parameters in Properties.
-    void effectSelected(int row);
+    /// The artist selected (or clicked) the effect with id @p effect (EffectInstance::id); 0 when
+    /// nothing is selected. The window shows that effect's parameters in Properties, which keeps
+    /// following it by id through reorders.
+    void effectSelected(velvet::EffectId effect);
 
 private:
+    /// The id of the effect on @p row, 0 for no row.
+    EffectId effectAt(int row) const;
     void buildAddMenu();
     void updateActions();
     void updateIssues();

@@ -2,8 +2,6 @@
 
 #include "core/graph/graph.h"
 #include "core/post_effects.h"
-#include "ui/commands/graph_commands.h"
-#include "ui/commands/post_chain_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_model.h"
 #include "ui/properties/color_param_editor.h"
@@ -174,13 +172,13 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
     connect(m_controller, &DocumentController::postChainChanged, this, [this] {
         if (m_subject != Subject::Effect)
             return;
-        const auto& effects = m_controller->scene().post.effects;
-        if (m_effectIndex < 0 || m_effectIndex >= int(effects.size()))
+        const int index = effectIndex();
+        if (index < 0) // removed (or its addition undone)
             showMaterial();
-        else if (effects[size_t(m_effectIndex)].type != m_effectType)
-            showEffect(m_effectIndex);
+        else if (m_controller->scene().post.effects[size_t(index)].type != m_effectType)
+            showEffect(m_effectId);
         else
-            refreshEffect();
+            refreshEffect(); // the title names the effect's position, which a move changes
     });
     refreshAll();
     setSubject(Subject::Material, tr("Material"));
@@ -267,7 +265,7 @@ void PropertyPanel::showMaterial() {
         disconnect(m_graphConnection), disconnect(m_graphResetConnection);
     m_graph = nullptr;
     m_node = graph::kInvalidNodeId;
-    m_effectIndex = -1;
+    m_effectId = 0;
     m_effectType.clear();
     if (m_subject != Subject::Material || m_title->text().isEmpty())
         setSubject(Subject::Material, tr("Material"));
@@ -275,11 +273,16 @@ void PropertyPanel::showMaterial() {
 
 // ---- Post effects -------------------------------------------------------------------------------
 
-void PropertyPanel::showEffect(int index) {
+int PropertyPanel::effectIndex() const {
+    return m_subject == Subject::Effect
+               ? int(findEffectIndex(m_controller->scene().post, m_effectId))
+               : -1;
+}
+
+void PropertyPanel::showEffect(EffectId effect) {
     const auto& effects = m_controller->scene().post.effects;
-    const EffectMeta* meta = index >= 0 && index < int(effects.size())
-                                 ? findPostEffect(effects[size_t(index)].type)
-                                 : nullptr;
+    const long index = effect ? findEffectIndex(m_controller->scene().post, effect) : -1;
+    const EffectMeta* meta = index >= 0 ? findPostEffect(effects[size_t(index)].type) : nullptr;
     if (!meta) {
         showMaterial();
         return;
@@ -288,7 +291,7 @@ void PropertyPanel::showEffect(int index) {
         disconnect(m_graphConnection), disconnect(m_graphResetConnection);
     m_graph = nullptr;
     m_node = graph::kInvalidNodeId;
-    m_effectIndex = index;
+    m_effectId = effect;
     m_effectType = effects[size_t(index)].type;
     const QString label = fromView(meta->label);
     QWidget* box =
@@ -315,18 +318,19 @@ void PropertyPanel::showEffect(int index) {
     if (meta->params.empty())
         form->addRow(new QLabel(tr("This effect has no parameters."), box));
     applyColorSpace(m_subjectPage);
-    refreshEffect();
     setSubject(Subject::Effect, tr("%1 (post effect %2)").arg(label).arg(index + 1));
+    refreshEffect();
 }
 
 void PropertyPanel::refreshEffect() {
-    const auto& effects = m_controller->scene().post.effects;
-    if (m_effectIndex < 0 || m_effectIndex >= int(effects.size()))
+    const int index = effectIndex();
+    if (index < 0)
         return;
-    const EffectInstance& effect = effects[size_t(m_effectIndex)];
+    const EffectInstance& effect = m_controller->scene().post.effects[size_t(index)];
     const EffectMeta* meta = findPostEffect(effect.type);
     if (!meta)
         return;
+    m_title->setText(tr("%1 (post effect %2)").arg(fromView(meta->label)).arg(index + 1));
     const bool was = m_refreshing;
     m_refreshing = true;
     for (const ParamMeta& p : meta->params)
@@ -337,34 +341,13 @@ void PropertyPanel::refreshEffect() {
 
 void PropertyPanel::editEffectParam(const std::string& id, glm::vec4 value, int mergeKey,
                                     bool reset) {
+    // The controller applies core's value rules and builds the undo command.
     if (m_refreshing || m_subject != Subject::Effect)
         return;
-    const auto& effects = m_controller->scene().post.effects;
-    if (m_effectIndex < 0 || m_effectIndex >= int(effects.size()))
-        return;
-    const EffectInstance& effect = effects[size_t(m_effectIndex)];
-    const EffectMeta* meta = findPostEffect(effect.type);
-    const ParamMeta* p = meta ? findEffectParam(*meta, id) : nullptr;
-    if (!p)
-        return;
-    glm::vec3 next = reset ? p->defaultValue : glm::vec3(value);
-    next = glm::clamp(next, glm::vec3(p->min), glm::vec3(p->max));
-    if (p->type == ParamType::Choice)
-        next.x = std::round(next.x);
-    const int n = paramComponents(*p);
-    const glm::vec3 current = effectValue(effect, *p);
-    if (n == 3 ? next == current : next.x == current.x)
-        return;
-    std::vector<float> newValue;
-    for (int k = 0; k < n; ++k)
-        newValue.push_back(next[k]);
-    const auto it = effect.params.find(id);
-    std::vector<float> old = it == effect.params.end() ? std::vector<float>{} : it->second;
-    auto* cmd = new SetEffectParamCommand(m_controller, size_t(m_effectIndex), id, std::move(old),
-                                          std::move(newValue), mergeKey);
     if (reset)
-        cmd->setText(tr("Reset %1 %2").arg(fromView(meta->label), fromView(p->label)));
-    m_controller->undoStack()->push(cmd);
+        m_controller->resetEffectParam(m_effectId, id);
+    else
+        m_controller->editEffectParam(m_effectId, id, glm::vec3(value), mergeKey);
 }
 
 // ---- Graph nodes --------------------------------------------------------------------------------
@@ -391,7 +374,7 @@ void PropertyPanel::showGraphNode(GraphModel* model, graph::NodeId id) {
                 showGraphNode(m_graph, m_node);
         });
     }
-    m_effectIndex = -1;
+    m_effectId = 0;
     m_effectType.clear();
     m_node = id;
     const graph::NodeType& type = *node->type;
@@ -537,35 +520,16 @@ void PropertyPanel::onGraphChanged(const graph::Change& change) {
 }
 
 void PropertyPanel::editNodeInput(int input, glm::vec4 value, int mergeKey, bool reset) {
-    if (m_refreshing || m_subject != Subject::GraphNode || !m_graph)
+    // The graph model applies core's value rules and builds the undo command.
+    if (m_refreshing || m_subject != Subject::GraphNode || !m_graph || input < 0)
         return;
-    const graph::Node* node = m_graph->graph().node(m_node);
-    if (!node || input < 0 || input >= int(node->type->inputs.size()))
-        return;
-    const graph::InputSpec& in = node->type->inputs[size_t(input)];
-    glm::vec4 next = reset ? in.defaultValue : value;
-    const int n = graph::portTypeComponents(in.type);
-    for (int k = 0; k < 4; ++k)
-        next[k] = k < n ? std::clamp(next[k], in.min, in.max) : 0.0f;
-    const glm::vec4 old = node->inputValues[size_t(input)];
-    if (next == old)
-        return;
-    auto* cmd =
-        new SetNodeInputCommand(m_graph, m_node, graph::PortIndex(input), old, next, mergeKey);
-    cmd->setText((reset ? tr("Reset %1 %2") : tr("Set %1 %2"))
-                     .arg(fromView(node->type->label), fromView(in.label)));
-    m_graph->undoStack()->push(cmd);
+    m_graph->editNodeInput(m_node, graph::PortIndex(input), value, mergeKey, reset);
 }
 
 void PropertyPanel::editNodeSetting(const std::string& name, const QString& value) {
     if (m_refreshing || m_subject != Subject::GraphNode || !m_graph)
         return;
-    const graph::Node* node = m_graph->graph().node(m_node);
-    const int index = node ? node->type->settingIndex(name) : -1;
-    if (index < 0 || node->settings[size_t(index)] == value.toStdString())
-        return;
-    m_graph->undoStack()->push(new SetNodeSettingCommand(
-        m_graph, m_node, name, node->settings[size_t(index)], value.toStdString()));
+    m_graph->editNodeSetting(m_node, name, value.toStdString());
 }
 
 } // namespace velvet::ui

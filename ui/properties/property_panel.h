@@ -7,11 +7,15 @@
 /// - the node selected in the Material graph (its type's inputs described as ParamMeta, and its
 ///   string settings: an image file, a colour space). Selecting the material output node, or the
 ///   "Material" button in the header, shows the material again.
-/// Every edit is one undo command (slider drags merge into one) pushed through the document's
-/// undo stack; document changes (undo, redo, open) refresh the editors without creating commands.
+/// The panel builds no command and applies no value rule itself: it asks the DocumentController
+/// (material parameters, effects by id: editParam, editEffectParam) or the GraphModel (node
+/// inputs and settings: editNodeInput, editNodeSetting) for each edit, which core's rules
+/// constrain and which becomes one undo command (slider drags merge into one); document changes
+/// (undo, redo, open) refresh the editors without creating commands.
 
 #include "core/graph/graph_types.h"
 #include "core/material.h"
+#include "core/post_chain.h"
 #include "ui/color_picking.h"
 
 #include <QPointer>
@@ -54,8 +58,11 @@ public:
     void setPickerColorSpace(const PickerColorSpace& space);
 
     Subject subject() const { return m_subject; }
-    /// The effect shown (its index in the scene's chain), or -1.
-    int effectIndex() const { return m_subject == Subject::Effect ? m_effectIndex : -1; }
+    /// The id of the effect shown (EffectInstance::id), or 0.
+    EffectId effectId() const { return m_subject == Subject::Effect ? m_effectId : 0; }
+    /// Where the effect shown is in the scene's chain now (it follows the effect through
+    /// reorders), or -1.
+    int effectIndex() const;
     /// The graph node shown, or kInvalidNodeId.
     graph::NodeId graphNode() const {
         return m_subject == Subject::GraphNode ? m_node : graph::kInvalidNodeId;
@@ -69,8 +76,9 @@ public:
 
 public slots:
     void showMaterial();
-    /// Shows the parameters of effect @p index of the scene's chain (-1: the material).
-    void showEffect(int index);
+    /// Shows the parameters of the effect with id @p effect (0, or an id not in the scene's
+    /// chain: the material). Edits go to that effect wherever it moves.
+    void showEffect(velvet::EffectId effect);
     /// Shows node @p id of @p model. The material output shows the material; no node (the
     /// graph's selection was cleared) shows the material when a node was shown.
     void showGraphNode(velvet::ui::GraphModel* model, velvet::graph::NodeId id);
@@ -111,7 +119,7 @@ private:
     std::map<QString, ParamEditor*> m_subjectEditors; ///< by effect parameter / node input id
     PickerColorSpace m_space;
     Subject m_subject = Subject::Material;
-    int m_effectIndex = -1;
+    EffectId m_effectId = 0;
     std::string m_effectType;
     QPointer<GraphModel> m_graph;
     graph::NodeId m_node = graph::kInvalidNodeId;
