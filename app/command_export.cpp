@@ -15,22 +15,27 @@ namespace fs = std::filesystem;
 
 const std::vector<OptionSpec> kOptions{
     {"format", 'f', true, "FORMAT",
-     "glb (glTF 2.0 binary, one file), gltf (JSON + .bin + PNG images) or preset (Velvet JSON)"},
+     "glb (glTF 2.0 binary, one file), gltf (JSON + .bin + PNG images), mtlx (MaterialX 1.39 "
+     "+ PNG images) or preset (Velvet JSON)"},
     {"output", 'o', true, "OUT",
      "the output folder; with one FILE also a file name with the format's extension"},
     {"mesh", 0, true, "MESH|FILE",
      "glTF: the mesh the material is shown on: sphere, cube, rounded-cube, plane, cloth-drape, "
      "shader-ball, or a mesh file (default: the scene's mesh)"},
+    {"shader", 0, true, "NAME",
+     "mtlx: the shader node, standard_surface (default), open_pbr_surface or gltf_pbr"},
     {"force", 0, false, "", "replace existing files (otherwise an existing output is exit 2)"},
     {"help", 'h', false, "", "this text"},
 };
 
 const char* kHelp =
-    "Usage: velvet export FILE... -f glb|gltf|preset -o OUT [--mesh MESH|FILE] [--force]\n"
+    "Usage: velvet export FILE... -f glb|gltf|mtlx|preset -o OUT [--mesh MESH|FILE]\n"
+    "                    [--shader NAME] [--force]\n"
     "Exports the material of each FILE (a scene, or a material preset) as glTF 2.0 with the\n"
     "KHR_materials_clearcoat, _sheen, _specular, _ior and _emissive_strength extensions, on the\n"
-    "preview mesh, or as a standalone Velvet preset. Each FILE gives OUT/NAME.glb (or .gltf with\n"
-    "NAME.bin and NAME_<map>.png, or NAME.json), NAME being FILE's name reduced to letters,\n"
+    "preview mesh, as MaterialX 1.39, or as a standalone Velvet preset. Each FILE gives\n"
+    "OUT/NAME.glb (or .gltf with NAME.bin and NAME_<map>.png, .mtlx with NAME_<map>.png, or\n"
+    "NAME.json), NAME being FILE's name reduced to letters,\n"
     "digits, '-' and '_', so nothing is written outside OUT. What glTF cannot carry (BRDF term\n"
     "choices, the node graph: baking it on the GPU is not implemented yet) is printed as a\n"
     "warning. Files are written atomically; an existing file is refused unless --force.\n"
@@ -72,9 +77,18 @@ int runExport(const std::vector<std::string>& argv) {
     const auto format = exportFormatFromId(args->value("format"));
     if (!format)
         return usage("unknown format \"" + args->value("format") +
-                     "\"; formats: glb, gltf, preset");
+                     "\"; formats: glb, gltf, mtlx, preset");
     options.format = *format;
     options.force = args->has("force");
+    if (args->has("shader")) {
+        const auto shader = mtlxShaderFromId(args->value("shader"));
+        if (!shader)
+            return usage("unknown --shader \"" + args->value("shader") +
+                         "\"; shaders: standard_surface, open_pbr_surface, gltf_pbr");
+        if (options.format != ExportFormat::Mtlx)
+            return usage("--shader applies to -f mtlx only");
+        options.shader = *shader;
+    }
     if (args->has("mesh")) {
         options.mesh = parseMesh(args->value("mesh"));
         if (!options.mesh)

@@ -19,6 +19,14 @@ struct ExportFile {
     std::string bytes;
 };
 
+/// The files an exporter built in memory, and what the format could not carry: one line each
+/// (a BRDF term choice, the node graph, a clamped value), never dropped silently (DESIGN.md,
+/// "Interchange").
+struct BuiltExport {
+    std::vector<ExportFile> files;
+    std::vector<std::string> warnings;
+};
+
 /// @p name reduced to a safe file stem: ASCII letters, digits, '-' and '_' are kept, every
 /// other character (path separators, dots, spaces, control and non-ASCII bytes) becomes '_',
 /// runs of '_' collapse and '_' is trimmed from both ends; at most 100 characters. "../../x"

@@ -5,8 +5,7 @@
 #include "core/gltf_export.h"
 
 #include "core/gltf_textures.h"
-#include "core/graph/graph.h"
-#include "core/graph/node_catalogue.h"
+#include "core/mapping_warnings.h"
 
 #include <algorithm>
 #include <charconv>
@@ -124,19 +123,6 @@ Json meshPrimitive(const MeshData& mesh, BinaryBuffer& buffer, Json& accessors) 
                      kUnsignedInt, mesh.indices.size(), "SCALAR");
     }
     return Json{{"attributes", attributes}, {"indices", indices}, {"material", 0}, {"mode", 4}};
-}
-
-/// The names of the material output's inputs that the graph feeds.
-std::vector<std::string> graphDrivenInputs(const graph::Graph& g) {
-    std::vector<std::string> names;
-    const graph::NodeId out = g.outputNode();
-    const graph::NodeType* type = graph::findNodeType(graph::kOutputTypeId);
-    if (out == graph::kInvalidNodeId || !type)
-        return names;
-    for (const graph::Connection& c : g.connections())
-        if (c.inNode == out && c.inPort < type->inputs.size())
-            names.emplace_back(type->inputs[c.inPort].name);
-    return names;
 }
 
 class MaterialWriter {
@@ -293,42 +279,6 @@ std::string glbBytes(std::string json, std::string bin) {
 
 } // namespace
 
-std::vector<std::string> gltfMappingWarnings(const Material& m) {
-    std::vector<std::string> w;
-    // glTF 2.0 defines one BRDF (Appendix B): GGX D, separable Smith-GGX V, Schlick F, Lambert.
-    for (ParamId id :
-         {ParamId::Distribution, ParamId::Visibility, ParamId::Fresnel, ParamId::Diffuse}) {
-        const ParamMeta& meta = paramMeta(id);
-        const int c = m.choice(id);
-        if (c != int(meta.defaultValue.x))
-            w.push_back(std::string(meta.id) + " = " + std::string(meta.choices[size_t(c)]) +
-                        ": glTF 2.0 has one BRDF (Appendix B: " +
-                        std::string(meta.choices[size_t(meta.defaultValue.x)]) +
-                        "); viewers will shade with that");
-    }
-    if (m.scalar(ParamId::SheenWeight) > 0.0f && m.sheenModel() != SheenModel::CharlieContyKulla) {
-        const ParamMeta& meta = paramMeta(ParamId::SheenModel);
-        w.push_back(std::string(meta.id) + " = " +
-                    std::string(meta.choices[size_t(m.choice(ParamId::SheenModel))]) +
-                    ": KHR_materials_sheen names Charlie D with Conty-Kulla's visibility; "
-                    "viewers will shade with that");
-    }
-    if (m.graph) {
-        const std::vector<std::string> inputs = graphDrivenInputs(*m.graph);
-        std::string list;
-        for (const std::string& s : inputs)
-            list += (list.empty() ? "" : ", ") + s;
-        w.push_back(
-            inputs.empty()
-                ? "graph: the material's node graph (" + std::to_string(m.graph->nodes().size()) +
-                      " nodes) feeds no material input and is not exported"
-                : "graph: the node graph drives " + list +
-                      "; not exported (baking what it computes to textures on the GPU is a "
-                      "later step of issue 12): the parameters' own values are exported instead");
-    }
-    return w;
-}
-
 bool buildGltf(const Material& material, const MeshData& mesh, std::string_view baseName,
                GltfContainer container, TextureCache& textures, GltfExportResult& out,
                std::string* error) {
@@ -404,7 +354,7 @@ bool buildGltf(const Material& material, const MeshData& mesh, std::string_view 
         bufferJson["uri"] = base + ".bin";
     doc["buffers"] = Json::array({bufferJson});
 
-    out.warnings = gltfMappingWarnings(material);
+    out.warnings = mappingWarnings(material, "glTF 2.0");
     out.warnings.insert(out.warnings.end(), plan.warnings.begin(), plan.warnings.end());
     if (glb) {
         out.files.push_back({base + ".glb", glbBytes(doc.dump(), std::move(buffer.bytes))});

@@ -20,14 +20,8 @@ class TextureCache;
 
 enum class GltfContainer { Glb, Gltf };
 
-/// The files of one export and what could not be mapped.
-struct GltfExportResult {
-    /// .glb: one file. .gltf: the images, the .bin, then the .gltf (written in that order).
-    std::vector<ExportFile> files;
-    /// One line per thing glTF cannot carry (a BRDF term choice, the node graph, a clamped
-    /// value): never dropped silently (DESIGN.md, "Interchange").
-    std::vector<std::string> warnings;
-};
+/// .glb: one file. .gltf: the images, the .bin, then the .gltf (written in that order).
+using GltfExportResult = BuiltExport;
 
 /// Builds the asset of @p material on @p mesh. @p baseName (already a safe stem, see
 /// sanitizeFileStem) names the files: BASE.glb, or BASE.gltf + BASE.bin + BASE_<map>.png.
@@ -36,9 +30,5 @@ struct GltfExportResult {
 bool buildGltf(const Material& material, const MeshData& mesh, std::string_view baseName,
                GltfContainer container, TextureCache& textures, GltfExportResult& out,
                std::string* error);
-
-/// The mapping losses of @p material that do not depend on textures: each BRDF term choice that
-/// is not glTF's, the sheen model, the node graph. Also part of buildGltf()'s warnings.
-std::vector<std::string> gltfMappingWarnings(const Material& material);
 
 } // namespace velvet

@@ -112,14 +112,14 @@ GltfTextureUse useOf(int image, const TextureRef& ref, const Image& pixels) {
 } // namespace
 
 bool planGltfTextures(const Material& m, TextureCache& cache, GltfTexturePlan& plan,
-                      std::string* error) {
+                      std::string* error, bool cutOutRegions) {
     plan = {};
     const bool srm = isSet(m, TextureSlot::SpecRoughMetal);
     const bool packOrm =
         srm || (isSet(m, TextureSlot::Occlusion) && isSet(m, TextureSlot::MetallicRoughness));
 
-    // Slots written as they are, one image per (file, colour space, colour or data).
-    std::map<std::tuple<std::string, std::string, bool>, int> imageOf;
+    // Slots written as they are, one image per (file, colour space, colour or data[, region]).
+    std::map<std::tuple<std::string, std::string, bool, int, int, int, int>, int> imageOf;
     long clamped = 0;
     for (int i = 0; i < kTextureSlotCount; ++i) {
         const auto slot = TextureSlot(i);
@@ -134,16 +134,21 @@ bool planGltfTextures(const Material& m, TextureCache& cache, GltfTexturePlan& p
         if (!loadSlot(m, slot, cache, image, error))
             return false;
         const bool colour = textureSlotMeta(slot).isColor;
-        const auto key = std::make_tuple(ref.file, ref.colorSpace, colour);
+        const bool cut = cutOutRegions && ref.useRegion;
+        const AtlasRegion r = cut ? ref.region : AtlasRegion{};
+        const auto key =
+            std::make_tuple(ref.file, ref.colorSpace, colour, r.x, r.y, r.width, r.height);
         auto found = imageOf.find(key);
         if (found == imageOf.end()) {
             GltfImage out;
             out.label = std::string(textureSlotMeta(slot).id);
-            out.pixels = colour ? encodeSrgb(*image, clamped) : *image;
+            const Image source = cut ? cutOut(*image, ref) : *image;
+            out.pixels = colour ? encodeSrgb(source, clamped) : source;
             plan.images.push_back(std::move(out));
             found = imageOf.emplace(key, int(plan.images.size()) - 1).first;
         }
-        plan.uses[size_t(i)] = useOf(found->second, ref, *image);
+        plan.uses[size_t(i)] =
+            cut ? GltfTextureUse{found->second} : useOf(found->second, ref, *image);
         if (slot == TextureSlot::BaseColor && (image->channels == 2 || image->channels == 4)) {
             const Image region = cutOut(*image, ref);
             for (size_t p = 3; p < region.pixels.size(); p += 4)

@@ -56,9 +56,11 @@ struct GltfTexturePlan {
 ///   renderer multiplies them), plus A = specular (SpecRoughMetal's R times the specular slot's
 ///   A) read by KHR_materials_specular's specularTexture. Regions are cut out first; maps of
 ///   different sizes are resampled to the largest (a warning says so).
+/// With @p cutOutRegions every region is cut out into an image of its own instead (MaterialX:
+/// its image node's UV offset counts from the bottom row, Velvet's regions from the top).
 /// False + @p error (naming the slot and file) when a texture cannot be read or a region lies
 /// outside its image.
 bool planGltfTextures(const Material& material, TextureCache& textures, GltfTexturePlan& plan,
-                      std::string* error);
+                      std::string* error, bool cutOutRegions = false);
 
 } // namespace velvet

@@ -12,9 +12,10 @@
 namespace velvet {
 namespace {
 
-constexpr std::array<std::string_view, size_t(ExportFormat::Count)> kIds{"glb", "gltf", "preset"};
+constexpr std::array<std::string_view, size_t(ExportFormat::Count)> kIds{"glb", "gltf", "preset",
+                                                                         "mtlx"};
 constexpr std::array<std::string_view, size_t(ExportFormat::Count)> kExtensions{".glb", ".gltf",
-                                                                                ".json"};
+                                                                                ".json", ".mtlx"};
 
 ExportOutcome failure(ExportOutcome::Status status, std::string error) {
     ExportOutcome o;
@@ -65,9 +66,6 @@ ExportOutcome exportMaterial(const Scene& scene, const std::filesystem::path& fo
             {base + ".json", materialToJson(scene.material, std::filesystem::absolute(folder))});
     } else {
         std::string error;
-        MeshData mesh;
-        if (!loadMesh(options.mesh.value_or(scene.mesh), mesh, &error))
-            return failure(ExportOutcome::Status::BadInput, error);
         std::unique_ptr<ColorManagement> ownColour;
         std::unique_ptr<TextureCache> ownCache;
         if (!textures) {
@@ -77,13 +75,22 @@ ExportOutcome exportMaterial(const Scene& scene, const std::filesystem::path& fo
             ownCache = std::make_unique<TextureCache>(*ownColour);
             textures = ownCache.get();
         }
-        GltfExportResult result;
-        const auto container =
-            options.format == ExportFormat::Glb ? GltfContainer::Glb : GltfContainer::Gltf;
-        if (!buildGltf(scene.material, mesh, base, container, *textures, result, &error))
-            return failure(ExportOutcome::Status::BadInput, error);
-        files = std::move(result.files);
-        warnings = std::move(result.warnings);
+        BuiltExport built;
+        if (options.format == ExportFormat::Mtlx) {
+            // A MaterialX document has no mesh: it is assigned in the renderer that reads it.
+            if (!buildMtlx(scene.material, base, options.shader, *textures, built, &error))
+                return failure(ExportOutcome::Status::BadInput, error);
+        } else {
+            MeshData mesh;
+            if (!loadMesh(options.mesh.value_or(scene.mesh), mesh, &error))
+                return failure(ExportOutcome::Status::BadInput, error);
+            const auto container =
+                options.format == ExportFormat::Glb ? GltfContainer::Glb : GltfContainer::Gltf;
+            if (!buildGltf(scene.material, mesh, base, container, *textures, built, &error))
+                return failure(ExportOutcome::Status::BadInput, error);
+        }
+        files = std::move(built.files);
+        warnings = std::move(built.warnings);
     }
     ExportOutcome outcome;
     outcome.warnings = std::move(warnings);

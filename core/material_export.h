@@ -2,9 +2,11 @@
 /// @file material_export.h
 /// Exporting a scene's material — the one entry point the CLI (`velvet export`) and the
 /// editor's File > Export… share: glTF 2.0 (.glb / .gltf, core/gltf_export.h) on the scene's or
-/// a chosen preview mesh, or a standalone Velvet preset. docs/interchange.md.
+/// a chosen preview mesh, MaterialX 1.39 (core/mtlx_export.h), or a standalone Velvet preset.
+/// docs/interchange.md.
 
 #include "core/export_files.h"
+#include "core/mtlx_export.h"
 #include "core/scene.h"
 
 #include <filesystem>
@@ -17,18 +19,20 @@ namespace velvet {
 
 class TextureCache;
 
-enum class ExportFormat { Glb, Gltf, Preset, Count };
+enum class ExportFormat { Glb, Gltf, Preset, Mtlx, Count };
 
-/// "glb", "gltf", "preset" (the CLI's -f values) and back.
+/// "glb", "gltf", "preset", "mtlx" (the CLI's -f values) and back.
 std::string_view exportFormatId(ExportFormat format);
 std::optional<ExportFormat> exportFormatFromId(std::string_view id);
-/// The main file's extension: ".glb", ".gltf", ".json".
+/// The main file's extension: ".glb", ".gltf", ".json", ".mtlx".
 std::string_view exportFormatExtension(ExportFormat format);
 
 struct ExportOptions {
     ExportFormat format = ExportFormat::Glb;
     /// The mesh the material is shown on (glTF only); nullopt: the scene's preview mesh.
     std::optional<MeshRef> mesh;
+    /// The MaterialX shader node (-f mtlx only).
+    MtlxShader shader = MtlxShader::StandardSurface;
     /// Replace existing files; without it an existing target refuses the whole export.
     bool force = false;
 };
@@ -49,10 +53,10 @@ struct ExportOutcome {
 };
 
 /// Exports @p scene's material into @p folder as BASE + the format's extension (and, for
-/// .gltf, BASE.bin and BASE_<map>.png beside it). @p baseName is sanitised here
-/// (sanitizeFileStem), so a name taken from a document cannot leave @p folder. Textures are
-/// read through @p textures when given (the editor's cache), else through a cache of its own
-/// on the default OpenColorIO config. Custom meshes are imported crash-isolated
+/// .gltf, BASE.bin and BASE_<map>.png beside it; for .mtlx the PNG images). @p baseName is
+/// sanitised here (sanitizeFileStem), so a name taken from a document cannot leave @p folder.
+/// Textures are read through @p textures when given (the editor's cache), else through a cache of
+/// its own on the default OpenColorIO config. Custom meshes are imported crash-isolated
 /// (core/mesh_import.h). Nothing is written unless every file could be built.
 ExportOutcome exportMaterial(const Scene& scene, const std::filesystem::path& folder,
                              std::string_view baseName, const ExportOptions& options,
