@@ -127,9 +127,9 @@ VelvetWeave velvetWeave(vec2 uv, float pattern, float over, float under, float h
     // d(height)/d(u, v) of the yarn seen, then scaled to UV units of physical height.
     vec2 grad = vec2(0.0f);
     if (hw < 0.0f && hf < 0.0f) {
-        // A gap between yarns: the shadowed space under the cloth.
+        // A gap between yarns: the other side of the cloth, in shadow (half the yarns' mean).
         o.height = 0.0f;
-        o.color = 0.1f * (warpColor + weftColor);
+        o.color = 0.25f * (warpColor + weftColor);
         o.sheen = 0.0f;
         o.direction = vec2(0.0f, 1.0f);
         o.thread = 0.0f;
@@ -201,7 +201,7 @@ VelvetKnit velvetKnit(vec2 uv, vec2 density, float width, float roundness, float
         o.color = color * (0.7f + 0.3f * o.height);
     } else {
         o.height = 0.0f;
-        o.color = 0.2f * color;
+        o.color = 0.45f * color;
     }
     o.direction = normalize(vec2(k / d.x, 1.0f / d.y));
     grad = grad * (stitchHeight * 2.0f / (d.x + d.y));
