@@ -1,5 +1,6 @@
 #include "core/graph/graph_compiler.h"
 
+#include "core/graph/fabric.h"
 #include "core/graph/glsl_format.h"
 
 #include <algorithm>
@@ -217,6 +218,8 @@ bool emitDeclarations(const Graph& graph, const CompileOptions& options, Compile
         o += std::string(kUvTransformGlsl) + "\n";
     if (helpers & HelperNoise)
         o += std::string(kNoiseGlsl) + "\n";
+    if (helpers & HelperFabric)
+        o += std::string(fabric::fabricGlsl()) + "\n";
     return true;
 }
 

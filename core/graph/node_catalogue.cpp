@@ -1,6 +1,7 @@
 #include "core/graph/node_catalogue.h"
 
 #include "core/graph/glsl_format.h"
+#include "core/graph/node_builders.h"
 
 #include <algorithm>
 #include <array>
@@ -9,59 +10,7 @@
 namespace velvet::graph {
 namespace {
 
-// ---- Building blocks of the table -------------------------------------------------------------
-
-InputSpec value(std::string_view name, std::string_view label, PortType type, glm::vec4 def,
-                float min, float max, std::string_view tooltip, bool connectable = true,
-                float softMax = 0.0f, std::string_view unit = {}) {
-    InputSpec s;
-    s.name = name;
-    s.label = label;
-    s.type = type;
-    s.fallback = Fallback::Value;
-    s.defaultValue = def;
-    s.min = min;
-    s.max = max;
-    s.softMax = softMax;
-    s.unit = unit;
-    s.tooltip = tooltip;
-    s.connectable = connectable;
-    return s;
-}
-
-InputSpec scalarIn(std::string_view name, std::string_view label, float def, float min, float max,
-                   std::string_view tooltip, bool connectable = true, float softMax = 0.0f,
-                   std::string_view unit = {}) {
-    return value(name, label, PortType::Float, glm::vec4(def, 0, 0, 0), min, max, tooltip,
-                 connectable, softMax, unit);
-}
-
-InputSpec colorIn(std::string_view name, std::string_view label, float def, float min, float max,
-                  std::string_view tooltip, bool connectable = true) {
-    return value(name, label, PortType::Color, glm::vec4(def, def, def, 0), min, max, tooltip,
-                 connectable);
-}
-
-InputSpec uvIn() {
-    InputSpec s;
-    s.name = "uv";
-    s.label = "UV";
-    s.type = PortType::Vec2;
-    s.fallback = Fallback::MeshUv;
-    s.min = -1e6f;
-    s.max = 1e6f;
-    s.tooltip = "Texture coordinates; the mesh's UVs when nothing is connected.";
-    return s;
-}
-
-// Ranges wide enough for any artistic use, finite so files and sliders stay sane.
-constexpr float kBig = 10000.0f;
-
-void line(std::string& o, const std::string& text) {
-    o += "    ";
-    o += text;
-    o += '\n';
-}
+using namespace detail;
 
 // ---- Snippets ---------------------------------------------------------------------------------
 // Each assigns its outputs (SnippetArgs::out) from its inputs (SnippetArgs::in).
@@ -293,21 +242,6 @@ NodeType outputType() {
 
 // ---- The catalogue ----------------------------------------------------------------------------
 
-NodeType make(std::string_view id, std::string_view label, std::string_view category,
-              std::string_view tooltip, std::vector<InputSpec> inputs,
-              std::vector<OutputSpec> outputs, SnippetFn fn, unsigned helpers = HelperNone) {
-    NodeType t;
-    t.id = id;
-    t.label = label;
-    t.category = category;
-    t.tooltip = tooltip;
-    t.inputs = std::move(inputs);
-    t.outputs = std::move(outputs);
-    t.glsl = fn;
-    t.helpers = helpers;
-    return t;
-}
-
 NodeType textureType(std::string_view id, std::string_view label, std::string_view tooltip,
                      std::vector<InputSpec> inputs, SnippetFn fn, unsigned helpers) {
     NodeType t = make(id, label, "Texture", tooltip, std::move(inputs),
@@ -455,6 +389,7 @@ std::vector<NodeType> buildCatalogue() {
                     "The normal texture's colour."),
               scalarIn("strength", "Strength", 1, 0, 2, "Scale of the normal's XY.")},
              {{"normal", "Normal", PortType::Normal}}, normalMapSnippet));
+    appendFabricNodes(types);
     types.push_back(outputType());
     return types;
 }

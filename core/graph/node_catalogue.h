@@ -62,6 +62,9 @@ enum Helper : unsigned {
     HelperNone = 0,
     HelperUvTransform = 1u << 0, ///< velvetGraphUvTransform
     HelperNoise = 1u << 1,       ///< common_hash.glsl, velvetGraphPerlin, velvetGraphFbm
+    /// The fabric functions (core/graph/fabric.h, fabric::fabricGlsl); they call the noise
+    /// helpers, so a node with this bit sets HelperNoise too.
+    HelperFabric = 1u << 2,
 };
 
 /// What a snippet generator is given. Input expressions are already converted to the input's type;
