@@ -9,12 +9,12 @@
 // it in one undo command.
 #include "core/document_io.h"
 #include "core/image.h"
-#include "ui/atlas/atlas_model.h"
 #include "ui/atlas/atlas_panel.h"
 #include "ui/atlas/atlas_view.h"
 #include "ui/autosave.h"
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
+#include "ui/models/atlas_model.h"
 #include "ui/viewport_widget.h"
 #include "ui_test_util.h"
 

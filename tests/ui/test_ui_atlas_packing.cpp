@@ -3,8 +3,8 @@
 // texels land in the channels glTF, Unreal and Unity HDRP read, the maps the atlas lacks get the
 // neutral value, nothing is written for an empty atlas, and the export is no undoable edit.
 #include "core/image.h"
-#include "ui/atlas/atlas_model.h"
 #include "ui/document_controller.h"
+#include "ui/models/atlas_model.h"
 
 #include <QTemporaryDir>
 #include <QTest>

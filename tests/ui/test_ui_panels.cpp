@@ -20,7 +20,7 @@
 #include "ui/library/library_panel.h"
 #include "ui/library/thumbnail_renderer.h"
 #include "ui/main_window.h"
-#include "ui/post_chain/post_chain_model.h"
+#include "ui/models/post_chain_model.h"
 #include "ui/post_chain/post_chain_panel.h"
 #include "ui/properties/param_editor.h"
 #include "ui/properties/property_panel.h"

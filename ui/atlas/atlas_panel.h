@@ -7,7 +7,7 @@
 /// (view state) and export the atlas images. The atlases belong to the document (saved beside the
 /// scene, see AtlasModel).
 
-#include "ui/atlas/atlas_model.h"
+#include "ui/models/atlas_model.h"
 
 #include <QWidget>
 

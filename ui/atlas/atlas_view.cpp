@@ -1,6 +1,6 @@
 #include "ui/atlas/atlas_view.h"
 
-#include "ui/atlas/atlas_model.h"
+#include "ui/models/atlas_model.h"
 
 #include <QGraphicsPixmapItem>
 #include <QGraphicsRectItem>

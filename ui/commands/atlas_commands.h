@@ -1,9 +1,9 @@
 #pragma once
 /// @file atlas_commands.h
-/// Undoable atlas edits (ui/atlas/atlas_model.h) and texture slot assignment.
+/// Undoable atlas edits (ui/models/atlas_model.h) and texture slot assignment.
 
 #include "core/texture_ref.h"
-#include "ui/atlas/atlas_model.h"
+#include "ui/models/atlas_model.h"
 #include "ui/commands/value_edit_command.h"
 
 #include <QUndoCommand>

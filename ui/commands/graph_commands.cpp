@@ -1,7 +1,7 @@
 #include "ui/commands/graph_commands.h"
 
 #include "core/graph/graph_json.h"
-#include "ui/graph/graph_model.h"
+#include "ui/models/graph_model.h"
 
 #include <QUndoStack>
 

@@ -1,9 +1,9 @@
 #include "ui/graph/graph_panel.h"
 
-#include "ui/graph/graph_model.h"
 #include "ui/graph/graph_scene.h"
 #include "ui/graph/graph_view.h"
 #include "ui/graph/node_item.h"
+#include "ui/models/graph_model.h"
 
 #include <QStringList>
 #include <QTimer>

@@ -1,7 +1,7 @@
 #include "ui/graph/graph_scene.h"
 
-#include "ui/graph/graph_model.h"
 #include "ui/graph/node_item.h"
+#include "ui/models/graph_model.h"
 
 namespace velvet::ui {
 

@@ -1,10 +1,10 @@
 #include "ui/graph/graph_view.h"
 
 #include "ui/commands/graph_commands.h"
-#include "ui/graph/graph_model.h"
 #include "ui/graph/graph_scene.h"
 #include "ui/graph/node_item.h"
 #include "ui/graph/node_palette.h"
+#include "ui/models/graph_model.h"
 
 #include <QApplication>
 #include <QClipboard>

@@ -5,7 +5,7 @@
 #include "core/resources.h"
 #include "ui/commands/post_chain_commands.h"
 #include "ui/document_controller.h"
-#include "ui/post_chain/post_chain_model.h"
+#include "ui/models/post_chain_model.h"
 
 #include <QDragEnterEvent>
 #include <QDragMoveEvent>

@@ -3,7 +3,7 @@
 #include "core/graph/graph.h"
 #include "core/post_effects.h"
 #include "ui/document_controller.h"
-#include "ui/graph/graph_model.h"
+#include "ui/models/graph_model.h"
 #include "ui/properties/color_param_editor.h"
 #include "ui/properties/param_editor.h"
 #include "ui/properties/texture_slot_editor.h"

@@ -1,4 +1,4 @@
-#include "ui/post_chain/post_chain_model.h"
+#include "ui/models/post_chain_model.h"
 
 #include "core/post_effects.h"
 #include "ui/commands/post_chain_commands.h"

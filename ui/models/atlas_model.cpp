@@ -1,4 +1,4 @@
-#include "ui/atlas/atlas_model.h"
+#include "ui/models/atlas_model.h"
 
 #include "ui/commands/atlas_commands.h"
 #include "ui/document_controller.h"

@@ -1,4 +1,4 @@
-#include "ui/graph/graph_model.h"
+#include "ui/models/graph_model.h"
 
 #include "core/graph/graph_json.h"
 #include "ui/commands/graph_commands.h"
