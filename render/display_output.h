@@ -4,7 +4,7 @@
 /// transform (exposure, look, display/view in one generated function: a tone-mapping view such as
 /// ACES or AgX, a view without a view transform such as Raw, or a look), or the built-in exposure
 /// and tone-mapping curve followed by OCIO's display encoding for the display's un-tone-mapped
-/// view (one pass: OCIO's function is composed into post_tonemap.frag). Owns the OCIO config
+/// view (one pass: OCIO's function is composed into display_output.frag). Owns the OCIO config
 /// (loaded once, here, when the host gives none), the cached display transforms and encodings,
 /// and the tone-map programs, one per encoding.
 
@@ -28,7 +28,7 @@ struct DisplayChoice {
     /// The final pass is OCIO's display transform (ocioToneMaps and the Final view; debug views
     /// use the display's encoding).
     bool ocioDisplay = false;
-    /// post_tonemap.frag for the selected encoding (the final pass otherwise).
+    /// display_output.frag for the selected encoding (the final pass otherwise).
     ShaderProgram* tonemap = nullptr;
 };
 
@@ -92,7 +92,7 @@ private:
     // The encoding after a built-in curve: which display maps to which encoding.
     DisplayEncoding m_encoding;
     std::map<std::string, std::string> m_encodingIds;
-    /// post_tonemap.frag, one per display encoding (keyed by its OCIO cache id; "" is the
+    /// display_output.frag, one per display encoding (keyed by its OCIO cache id; "" is the
     /// hand-written fallback).
     std::map<std::string, std::unique_ptr<ShaderProgram>> m_tonemaps;
     int m_compileCount = 0;

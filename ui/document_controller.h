@@ -72,7 +72,7 @@ public:
     /// Sets the lights and notifies (sceneChanged: Lights).
     void setLights(const std::vector<Light>& lights);
     /// Sets the material's node graph and notifies (sceneChanged: Graph only: the graph editor's
-    /// model, ui/graph/graph_model.h, is the one caller and already knows).
+    /// model, ui/models/graph_model.h, is the one caller and already knows).
     void setMaterialGraph(const SharedGraph& graph);
     /// Sets a texture slot and notifies (sceneChanged: MaterialStructure).
     void setTexture(TextureSlot slot, const TextureRef& ref);

@@ -3,14 +3,14 @@
 // drag back to where it began leaves nothing on the stack, and a key of 0, another key, another
 // target or another kind of command never merges. Each command kind is checked, so a command
 // that stops using the shared rule, or names its target wrongly, fails here.
-#include "ui/atlas/atlas_model.h"
+#include "ui/models/atlas_model.h"
 #include "ui/commands/atlas_commands.h"
 #include "ui/commands/graph_commands.h"
 #include "ui/commands/post_chain_commands.h"
 #include "ui/commands/set_param_command.h"
 #include "ui/commands/set_scene_command.h"
 #include "ui/document_controller.h"
-#include "ui/graph/graph_model.h"
+#include "ui/models/graph_model.h"
 
 #include <QTest>
 #include <QUndoStack>
