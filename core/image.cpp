@@ -1,11 +1,13 @@
 #include "core/image.h"
 
+#include "core/atomic_file.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cctype>
-#include <chrono>
 #include <memory>
 #include <system_error>
+#include <unistd.h>
 
 // OpenImageIO stays inside this file (DESIGN.md, "Heavy dependencies behind a .cpp").
 #include <OpenImageIO/filesystem.h>
@@ -316,20 +318,31 @@ bool writeImage(const std::filesystem::path& file, const Image& image, PixelForm
     auto out = OIIO::ImageOutput::create(file.string());
     if (!out)
         return fail(error, file, "no image writer for extension '" + ext + "'");
+    // Encoded in memory, then written by core/atomic_file: an unnamed temporary, so a write
+    // killed midway leaves no stray file beside the target (issue 18; `velvet pack` runs killed
+    // mid-write used to leave ".orm.tmp….png" files).
+    if (out->supports("ioproxy")) {
+        std::string bytes, why;
+        if (!encodeImage(image, ext, format, bytes, &why, options))
+            return fail(error, file, "cannot encode: " + why);
+        return writeFileAtomically(file, bytes, error);
+    }
     PreparedImage prepared;
     prepareImage(image, ext, format, options, prepared);
     const OIIO::ImageSpec& spec = prepared.spec;
     const float* pixels = prepared.pixels;
     const OIIO::stride_t xstride = prepared.xstride;
 
-    // Temp file beside the target (same file system, so the rename is atomic), same extension so
-    // the writer is chosen the same way.
+    // A writer without in-memory output: a named temporary beside the target (same file system,
+    // so the rename is atomic), named as core/atomic_file names its temporaries so that the next
+    // write sweeps one a killed process left, and ending in the same extension so the writer is
+    // chosen the same way.
     static std::atomic<unsigned> counter{0};
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+    sweepStaleTemporaries(file);
     std::filesystem::path tmp = file;
     std::string tmpName(1, '.'); // appended piecewise: GCC 12 warns falsely on "." + string
-    tmpName += file.stem().string();
-    tmpName += ".tmp" + std::to_string(stamp) + "-" + std::to_string(counter++);
+    tmpName += file.filename().string();
+    tmpName += ".velvet-tmp-" + std::to_string(::getpid()) + "-o" + std::to_string(counter++);
     tmpName += file.extension().string();
     tmp.replace_filename(tmpName);
 

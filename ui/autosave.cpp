@@ -1,5 +1,7 @@
 #include "ui/autosave.h"
 
+#include "core/atlas_document.h"
+#include "core/atomic_file.h"
 #include "core/document_io.h"
 #include "ui/document_controller.h"
 #include "ui/recovery_dialog.h"
@@ -12,7 +14,10 @@
 #include <QSaveFile>
 #include <QStandardPaths>
 #include <QTimer>
+#include <QUndoStack>
 #include <algorithm>
+#include <cstring>
+#include <memory>
 
 namespace velvet::ui {
 namespace {
@@ -29,17 +34,41 @@ QString documentOf(const QString& autosaveFile) {
     return QString::fromUtf8(source.readAll()).trimmed();
 }
 
+/// "NAME.autosave.atlas.json" beside "NAME.autosave.json".
+QString atlasFileOf(const QString& autosaveFile) {
+    QString path = autosaveFile;
+    path.chop(int(std::strlen(".json")));
+    return path + QStringLiteral(".atlas.json");
+}
+
 } // namespace
 
+/// What a background write needs, copied on the UI thread: no pointer into the document.
+struct Autosave::Snapshot {
+    Scene scene;
+    AtlasSet atlases;
+    QString path;     ///< the autosave file
+    QString document; ///< the document it belongs to (absolute; empty: untitled)
+};
+
 Autosave::Autosave(DocumentController* controller, QObject* parent)
-    : QObject(parent), m_controller(controller), m_timer(new QTimer(this)) {
+    : QObject(parent), m_controller(controller), m_timer(new QTimer(this)),
+      m_debounce(new QTimer(this)) {
+    m_pool.setMaxThreadCount(1);
     m_timer->setInterval(kDefaultIntervalMs);
-    connect(m_timer, &QTimer::timeout, this, [this] {
-        QString error;
-        if (!saveNow(&error))
-            emit failed(error);
-    });
+    connect(m_timer, &QTimer::timeout, this, &Autosave::saveInBackground);
     m_timer->start();
+    // The debounce: every edit (undo, redo included) restarts it; it fires after a quiet spell.
+    const int debounceMs = qEnvironmentVariableIntValue("VELVET_AUTOSAVE_DEBOUNCE_MS");
+    m_debounce->setSingleShot(true);
+    m_debounce->setInterval(debounceMs > 0 ? debounceMs : kDefaultDebounceMs);
+    connect(m_debounce, &QTimer::timeout, this, &Autosave::saveInBackground);
+    auto restart = [this] {
+        if (m_controller->isDirty())
+            m_debounce->start();
+    };
+    connect(m_controller->undoStack(), &QUndoStack::indexChanged, this, restart);
+    connect(m_controller, &DocumentController::atlasChanged, this, restart);
     // Another document (new, open, save as): the old autosave belongs to a state the artist
     // has saved or chosen to discard.
     connect(m_controller, &DocumentController::fileChanged, this, [this] {
@@ -47,6 +76,92 @@ Autosave::Autosave(DocumentController* controller, QObject* parent)
             remove(m_lastPath);
         m_lastPath.clear();
     });
+}
+
+Autosave::~Autosave() {
+    m_pool.waitForDone(); // the worker reports back to this object
+}
+
+void Autosave::setDebounce(int ms) {
+    m_debounce->setInterval(std::max(1, ms));
+}
+
+int Autosave::debounce() const {
+    return m_debounce->interval();
+}
+
+Autosave::Snapshot Autosave::snapshot() const {
+    Snapshot snap;
+    snap.scene = m_controller->scene();
+    snap.atlases = m_controller->atlases();
+    snap.path = autosavePathFor(m_controller->filePath());
+    snap.document = m_controller->filePath().isEmpty()
+                        ? QString()
+                        : QFileInfo(m_controller->filePath()).absoluteFilePath();
+    return snap;
+}
+
+QString Autosave::write(Snapshot& snap) {
+    if (!QDir().mkpath(directory()))
+        return tr("Could not create the autosave folder %1").arg(directory());
+    std::string message;
+    // The atlases first (their in-memory sources as EXR beside them), then the scene naming them,
+    // as DocumentController::saveAs orders a save: a reader never sees a scene without its atlas.
+    snap.scene.atlases.clear();
+    if (!snap.atlases.empty()) {
+        const std::filesystem::path atlasFile = atlasFileOf(snap.path).toStdString();
+        if (!saveAtlasFile(snap.atlases, atlasFile, &message))
+            return tr("Autosave failed: %1").arg(QString::fromStdString(message));
+        snap.scene.atlases = atlasFile.generic_string();
+    }
+    // Atomic (core/atomic_file.h), no backup generations: an autosave is itself the backup.
+    const std::filesystem::path file = snap.path.toStdString();
+    if (!writeFileAtomically(file, sceneToJson(snap.scene, file.parent_path()), &message))
+        return tr("Autosave failed: %1").arg(QString::fromStdString(message));
+    // Which document this is, for the start-up list (the name holds only a hash of the path).
+    if (documentOf(snap.path) != snap.document || !QFile::exists(snap.path + kSourceSuffix)) {
+        QSaveFile source(snap.path + kSourceSuffix);
+        if (!source.open(QIODevice::WriteOnly) || source.write(snap.document.toUtf8()) < 0 ||
+            !source.commit())
+            return tr("Autosave could not record its document in %1").arg(source.fileName());
+    }
+    return {};
+}
+
+void Autosave::saveInBackground() {
+    if (!m_controller->isDirty())
+        return;
+    if (m_running) {
+        m_pending = true;
+        return;
+    }
+    m_running = true;
+    auto snap = std::make_shared<Snapshot>(snapshot());
+    m_pool.start([this, snap] {
+        const QString error = write(*snap);
+        QMetaObject::invokeMethod(
+            this, [this, path = snap->path, error] { finished(path, error); },
+            Qt::QueuedConnection);
+    });
+}
+
+void Autosave::finished(const QString& path, const QString& error) {
+    m_running = false;
+    if (error.isEmpty()) {
+        m_lastPath = path;
+        emit saved(path);
+    } else {
+        emit failed(error);
+    }
+    if (m_pending) {
+        m_pending = false;
+        saveInBackground();
+    }
+}
+
+void Autosave::waitForBackground() {
+    m_pool.waitForDone();
+    QCoreApplication::sendPostedEvents(this);
 }
 
 void Autosave::setInterval(int ms) {
@@ -86,39 +201,18 @@ QString Autosave::recoverableFor(const QString& filePath) {
 }
 
 bool Autosave::saveNow(QString* error) {
+    waitForBackground();
     if (!m_controller->isDirty())
         return true;
-    const QString path = autosavePathFor(m_controller->filePath());
-    if (!QDir().mkpath(directory())) {
+    Snapshot snap = snapshot();
+    const QString message = write(snap);
+    if (!message.isEmpty()) {
         if (error)
-            *error = tr("Could not create the autosave folder %1").arg(directory());
+            *error = message;
         return false;
     }
-    std::string message;
-    // Atomic: a temp file beside the target, then a rename (core/atomic_file.h).
-    if (!saveSceneFile(m_controller->scene(), path.toStdString(), &message)) {
-        if (error)
-            *error = tr("Autosave failed: %1").arg(QString::fromStdString(message));
-        return false;
-    }
-    // saveSceneFile keeps the previous version as ".bak", right for documents; an autosave
-    // is itself the backup of one.
-    QFile::remove(path + kBackupSuffix);
-    // Which document this is, for the start-up list (the name holds only a hash of the path).
-    const QString document = m_controller->filePath().isEmpty()
-                                 ? QString()
-                                 : QFileInfo(m_controller->filePath()).absoluteFilePath();
-    if (documentOf(path) != document || !QFile::exists(path + kSourceSuffix)) {
-        QSaveFile source(path + kSourceSuffix);
-        if (!source.open(QIODevice::WriteOnly) || source.write(document.toUtf8()) < 0 ||
-            !source.commit()) {
-            if (error)
-                *error = tr("Autosave could not record its document in %1").arg(source.fileName());
-            return false;
-        }
-    }
-    m_lastPath = path;
-    emit saved(path);
+    m_lastPath = snap.path;
+    emit saved(snap.path);
     return true;
 }
 
@@ -149,6 +243,14 @@ void Autosave::finish() {
 }
 
 void Autosave::remove(const QString& autosaveFile) {
+    // The atlas document and its EXR sources ("NAME.autosave.<kind>-<n>.exr").
+    QFile::remove(atlasFileOf(autosaveFile));
+    const QFileInfo info(autosaveFile);
+    QString stem = info.fileName();
+    stem.chop(int(std::strlen(".json")));
+    for (const QString& name :
+         info.dir().entryList({stem + QStringLiteral(".*-*.exr")}, QDir::Files))
+        QFile::remove(info.dir().filePath(name));
     QFile::remove(autosaveFile);
     QFile::remove(autosaveFile + kSourceSuffix);
     QFile::remove(autosaveFile + kBackupSuffix);
@@ -190,6 +292,20 @@ bool Autosave::recover(const QString& autosaveFile, const QString& filePath, QSt
     }
     m_controller->setRecoveredDocument(
         std::move(*scene), filePath.isEmpty() ? QString() : QFileInfo(filePath).absoluteFilePath());
+    // Atlas sources the autosave wrote live beside it and go when it is removed: back to
+    // in-memory sources, so the document's next save writes them beside the document.
+    const QString folder = QDir(directory()).absolutePath() + QLatin1Char('/');
+    for (int k = 0; k < kAtlasKindCount; ++k) {
+        AtlasDocument atlas = m_controller->atlases()[AtlasKind(k)];
+        bool changed = false;
+        for (AtlasEntry& entry : atlas.entries)
+            if (QString::fromStdString(entry.file).startsWith(folder) && !entry.source.empty()) {
+                entry.file.clear();
+                changed = true;
+            }
+        if (changed)
+            m_controller->setAtlas(AtlasKind(k), std::move(atlas));
+    }
     // Keep it until the recovered document is saved or written again.
     m_lastPath = autosaveFile;
     return true;

@@ -10,11 +10,19 @@
 /// file is offered for recovery; the recovered document is dirty until saved. An autosave is the
 /// backup itself: it keeps no "*.bak" (core's atomic write does for documents), and a clean exit
 /// removes any "*.autosave.json.bak" an earlier version left in the folder.
+///
+/// Issue 18, "Seconds, not a minute": besides the periodic timer, an autosave is written about
+/// 2 s after the last edit of a burst (kDefaultDebounceMs; every undo-stack change and atlas edit
+/// restarts it), so a kill loses at most the last ~2 s of work. The document is copied on the UI
+/// thread (a copy, no serialisation) and turned into JSON and written on a worker thread, so a
+/// large scene does not stall a frame. The atlases are in it: "NAME.autosave.atlas.json" with its
+/// in-memory sources as EXR beside it, named by the autosave's `atlases` key.
 
 #include <QDateTime>
 #include <QList>
 #include <QObject>
 #include <QString>
+#include <QThreadPool>
 #include <functional>
 
 class QTimer;
@@ -28,6 +36,9 @@ class Autosave : public QObject {
     Q_OBJECT
 public:
     static constexpr int kDefaultIntervalMs = 60000;
+    /// Quiet time after the last edit before an autosave is written (VELVET_AUTOSAVE_DEBOUNCE_MS
+    /// overrides it, for tests).
+    static constexpr int kDefaultDebounceMs = 2000;
 
     /// An autosave that may be recovered: its file, the document it belongs to (absolute; empty
     /// for an untitled document) and when it was written.
@@ -38,9 +49,17 @@ public:
     };
 
     explicit Autosave(DocumentController* controller, QObject* parent = nullptr);
+    ~Autosave() override;
 
     void setInterval(int ms);
     int interval() const;
+    void setDebounce(int ms);
+    int debounce() const;
+    /// Writes the document's autosave on a worker thread when it is dirty (what the timers do);
+    /// saved() or failed() follow on this thread. A request while one is running runs after it.
+    void saveInBackground();
+    /// Waits for a background write in progress (tests; before a synchronous write).
+    void waitForBackground();
     /// The folder autosaves go to (created on the first write).
     static QString directory();
     /// The autosave file of the document at @p filePath (empty: the untitled document).
@@ -82,9 +101,19 @@ signals:
     void failed(const QString& message);
 
 private:
+    struct Snapshot;
+    Snapshot snapshot() const;
+    /// Writes @p snap (any thread). Empty on success, else the message.
+    static QString write(Snapshot& snap);
+    void finished(const QString& path, const QString& error);
+
     DocumentController* m_controller;
     QTimer* m_timer;
-    QString m_lastPath; ///< the autosave the current document last wrote
+    QTimer* m_debounce;
+    QThreadPool m_pool;     ///< one worker: autosaves are written one at a time
+    bool m_running = false; ///< a background write is in progress
+    bool m_pending = false; ///< another was asked for meanwhile
+    QString m_lastPath;     ///< the autosave the current document last wrote
     std::function<bool(const QString&, const QDateTime&)> m_prompt;
 };
 

@@ -12,6 +12,8 @@
 #include <QTimer>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <utility>
 
 namespace velvet::ui {
 namespace {
@@ -50,6 +52,41 @@ void fail(const QString& message) {
     std::fprintf(stderr, "velvet: %s\n", qPrintable(message));
 }
 
+/// Test hooks for the process tests (tests/ui/test_ui_killed_editor.cpp), off unless set:
+/// VELVET_TEST_EDIT=V sets the material's roughness to V through the undo stack after the first
+/// frame (a real edit: dirty, debounced autosave) and prints "velvet-test: edited";
+/// VELVET_TEST_ACCEPT_RECOVERY=1 answers the recovery question with yes, prints
+/// "velvet-test: recovery offered", then prints the document's roughness and dirty state and quits.
+void installTestHooks(MainWindow& window) {
+    const QByteArray edit = qgetenv("VELVET_TEST_EDIT");
+    if (!edit.isEmpty()) {
+        // After the first frame, as an artist edits a window that shows: the start-up's shader
+        // compiles (seconds on llvmpipe) are not what the autosave's 2 s are measured against.
+        const float value = edit.toFloat();
+        auto done = std::make_shared<bool>(false);
+        QObject::connect(window.viewport(), &ViewportWidget::frameCompleted, &window,
+                         [&window, value, done] {
+                             if (std::exchange(*done, true))
+                                 return;
+                             window.controller()->editParam(ParamId::Roughness, glm::vec3(value));
+                             std::fprintf(stderr, "velvet-test: edited\n");
+                         });
+    }
+    if (qEnvironmentVariableIsSet("VELVET_TEST_ACCEPT_RECOVERY")) {
+        window.autosave()->setPrompt([](const QString&, const QDateTime&) {
+            std::fprintf(stderr, "velvet-test: recovery offered\n");
+            return true;
+        });
+        QTimer::singleShot(0, &window, [&window] {
+            const DocumentController* doc = window.controller();
+            std::fprintf(stderr, "velvet-test: roughness=%g dirty=%d\n",
+                         double(doc->scene().material.value(ParamId::Roughness).x),
+                         doc->isDirty() ? 1 : 0);
+            QApplication::exit(0);
+        });
+    }
+}
+
 } // namespace
 
 int runEditor(int& argc, char** argv, const EditorOptions& options) {
@@ -78,6 +115,7 @@ int runEditor(int& argc, char** argv, const EditorOptions& options) {
     const QString openFile = QString::fromStdString(options.openFile);
     if (!screenshot) {
         window.show();
+        installTestHooks(window);
         if (!openFile.isEmpty())
             window.openFile(openFile); // problems appear in a message box over the default scene
         else

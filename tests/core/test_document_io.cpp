@@ -6,10 +6,12 @@
 #include "core/resources.h"
 #include "shipped_schema.h"
 
+#include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 using namespace velvet;
 namespace fs = std::filesystem;
@@ -171,9 +173,9 @@ private slots:
         QVERIFY(loaded->material == s.material);
         QCOMPARE(loaded->materialPreset, s.materialPreset);
         QVERIFY(*loaded == s);
-        // Saving again keeps the previous file as a backup.
+        // Saving again keeps the previous file as backup generation 1.
         QVERIFY(saveSceneFile(*loaded, file, &error));
-        QVERIFY(fs::exists(dir / "scene.json.bak"));
+        QVERIFY(fs::exists(dir / "scene.json.1"));
     }
 
     void defaultSceneRoundTrip() {
@@ -320,7 +322,7 @@ private slots:
         QVERIFY(writeFileAtomically(file, "one", &error));
         QVERIFY(writeFileAtomically(file, "two", &error, true));
         QCOMPARE(*readWholeFile(file, 100, nullptr), std::string("two"));
-        QCOMPARE(*readWholeFile(fs::path(file) += ".bak", 100, nullptr), std::string("one"));
+        QCOMPARE(*readWholeFile(backupPath(file, 1), 100, nullptr), std::string("one"));
         // No temporary files are left behind.
         int entries = 0;
         for ([[maybe_unused]] const auto& e : fs::directory_iterator(file.parent_path()))
@@ -328,13 +330,78 @@ private slots:
         QCOMPARE(entries, 2);
         QVERIFY(!writeFileAtomically(fs::path(tmp.path().toStdString()) / "no/such/dir/x.json", "x",
                                      &error));
-        QVERIFY2(error.find("no/such/dir/x.json") != std::string::npos, error.c_str());
+        QVERIFY2(error.find("no/such/dir/x.json") != std::string::npos &&
+                     error.find("does not exist") != std::string::npos,
+                 error.c_str());
         QVERIFY(!readWholeFile(file, 2, &error));
         QVERIFY2(error.find("doc.json") != std::string::npos &&
                      error.find("3 bytes") != std::string::npos,
                  error.c_str());
         QVERIFY(!readWholeFile(file.parent_path(), 100, &error));
         QVERIFY2(error.find("folder") != std::string::npos, error.c_str());
+    }
+
+    // Issue 18: three saves leave the two previous versions (FILE.1 newest, FILE.2 before it),
+    // a fourth drops the oldest, and the file keeps its mode. Both write paths (unnamed temporary
+    // and the named fallback) behave the same.
+    void threeSavesLeaveTwoPreviousVersions_data() {
+        QTest::addColumn<bool>("unnamed");
+        QTest::newRow("O_TMPFILE") << true;
+        QTest::newRow("named temporary") << false;
+    }
+    void threeSavesLeaveTwoPreviousVersions() {
+        QFETCH(bool, unnamed);
+        QTemporaryDir tmp;
+        const fs::path file = fs::path(tmp.path().toStdString()) / "scene.json";
+        AtomicWriteOptions options;
+        options.backupGenerations = kDefaultBackupGenerations;
+        options.allowUnnamedTemporary = unnamed;
+        std::string error;
+        for (const char* text : {"first", "second", "third"})
+            QVERIFY2(writeFileAtomically(file, text, &error, options), error.c_str());
+        QCOMPARE(*readWholeFile(file, 100, nullptr), std::string("third"));
+        QCOMPARE(*readWholeFile(backupPath(file, 1), 100, nullptr), std::string("second"));
+        QCOMPARE(*readWholeFile(backupPath(file, 2), 100, nullptr), std::string("first"));
+        QVERIFY(!fs::exists(backupPath(file, 3)));
+        fs::permissions(file, fs::perms(0640));
+        QVERIFY2(writeFileAtomically(file, "fourth", &error, options), error.c_str());
+        QCOMPARE(*readWholeFile(backupPath(file, 2), 100, nullptr), std::string("second"));
+        QVERIFY(!fs::exists(backupPath(file, 3)));
+        QCOMPARE(fs::status(file).permissions() & fs::perms::all, fs::perms(0640));
+        // Exactly the file and its two generations: no temporaries.
+        QCOMPARE(std::distance(fs::directory_iterator(file.parent_path()), {}), 3);
+        // The document savers keep the default generations.
+        Scene scene;
+        const fs::path sceneFile = file.parent_path() / "s.json";
+        for (int i = 0; i < 3; ++i)
+            QVERIFY2(saveSceneFile(scene, sceneFile, &error), error.c_str());
+        QVERIFY(fs::exists(backupPath(sceneFile, 2)) && !fs::exists(backupPath(sceneFile, 3)));
+    }
+
+    // A temporary a killed writer left behind (its process is gone) is removed by the next write
+    // of the same target; one of a running writer, or of another target, is left alone.
+    void staleTemporariesAreSweptOnTheNextWrite() {
+        QTemporaryDir tmp;
+        const fs::path dir = tmp.path().toStdString();
+        const fs::path file = dir / "orm.png";
+        // A process id that is certainly gone: a child that has exited and been reaped.
+        QProcess child;
+        child.start("true", {});
+        QVERIFY(child.waitForFinished());
+        const std::string deadPid = std::to_string(child.processId() ? child.processId() : 999999);
+        const std::string stale = ".orm.png.velvet-tmp-" + deadPid + "-Ab12Cd";
+        const std::string staleImage = ".orm.png.velvet-tmp-" + deadPid + "-o3.png";
+        const std::string live = ".orm.png.velvet-tmp-" + std::to_string(::getpid()) + "-u7";
+        const std::string other = ".other.png.velvet-tmp-" + deadPid + "-Ab12Cd";
+        for (const std::string& name : {stale, staleImage, live, other})
+            writeText(dir / name, "half");
+        QVERIFY(isTemporaryOf(file, stale) && isTemporaryOf(file, live));
+        QVERIFY(!isTemporaryOf(file, other) && !isTemporaryOf(file, "orm.png") &&
+                !isTemporaryOf(file, ".orm.png.velvet-tmp--x"));
+        std::string error;
+        QVERIFY2(writeFileAtomically(file, "png", &error), error.c_str());
+        QVERIFY(!fs::exists(dir / stale) && !fs::exists(dir / staleImage));
+        QVERIFY(fs::exists(dir / live) && fs::exists(dir / other));
     }
 };
 
