@@ -6,6 +6,7 @@
 #include "ui/atlas/atlas_panel.h"
 #include "ui/autosave.h"
 #include "ui/document_controller.h"
+#include "ui/export_action.h"
 #include "ui/graph/graph_panel.h"
 #include "ui/library/library_panel.h"
 #include "ui/log_panel.h"
@@ -372,6 +373,10 @@ void MainWindow::createMenus() {
     act->setShortcut(QKeySequence::Save);
     act = file->addAction(tr("Save &As…"), this, &MainWindow::saveDocumentAs);
     act->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S));
+    act = file->addAction(tr("&Export…"), this,
+                          [this] { exportDocumentInteractively(this, *m_controller, m_log); });
+    act->setObjectName(QStringLiteral("exportAction"));
+    act->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_E));
     file->addSeparator();
     act = file->addAction(tr("&Quit"), this, &QWidget::close);
     act->setShortcut(QKeySequence::Quit);

@@ -477,6 +477,13 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
         fail(tr("Rendering failed: %1").arg(QString::fromStdString(error)));
         return false;
     }
+    // What the renderer noticed while drawing (no OCIO config, no encoding view): each once.
+    if (const Problems warnings = m_renderer->takeWarnings(); !warnings.items.empty()) {
+        QStringList lines;
+        for (const Problem& p : warnings.items)
+            lines << QString::fromStdString(p.toString());
+        emit sceneProblems(lines);
+    }
     ++m_frameCount;
     m_lastRenderScale = settings.renderScale;
     // A structural graph edit compiles on the driver's threads; the renderer adopts the new

@@ -161,7 +161,8 @@ signals:
     void frameCompleted(double cpuMs);
     /// The renderer could not be created or could not draw; the widget shows @p message.
     void renderFailed(const QString& message);
-    /// Problems found while taking a scene (a missing HDRI or texture); a fallback is used.
+    /// Problems found while taking a scene (a missing HDRI or texture; a fallback is used) and
+    /// the renderer's warnings (Renderer::takeWarnings: no OCIO config, no encoding view).
     void sceneProblems(const QStringList& problems);
     /// The artist moved the view (orbit, pan, zoom, fly, frame): the camera the viewport now
     /// draws with. The main window keeps it with the document (DocumentController::setViewCamera).

@@ -11,6 +11,7 @@
 #include "ui/main_window.h"
 #include "ui/recovery_dialog.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_modal.h"
 #include "ui_test_window.h"
 
 #include <QAction>
@@ -32,29 +33,10 @@
 
 using namespace velvet;
 using namespace velvet::ui;
+using velvet::test::answerFileDialog;
+using velvet::test::onNextModal;
 
 namespace {
-
-/// Runs @p answer on the next modal dialog of type T once it is shown (as a user would act).
-template <class T>
-void onNextModal(std::function<void(T*)> answer) {
-    QTimer::singleShot(10, [answer] {
-        auto* dialog = qobject_cast<T*>(QApplication::activeModalWidget());
-        if (!dialog || !dialog->isVisible()) {
-            onNextModal<T>(answer); // not shown yet: look again
-            return;
-        }
-        answer(dialog);
-    });
-}
-
-/// Answers Qt's own file dialog (no native dialog under xvfb) with @p path.
-void answerFileDialog(const QString& path) {
-    onNextModal<QFileDialog>([path](QFileDialog* dialog) {
-        dialog->selectFile(path);
-        QMetaObject::invokeMethod(dialog, "accept", Qt::QueuedConnection);
-    });
-}
 
 /// Writes an autosave of @p file (empty: untitled) with roughness @p roughness, then drops the
 /// controller without a clean exit: what a killed Velvet leaves behind.

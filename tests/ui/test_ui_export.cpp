@@ -1,0 +1,128 @@
+// File > Export… through the real MainWindow under xvfb-run: Ctrl+E opens Qt's save dialog, the
+// chosen filter picks the way out (glTF binary by default, MaterialX per shader node, preset),
+// the extension is added when the name has none, warnings and the result reach the Log, and a
+// target that cannot be written is refused with a message naming it, leaving the document as it
+// was (still dirty, its history intact).
+#include "core/material.h"
+#include "ui/document_controller.h"
+#include "ui/export_action.h"
+#include "ui/log_panel.h"
+#include "ui/main_window.h"
+#include "ui/viewport_widget.h"
+#include "ui_test_modal.h"
+#include "ui_test_window.h"
+
+#include <QDir>
+#include <QFile>
+#include <QMessageBox>
+#include <QSettings>
+#include <QStandardPaths>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QUndoStack>
+
+using namespace velvet;
+using namespace velvet::ui;
+
+class TestUiExport : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase() {
+        QVERIFY(m_dir.isValid());
+        QSettings().remove(QStringLiteral("export/lastDir"));
+        m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
+        m_doc = m_window->controller();
+        const QString error = test::showWithFirstFrame(m_window.get(), QSize(1280, 800));
+        QVERIFY2(error.isEmpty(), qPrintable(error));
+    }
+    void cleanupTestCase() {
+        m_doc->newDocument();
+        m_window->close();
+        m_window.reset();
+    }
+
+    void ctrlEExportsGlbByDefault() {
+        m_doc->editParam(ParamId::Roughness, glm::vec3(0.6f));
+        const QString path = m_dir.filePath(QStringLiteral("look"));
+        test::answerFileDialog(path);
+        pressCtrlE();
+        QVERIFY(QTest::qWaitFor([&] { return QFile::exists(path + ".glb"); }, 30000));
+        QFile glb(path + ".glb");
+        QVERIFY(glb.open(QIODevice::ReadOnly));
+        QCOMPARE(glb.read(4), QByteArray("glTF")); // the GLB header's magic (glTF 2.0, 4.4)
+        QVERIFY(m_window->logPanel()->text().contains(QStringLiteral("Exported")));
+        QVERIFY(m_doc->isDirty()); // an export is not a save
+        QCOMPARE(m_doc->undoStack()->count(), 1);
+    }
+
+    void filterChoosesMaterialXShader() {
+        const QStringList filters = exportFilters();
+        const QString openPbr = filters.filter(QStringLiteral("open_pbr_surface")).value(0);
+        QVERIFY(!openPbr.isEmpty());
+        const QString path = m_dir.filePath(QStringLiteral("look_openpbr"));
+        test::answerFileDialog(path, openPbr);
+        pressCtrlE();
+        QVERIFY2(QTest::qWaitFor([&] { return QFile::exists(path + ".mtlx"); }, 30000),
+                 qPrintable(QDir(m_dir.path()).entryList(QDir::Files).join(' ') + " | " +
+                            m_window->logPanel()->text()));
+        QFile mtlx(path + ".mtlx");
+        QVERIFY(mtlx.open(QIODevice::ReadOnly));
+        const QByteArray xml = mtlx.readAll();
+        QVERIFY(xml.contains("<open_pbr_surface"));
+        QVERIFY(!xml.contains("<standard_surface"));
+    }
+
+    void unwritableTargetIsRefusedWithItsName() {
+        // A regular file where the export's folder should be.
+        const QString blocker = m_dir.filePath(QStringLiteral("blocker"));
+        QFile f(blocker);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("x");
+        f.close();
+        const int history = m_doc->undoStack()->count();
+        QString error;
+        QVERIFY(!exportDocument(*m_doc, blocker + "/inside.glb", exportFilters().front(),
+                                m_window->logPanel(), &error));
+        QVERIFY2(error.contains(QStringLiteral("blocker")), qPrintable(error));
+        QVERIFY(!QFile::exists(blocker + "/inside.glb"));
+        QCOMPARE(m_doc->undoStack()->count(), history);
+        QVERIFY(m_doc->isDirty());
+
+        // The same through the dialog: a message box says it, the Log keeps it.
+        bool boxShown = false;
+        test::onNextModal<QMessageBox>([&boxShown](QMessageBox* box) {
+            boxShown = box->text().contains(QStringLiteral("blocker"));
+            box->accept();
+        });
+        test::answerFileDialog(blocker + "/inside.glb");
+        pressCtrlE();
+        QVERIFY(QTest::qWaitFor([&] { return boxShown; }, 30000));
+        QVERIFY(m_window->logPanel()->text().contains(QStringLiteral("Export failed")));
+    }
+
+private:
+    /// Ctrl+E as the artist presses it, on the active window (a closed dialog leaves Xvfb, which
+    /// has no window manager, without an active window).
+    void pressCtrlE() {
+        QVERIFY(test::activate(m_window.get()));
+        QTest::keyClick(m_window.get(), Qt::Key_E, Qt::ControlModifier);
+    }
+
+    QTemporaryDir m_dir;
+    std::unique_ptr<MainWindow> m_window;
+    DocumentController* m_doc = nullptr;
+};
+
+int main(int argc, char** argv) {
+    QStandardPaths::setTestModeEnabled(true); // QSettings go to a throwaway place
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("VelvetExportTest"));
+    QApplication::setOrganizationName(QStringLiteral("VelvetTest"));
+    TestUiExport test;
+    return QTest::qExec(&test, argc, argv);
+}
+#include "test_ui_export.moc"
