@@ -90,6 +90,9 @@ int runExport(const std::vector<std::string>& argv) {
         options.shader = *shader;
     }
     if (args->has("mesh")) {
+        if (options.format != ExportFormat::Glb && options.format != ExportFormat::Gltf)
+            return usage("--mesh applies to -f glb and -f gltf only (the other formats hold no "
+                         "mesh)");
         options.mesh = parseMesh(args->value("mesh"));
         if (!options.mesh)
             return usage("--mesh \"" + args->value("mesh") +

@@ -55,7 +55,7 @@ private slots:
     void helpForEveryCommand_data() {
         QTest::addColumn<QStringList>("args");
         QTest::newRow("top") << QStringList{"--help"};
-        for (const char* c : {"render", "validate", "info", "schema"})
+        for (const char* c : {"render", "validate", "info", "schema", "export"})
             QTest::newRow(c) << QStringList{c, "--help"};
     }
     void helpForEveryCommand() {

@@ -384,6 +384,8 @@ private slots:
         QTest::newRow("bad mesh") << QStringList{"export", gold,     "-f", "glb",
                                                  "--mesh", "teapot", "-o", "x"}
                                   << 1;
+        QTest::newRow("mesh with preset")
+            << QStringList{"export", gold, "-f", "preset", "--mesh", "cube", "-o", "x"} << 1;
         QTest::newRow("same name twice")
             << QStringList{"export", gold, gold, "-f", "glb", "-o", "x"} << 1;
         QTest::newRow("missing input")
