@@ -115,6 +115,23 @@ const std::pair<const char*, render::DebugView> kDebugViews[] = {
 };
 
 /// Keeps the first three channels (the file holds opaque colour).
+/// Empty when every pixel of @p image is finite, else how many are not and where the first is.
+std::string nonFiniteReason(const Image& image) {
+    size_t bad = 0, first = 0;
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        if (!std::isfinite(image.pixels[i]) && bad++ == 0)
+            first = i / size_t(std::max(1, image.channels));
+    if (bad == 0)
+        return {};
+    const size_t w = size_t(std::max(1, image.width));
+    return std::to_string(bad) +
+           " channel values of the image are not finite (NaN or infinity), "
+           "the first at pixel (" +
+           std::to_string(first % w) + ", " + std::to_string(first / w) +
+           "): a value in the scene is beyond what the renderer can carry (an environment, light "
+           "or camera value far out of range)";
+}
+
 Image toRgb(const Image& rgba) {
     Image out(rgba.width, rgba.height, 3);
     for (int y = 0; y < rgba.height; ++y)
@@ -310,14 +327,20 @@ int runRender(const std::vector<std::string>& argv) {
 
     Image linear, display;
     const bool wantExr = ext == ".exr";
-    if (!render::renderSceneOffscreen(*scene, settings, wantExr ? &linear : nullptr,
-                                      wantExr ? nullptr : &display, &error, &problems,
-                                      colorManagement)) {
+    // The scene-linear image is always read back: it is where a NaN or an infinity shows (the
+    // 8-bit display image has already turned them into 0 or 1).
+    if (!render::renderSceneOffscreen(*scene, settings, &linear, wantExr ? nullptr : &display,
+                                      &error, &problems, colorManagement)) {
         printProblems(problems);
         std::cerr << "velvet render: rendering failed: " << error << "\n";
         return RenderFailure;
     }
     printProblems(problems); // warnings only (missing textures or HDRI fell back)
+    // Issue 18: a render whose result is not finite is a rendering failure, never a silent image.
+    if (const std::string why = nonFiniteReason(linear); !why.empty()) {
+        std::cerr << "velvet render: rendering failed: " << why << "; nothing was written\n";
+        return RenderFailure;
+    }
 
     if (!writeImage(out, toRgb(wantExr ? linear : display),
                     wantExr ? PixelFormat::Half : PixelFormat::UInt8, &error)) {

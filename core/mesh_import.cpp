@@ -22,6 +22,7 @@
 #include <poll.h>
 #include <spawn.h>
 #include <sstream>
+#include <string_view>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -126,6 +127,42 @@ std::string lastLine(const std::string& text) {
     return last;
 }
 
+/// The formats Velvet lists (issue 18: only these reach Assimp), by lower-case extension.
+const char* const kSupportedList = "OBJ, FBX, glTF/GLB, PLY, STL, DAE";
+bool supportedExtension(const std::string& ext) {
+    for (const char* e : {".obj", ".fbx", ".gltf", ".glb", ".ply", ".stl", ".dae"})
+        if (ext == e)
+            return true;
+    return false;
+}
+
+/// Whether the file's first bytes are what its extension promises (each format's signature:
+/// glTF 2.0 §4.4.3 "glTF" for GLB, "ply" for PLY, Kaydara's binary FBX header or text, an XML
+/// '<' for COLLADA, a JSON '{' for glTF; OBJ and ASCII formats are text: no NUL in the first
+/// block). Binary STL has no signature (80 free bytes), so any STL passes to checkStl.
+bool magicMatches(const std::filesystem::path& file, const std::string& ext) {
+    std::ifstream in(file, std::ios::binary);
+    char head[512] = {};
+    in.read(head, sizeof head);
+    const std::string_view h(head, size_t(in.gcount()));
+    const bool text = h.find('\0') == std::string_view::npos;
+    const size_t first = h.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+    const char lead = first == std::string_view::npos ? '\0' : h[first];
+    if (ext == ".glb")
+        return h.substr(0, 4) == "glTF";
+    if (ext == ".ply")
+        return h.substr(0, 3) == "ply";
+    if (ext == ".fbx")
+        return h.substr(0, 18) == "Kaydara FBX Binary" || text;
+    if (ext == ".dae")
+        return text && lead == '<';
+    if (ext == ".gltf")
+        return text && lead == '{';
+    if (ext == ".obj")
+        return text;
+    return true; // .stl
+}
+
 } // namespace
 
 bool checkMeshFile(const std::filesystem::path& file, std::string* error,
@@ -146,6 +183,12 @@ bool checkMeshFile(const std::filesystem::path& file, std::string* error,
                                " bytes, more than the mesh file limit of " +
                                std::to_string(limits.maxFileBytes) + " bytes; refused");
     const std::string ext = lower(file.extension().string());
+    if (!supportedExtension(ext))
+        return fail(error, file.string() + ": \"" + ext + "\" is not a mesh format Velvet reads (" +
+                               kSupportedList + "); refused");
+    if (!magicMatches(file, ext))
+        return fail(error, file.string() + ": its contents are not " + ext.substr(1) +
+                               " (the file's first bytes do not match the format); refused");
     if (ext == ".stl")
         return checkStl(file, size, error, limits);
     if (ext == ".ply")
@@ -341,8 +384,22 @@ bool importMesh(const std::filesystem::path& file, MeshData& out, std::string* e
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_adddup2(&actions, pipeFds[1], 2);
     const std::string helperPath = helper.string(), in = file.string(), outPath = cache.string();
-    char* argv[] = {const_cast<char*>(helperPath.c_str()), const_cast<char*>("import-mesh"),
-                    const_cast<char*>(in.c_str()), const_cast<char*>(outPath.c_str()), nullptr};
+    // The child sets these on itself (setrlimit) before Assimp runs: CPU seconds, address space,
+    // and the size of what it writes.
+    const std::string cpu = std::to_string(options.cpuSeconds),
+                      memory = std::to_string(options.addressSpaceMiB),
+                      output = std::to_string(options.maxOutputMiB);
+    char* argv[] = {const_cast<char*>(helperPath.c_str()),
+                    const_cast<char*>("import-mesh"),
+                    const_cast<char*>(in.c_str()),
+                    const_cast<char*>(outPath.c_str()),
+                    const_cast<char*>("--cpu-seconds"),
+                    const_cast<char*>(cpu.c_str()),
+                    const_cast<char*>("--memory-mib"),
+                    const_cast<char*>(memory.c_str()),
+                    const_cast<char*>("--output-mib"),
+                    const_cast<char*>(output.c_str()),
+                    nullptr};
     pid_t pid = 0;
     const int spawned = ::posix_spawn(&pid, helperPath.c_str(), &actions, nullptr, argv, environ);
     posix_spawn_file_actions_destroy(&actions);
@@ -356,8 +413,11 @@ bool importMesh(const std::filesystem::path& file, MeshData& out, std::string* e
         *isolated = true;
 
     // Collect the child's stderr until it closes and the child exits, or the deadline passes.
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::milliseconds(options.timeoutMs);
+    // VELVET_MESH_IMPORT_TIMEOUT_S overrides the wall-clock limit (an artist's slow network disk).
+    int timeoutMs = options.timeoutMs;
+    if (const char* env = std::getenv("VELVET_MESH_IMPORT_TIMEOUT_S"); env && std::atof(env) > 0)
+        timeoutMs = int(std::atof(env) * 1000.0);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeoutMs);
     std::string messages;
     bool eof = false, exited = false, timedOut = false;
     int status = 0;
@@ -390,8 +450,31 @@ bool importMesh(const std::filesystem::path& file, MeshData& out, std::string* e
     const auto cleanup = [&] { std::filesystem::remove(cache, ec); };
     if (timedOut) {
         cleanup();
-        return fail(error, file.string() + ": the mesh importer did not finish within " +
-                               std::to_string(options.timeoutMs) + " ms and was stopped");
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%g", double(timeoutMs) / 1000.0);
+        return fail(error, file.string() + ": the mesh importer timed out after " + seconds +
+                               " s and was stopped; the document is unaffected");
+    }
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) {
+        cleanup();
+        return fail(error, file.string() + ": the mesh importer used more than " +
+                               std::to_string(options.cpuSeconds) +
+                               " s of CPU time and was stopped; the document is unaffected");
+    }
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) {
+        cleanup();
+        return fail(error, file.string() + ": the imported mesh is larger than " +
+                               std::to_string(options.maxOutputMiB) +
+                               " MiB; refused, the document is unaffected");
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kImportExitOutOfMemory) {
+        cleanup();
+        const long mib = options.addressSpaceMiB;
+        const std::string amount = mib >= 1024 && mib % 1024 == 0
+                                       ? std::to_string(mib / 1024) + " GiB"
+                                       : std::to_string(mib) + " MiB";
+        return fail(error, file.string() + ": the mesh importer needed more than " + amount +
+                               " of memory; refused, the document is unaffected");
     }
     if (WIFSIGNALED(status)) {
         cleanup();

@@ -64,9 +64,19 @@ struct MeshImportOptions {
     /// The `velvet` executable that runs `velvet import-mesh IN OUT` in a child process. Empty:
     /// meshImportHelper() (set by the application at start-up).
     std::filesystem::path helper;
-    /// The child is killed after this long and the import fails with a message.
-    int timeoutMs = 60'000;
+    /// The child is killed after this long (wall clock) and the import fails with "timed out
+    /// after 10 s"; VELVET_MESH_IMPORT_TIMEOUT_S overrides it.
+    int timeoutMs = 10'000;
+    /// Limits the child sets on itself with setrlimit (issue 18): CPU time (SIGXCPU past it),
+    /// address space (an allocation fails: exit kImportExitOutOfMemory), and the size of the mesh
+    /// cache it writes (SIGXFSZ past it). Each has its own message.
+    int cpuSeconds = 20;
+    long addressSpaceMiB = 4096;
+    long maxOutputMiB = 512;
 };
+
+/// `velvet import-mesh`'s exit code when an allocation failed under its address-space limit.
+inline constexpr int kImportExitOutOfMemory = 4;
 
 /// Sets / returns the default import helper (the running `velvet` executable). Unset in unit
 /// tests and in library users without the executable; importMesh() then imports in process.

