@@ -14,50 +14,21 @@
 namespace velvet {
 namespace {
 
+// The catalogue's parameters, all in the "Effect" group, through core/param_meta.h's builders.
 constexpr ParamMeta scalar(std::string_view id, std::string_view label, float min, float max,
                            float def, std::string_view unit, std::string_view tooltip) {
-    ParamMeta m{};
-    m.id = id;
-    m.label = label;
-    m.group = "Effect";
-    m.type = ParamType::Float;
-    m.min = min;
-    m.max = max;
-    m.defaultValue = glm::vec3(def);
-    m.unit = unit;
-    m.tooltip = tooltip;
-    return m;
+    return floatParam(id, label, "Effect", min, max, def, unit, tooltip);
 }
 
 constexpr ParamMeta colour(std::string_view id, std::string_view label, float min, float max,
                            glm::vec3 def, std::string_view tooltip) {
-    ParamMeta m{};
-    m.id = id;
-    m.label = label;
-    m.group = "Effect";
-    m.type = ParamType::Color;
-    m.min = min;
-    m.max = max;
-    m.defaultValue = def;
-    m.colorSpace = ColorSpace::Linear;
-    m.tooltip = tooltip;
-    return m;
+    return colorParam(id, label, "Effect", min, max, def, tooltip);
 }
 
 constexpr ParamMeta choice(std::string_view id, std::string_view label,
                            std::span<const std::string_view> names, int def,
                            std::string_view tooltip) {
-    ParamMeta m{};
-    m.id = id;
-    m.label = label;
-    m.group = "Effect";
-    m.type = ParamType::Choice;
-    m.min = 0.0f;
-    m.max = float(names.size() - 1);
-    m.defaultValue = glm::vec3(float(def));
-    m.tooltip = tooltip;
-    m.choices = names;
-    return m;
+    return choiceParam(id, label, "Effect", names, def, tooltip);
 }
 
 constexpr std::array<std::string_view, 2> kOffOn{"off", "on"};
@@ -278,6 +249,17 @@ const EffectMeta* findPostEffect(std::string_view type) {
         if (m.type == type)
             return &m;
     return nullptr;
+}
+
+int toneMapOperatorIndex(std::string_view name) {
+    const EffectMeta* tonemap = findPostEffect("tonemap");
+    const ParamMeta* op = tonemap ? findEffectParam(*tonemap, "operator") : nullptr;
+    if (!op)
+        return -1;
+    for (size_t i = 0; i < op->choices.size(); ++i)
+        if (op->choices[i] == name)
+            return int(i);
+    return -1;
 }
 
 const ParamMeta* findEffectParam(const EffectMeta& meta, std::string_view id) {

@@ -59,6 +59,10 @@ std::span<const EffectMeta> postEffectCatalogue();
 const EffectMeta* findPostEffect(std::string_view type);
 /// The parameter @p id of @p meta, or nullptr.
 const ParamMeta* findEffectParam(const EffectMeta& meta, std::string_view id);
+/// The index of the tonemap effect's operator @p name ("pbr-neutral", "aces", "reinhard",
+/// "linear", …) in its "operator" choice, or -1: the renderer maps its built-in curves to the
+/// effect's numbering by name through this, never by literal.
+int toneMapOperatorIndex(std::string_view name);
 /// Number of floats a parameter holds (1, or 3 for colours).
 int paramComponents(const ParamMeta& p);
 /// "pre-pass", "HDR", "paint", "tone mapping", "LDR", "any".

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include "core/color_management.h"
+#include "core/post_effects.h"
 #include "core/texture_cache.h"
 #include "render/display_output.h"
 #include "render/environment_map.h"
@@ -244,11 +245,12 @@ bool Renderer::Impl::runPost(const FrameSettings& fs, const FrameBlock& b, unsig
                                              : b.viewProjMatrix;
     in.time = fs.time;
     in.exposureEv = fs.exposureEv;
-    // The tonemap effect's operator indices: pbr-neutral, aces, reinhard, …, linear (5).
-    in.implicitToneMapper = fs.toneMapper == ToneMapper::AcesFitted ? 1
-                            : fs.toneMapper == ToneMapper::Reinhard ? 2
-                            : fs.toneMapper == ToneMapper::Linear   ? 5
-                                                                    : 0;
+    // The built-in curve as the tonemap effect's operator, looked up by name in the catalogue.
+    in.implicitToneMapper =
+        std::max(0, toneMapOperatorIndex(fs.toneMapper == ToneMapper::AcesFitted ? "aces"
+                                         : fs.toneMapper == ToneMapper::Reinhard ? "reinhard"
+                                         : fs.toneMapper == ToneMapper::Linear   ? "linear"
+                                                                                 : "pbr-neutral"));
     const bool ocioAll = choice.ocioToneMaps;
     in.forceDisplayTransform = ocioAll;
     in.encoding = &display.encoding();

@@ -2,6 +2,7 @@
 
 #include "core/document_io.h"
 #include "core/post_effects.h"
+#include "core/scene_document.h"
 #include "ui/commands/atlas_commands.h"
 #include "ui/commands/post_chain_commands.h"
 #include "ui/commands/set_param_command.h"
@@ -196,30 +197,20 @@ bool DocumentController::save(QString* error) {
 }
 
 bool DocumentController::saveAs(const QString& path, QString* error) {
-    std::string message;
-    // The atlases first ("<name>.atlas.json" beside the scene, sources that exist only in memory
-    // written next to it), then the scene that names them; each write is atomic.
-    Scene scene = m_scene;
-    AtlasSet atlases = m_atlases;
-    scene.atlases.clear();
-    if (!atlases.empty()) {
-        const std::filesystem::path file = toPath(path);
-        const std::filesystem::path atlasFile =
-            file.parent_path() / (file.stem().string() + ".atlas.json");
-        if (!saveAtlasFile(atlases, atlasFile, &message)) {
-            if (error)
-                *error = QString::fromStdString(message);
-            return false;
-        }
-        scene.atlases = std::filesystem::absolute(atlasFile).lexically_normal().generic_string();
-    }
-    if (!saveSceneFile(scene, toPath(path), &message)) {
+    // The atlases first, then the scene that names them, each write atomic: core's one way to
+    // save a document, which the CLI shares (core/scene_document.h).
+    Problems problems;
+    std::optional<SceneDocument> saved =
+        saveSceneDocument({m_scene, m_atlases}, toPath(path), problems);
+    if (!saved) {
         if (error)
-            *error = QString::fromStdString(message);
+            *error = problems.items.empty()
+                         ? QStringLiteral("%1: could not be saved").arg(path)
+                         : QString::fromStdString(problems.items.front().toString());
         return false;
     }
-    m_scene.atlases = scene.atlases;
-    m_atlases = std::move(atlases); // sources now name their files
+    m_scene.atlases = saved->scene.atlases;
+    m_atlases = std::move(saved->atlases); // sources now name their files
     const QString absolute = QFileInfo(path).absoluteFilePath();
     if (absolute != m_filePath) {
         m_filePath = absolute;

@@ -39,6 +39,13 @@ std::string allMessages(const Problems& p) {
 class TestCorePostChain : public QObject {
     Q_OBJECT
 private slots:
+    void toneMapOperatorsAreFoundByName() {
+        // The renderer's built-in curves reach the tonemap effect by these names.
+        for (const char* name : {"pbr-neutral", "aces", "reinhard", "linear"})
+            QVERIFY2(toneMapOperatorIndex(name) >= 0, name);
+        QCOMPARE(toneMapOperatorIndex("pbr-neutral"), 0);
+        QCOMPARE(toneMapOperatorIndex("no-such-curve"), -1);
+    }
     void catalogueIsWellFormed() {
         std::set<std::string_view> types;
         for (const EffectMeta& m : postEffectCatalogue()) {

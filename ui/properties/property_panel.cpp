@@ -36,20 +36,13 @@ QString fromView(std::string_view s) {
 
 /// A node input described as a parameter, so it gets the same editors as material parameters.
 ParamMeta inputMeta(const graph::InputSpec& in) {
-    ParamMeta m;
-    m.id = in.name;
-    m.label = in.label;
-    m.group = "Node";
-    m.type = in.type == graph::PortType::Color && in.min >= 0.0f && in.max <= 1.0f
-                 ? ParamType::Color
-                 : ParamType::Float;
-    m.min = in.min;
-    m.max = in.max;
-    m.defaultValue = glm::vec3(in.defaultValue);
-    m.unit = in.unit;
-    m.colorSpace = m.type == ParamType::Color ? ColorSpace::Linear : ColorSpace::None;
-    m.tooltip = in.tooltip;
-    m.softMax = in.softMax;
+    // A colour input in [0, 1] gets a swatch; everything else (vectors, HDR colours) sliders.
+    if (in.type == graph::PortType::Color && in.min >= 0.0f && in.max <= 1.0f)
+        return colorParam(in.name, in.label, "Node", in.min, in.max, glm::vec3(in.defaultValue),
+                          in.tooltip);
+    ParamMeta m = floatParam(in.name, in.label, "Node", in.min, in.max, in.defaultValue.x, in.unit,
+                             in.tooltip, in.softMax);
+    m.defaultValue = glm::vec3(in.defaultValue); // a vector input keeps every component
     return m;
 }
 
