@@ -11,7 +11,7 @@
 
 namespace velvet::render {
 
-/// One material as the shaders read it; mirrors GpuMaterial in common_material.glsl (std430,
+/// One material as the shaders read it; generated into GLSL by render/render_interface.cpp (std430,
 /// vec4 members only, so C++ and GLSL agree on every offset).
 struct GpuMaterial {
     glm::vec4 baseColorMetallic;

@@ -4,6 +4,7 @@
 #include "render/display_encoding.h"
 #include "render/post_effect.h"
 #include "render/post_plan.h"
+#include "render/render_interface.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,16 +14,7 @@
 #include <map>
 
 namespace velvet::render {
-namespace {
-
-/// Mirrors PostFrame in post_common.glsl (std140).
-struct PostFrameBlock {
-    glm::mat4 viewProj, invViewProj, prevViewProj, invProj;
-    glm::vec4 viewport;
-    glm::vec4 misc;
-};
-
-} // namespace
+namespace {} // namespace
 
 struct PostChainRenderer::Impl {
     PostTargetPool pool;

@@ -1,5 +1,7 @@
 #include "render/render_interface.h"
 
+#include "render/material_table.h"
+#include "render/post_effect.h"
 #include "render/shader_program.h"
 
 #include <array>
@@ -56,6 +58,36 @@ constexpr std::array kIblMembers{
                   "x: level of the blurred background, y: time in seconds (FBM), zw unused"),
 };
 
+// std430 lays out a struct of vec4 / ivec4 members exactly as std140 does.
+constexpr std::array kMaterialMembers{
+    VELVET_MEMBER(GpuMaterial, "vec4", baseColorMetallic, "",
+                  "rgb base colour (linear), a metallic"),
+    VELVET_MEMBER(GpuMaterial, "vec4", specularColorWeight, "",
+                  "rgb specular colour, a specular weight"),
+    VELVET_MEMBER(GpuMaterial, "vec4", roughIorOcclusionNormal, "",
+                  "roughness, IOR, occlusion strength, normal scale"),
+    VELVET_MEMBER(GpuMaterial, "vec4", emissive, "",
+                  "rgb colour, a strength (nits); drawn per pixel by gbuffer.frag"),
+    VELVET_MEMBER(GpuMaterial, "vec4", sheenColorRoughness, "",
+                  "rgb sheen weight x colour, a sheen roughness"),
+    VELVET_MEMBER(GpuMaterial, "vec4", clearcoat, "", "weight, roughness, normal scale, unused"),
+    VELVET_MEMBER(GpuMaterial, "ivec4", terms, "", "distribution, visibility, fresnel, diffuse"),
+    VELVET_MEMBER(GpuMaterial, "ivec4", terms2, "",
+                  "sheen model, texture-slot presence bits, atlas-region bits "
+                  "(render/texture_set.h), unused"),
+};
+
+constexpr std::array kPostFrameMembers{
+    VELVET_MEMBER(PostFrameBlock, "mat4", viewProj, "", ""),
+    VELVET_MEMBER(PostFrameBlock, "mat4", invViewProj, "", ""),
+    VELVET_MEMBER(PostFrameBlock, "mat4", prevViewProj, "", ""),
+    VELVET_MEMBER(PostFrameBlock, "mat4", invProj, "", ""),
+    VELVET_MEMBER(PostFrameBlock, "vec4", viewport, "",
+                  "full-resolution width, height, 1/width, 1/height"),
+    VELVET_MEMBER(PostFrameBlock, "vec4", misc, "",
+                  "x: time in seconds, y: exposure multiplier of the frame settings"),
+};
+
 #undef VELVET_MEMBER
 
 template <size_t N>
@@ -74,6 +106,10 @@ static_assert(std140Packed(kIblMembers, sizeof(IblBlock)),
               "IblBlock: a member is not at its std140 offset");
 static_assert(sizeof(FrameBlock) == 5 * 64 + 16 * 16 + 2 * kMaxDirectionalLights * 16);
 static_assert(sizeof(IblBlock) == 32);
+static_assert(std140Packed(kMaterialMembers, sizeof(GpuMaterial)),
+              "GpuMaterial: a member is not at its std430 offset");
+static_assert(std140Packed(kPostFrameMembers, sizeof(PostFrameBlock)),
+              "PostFrameBlock: a member is not at its std140 offset");
 
 /// DebugView's GLSL names, in enum order (the numbers are the enum's).
 constexpr std::array<std::string_view, 19> kDebugViewNames{
@@ -165,10 +201,8 @@ std::string defines(const std::array<EnumName<E>, N>& names) {
 }
 
 template <size_t N>
-std::string block(std::string_view name, int binding, std::string_view instance,
-                  const std::array<Member, N>& members) {
-    std::string s = "layout(std140, binding = " + std::to_string(binding) + ") uniform " +
-                    std::string(name) + " {\n";
+std::string membersText(const std::array<Member, N>& members) {
+    std::string s;
     for (const Member& m : members) {
         s += "    " + std::string(m.glslType) + " " + std::string(m.name);
         if (!m.count.empty())
@@ -178,7 +212,14 @@ std::string block(std::string_view name, int binding, std::string_view instance,
             s += " // " + std::string(m.comment);
         s += "\n";
     }
-    return s + "} " + std::string(instance) + ";\n";
+    return s;
+}
+
+template <size_t N>
+std::string block(std::string_view name, int binding, std::string_view instance,
+                  const std::array<Member, N>& members) {
+    return "layout(std140, binding = " + std::to_string(binding) + ") uniform " +
+           std::string(name) + " {\n" + membersText(members) + "} " + std::string(instance) + ";\n";
 }
 
 } // namespace
@@ -207,7 +248,14 @@ std::string renderInterfaceGlsl() {
          " || isLobeView(view); }\n";
     s += defines(kDistributions) + defines(kVisibilities) + defines(kFresnels) +
          defines(kDiffuses) + defines(kSheenModels) + defines(kToneMappers);
+    // The material record (the std430 table itself is common_material.glsl's).
+    s += "struct GpuMaterial {\n" + membersText(kMaterialMembers) + "};\n";
     return s;
+}
+
+std::string postInterfaceGlsl() {
+    return "// Generated from render/render_interface.cpp; do not edit.\n" +
+           block("PostFrame", kPostFrameUbo, "post", kPostFrameMembers);
 }
 
 } // namespace velvet::render

@@ -11,7 +11,9 @@
 /// (DEBUG_FINAL … from render::DebugView) and `bool isLightView(int)` / `bool isLobeView(int)`,
 /// the same tests as the C++ isLightView() / isLobeView() below; the BRDF term ids
 /// (DISTRIBUTION_*, VISIBILITY_*, FRESNEL_*, DIFFUSE_*, SHEEN_CHARLIE_*: core/material.h's enums)
-/// and the built-in tone mappers (TONEMAP_*: ToneMapper).
+/// and the built-in tone mappers (TONEMAP_*: ToneMapper); the material record
+/// (`struct GpuMaterial`, render/material_table.h, read from the std430 material table). The post
+/// chain's PostFrame block goes to its own include, "post_interface.glsl" (postInterfaceGlsl()).
 
 #include "render/renderer.h"
 
@@ -42,6 +44,14 @@ struct IblBlock {
     glm::vec4 background; ///< blurred background level, time (s), unused, unused
 };
 
+/// The post chain's per-frame constants (std140, mat4 / vec4 only): the block PostFrame
+/// (binding kPostFrameUbo, instance `post`) of the virtual include "post_interface.glsl".
+struct PostFrameBlock {
+    glm::mat4 viewProj, invViewProj, prevViewProj, invProj;
+    glm::vec4 viewport; ///< full-resolution width, height, 1/width, 1/height
+    glm::vec4 misc;     ///< x: time in seconds, y: exposure multiplier of the frame settings
+};
+
 /// Views the point, spot and area lights contribute to (the local-light passes run for these).
 bool isLightView(DebugView view);
 /// The lobe views: direct light through one lobe (DiffuseOnly .. ClearcoatOnly).
@@ -49,5 +59,7 @@ bool isLobeView(DebugView view);
 
 /// The GLSL text of "render_interface.glsl".
 std::string renderInterfaceGlsl();
+/// The text of "post_interface.glsl": the PostFrame block (PostFrameBlock).
+std::string postInterfaceGlsl();
 
 } // namespace velvet::render

@@ -45,6 +45,10 @@ bool readSource(const std::string& name, const GeneratedSources& generated, std:
         text = renderInterfaceGlsl();
         return true;
     }
+    if (name == "post_interface.glsl") {
+        text = postInterfaceGlsl();
+        return true;
+    }
     if (name == "render_bindings.glsl") {
         text = bindingsGlsl();
         return true;

@@ -21,14 +21,8 @@ layout(location = POST_TEXEL_LOCATION) uniform vec4 uTexel;
 layout(binding = POST_INPUT_UNIT) uniform sampler2D uInput; // bilinear, clamped
 layout(binding = POST_AUX_UNIT) uniform sampler2D uAux;     // a second image (pre-pass, blur)
 
-layout(std140, binding = POST_FRAME_UBO) uniform PostFrame {
-    mat4 viewProj;
-    mat4 invViewProj;
-    mat4 prevViewProj;
-    mat4 invProj;
-    vec4 viewport; // full-resolution width, height, 1/width, 1/height
-    vec4 misc;     // x: time in seconds, y: exposure multiplier of the frame settings
-} post;
+// PostFrame (instance `post`), generated from render/render_interface.cpp's PostFrameBlock.
+#include "post_interface.glsl"
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 

@@ -43,9 +43,18 @@ private slots:
               "#define SHEEN_CHARLIE_NEUBELT " + std::to_string(int(SheenModel::CharlieNeubelt)),
               "#define TONEMAP_LINEAR " + std::to_string(int(render::ToneMapper::Linear))})
             QVERIFY2(glsl.find(d + "\n") != std::string::npos, d.c_str());
+        // The material record and the post chain's block, members in C++ order.
+        const size_t record = glsl.find("struct GpuMaterial {");
+        QVERIFY(record != std::string::npos);
+        QVERIFY(glsl.find("vec4 baseColorMetallic;", record) < glsl.find("ivec4 terms2;", record));
+        const std::string post = render::postInterfaceGlsl();
+        QVERIFY(post.find("uniform PostFrame {") != std::string::npos);
+        for (const char* member : {"mat4 viewProj;", "mat4 prevViewProj;", "vec4 misc;", "} post;"})
+            QVERIFY2(post.find(member) != std::string::npos, member);
     }
 
-    // One copy: no shader file declares the frame or IBL block, or a debug-view id, itself.
+    // One copy: no shader file declares the frame, IBL or post block, the material record or a
+    // debug-view id itself.
     void noShaderRedeclaresThem() {
         const std::filesystem::path dir =
             std::filesystem::path(VELVET_SOURCE_DIR) / "resources/shaders";
@@ -56,6 +65,8 @@ private slots:
             ++files;
             QVERIFY2(text.find("uniform FrameBlock") == std::string::npos, name.c_str());
             QVERIFY2(text.find("uniform IblBlock") == std::string::npos, name.c_str());
+            QVERIFY2(text.find("uniform PostFrame") == std::string::npos, name.c_str());
+            QVERIFY2(text.find("struct GpuMaterial") == std::string::npos, name.c_str());
             QVERIFY2(!std::regex_search(text, std::regex("#define DEBUG_[A-Z_]+ [0-9]")),
                      name.c_str());
             QVERIFY2(text.find("#define MAX_LIGHTS") == std::string::npos, name.c_str());
