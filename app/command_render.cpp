@@ -59,23 +59,6 @@ const char* kHelp =
     "transform (exposure, look, display/view); a missing --view is the display's default view.\n"
     "EXR output is scene-linear either way.\n\n";
 
-bool parseSize(const std::string& text, int& w, int& h) {
-    auto x = text.find_first_of("xX");
-    if (x == std::string::npos)
-        return false;
-    auto parse = [](std::string_view s, int& v) {
-        auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-        return ec == std::errc() && ptr == s.data() + s.size() && v >= 1 && v <= 8192;
-    };
-    return parse(std::string_view(text).substr(0, x), w) &&
-           parse(std::string_view(text).substr(x + 1), h);
-}
-
-bool parseFloat(const std::string& text, float& v) {
-    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    return ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(v);
-}
-
 template <typename Enum, size_t N>
 bool parseName(const std::string& text, const std::pair<const char*, Enum> (&table)[N], Enum& out) {
     for (const auto& [name, value] : table)
@@ -302,20 +285,8 @@ int runRender(const std::vector<std::string>& argv) {
 
     Problems problems;
     std::optional<Scene> scene;
-    if (args->positional.empty())
-        scene = defaultScene(&problems);
-    else
-        scene = loadSceneOrPreset(args->positional[0], problems);
-    if (!scene || problems.hasErrors()) {
-        printProblems(problems);
-        return BadInput;
-    }
-    if (args->has("light-rig")) {
-        auto lights = lightRigLights(args->value("light-rig"));
-        if (!lights)
-            return usage("--light-rig: unknown rig '" + args->value("light-rig") + "'");
-        scene->lights = std::move(*lights);
-    }
+    if (const int code = loadSceneArguments(*args, "render", scene, problems); code != Ok)
+        return code;
     if (args->has("chain")) {
         const auto preset = loadPostChainFile(args->value("chain"), problems);
         if (!preset || problems.hasErrors()) {

@@ -1,7 +1,10 @@
 #include "app/load_document.h"
 
 #include "core/document_io.h"
+#include "core/light_rigs.h"
 
+#include <charconv>
+#include <cmath>
 #include <iostream>
 
 namespace velvet::cli {
@@ -30,6 +33,46 @@ std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Proble
     if (loadMaterialFile(file, problems) && !problems.hasErrors())
         problems.error(file.string(), "format", "not a Velvet scene or material preset");
     return std::nullopt;
+}
+
+int loadSceneArguments(const Arguments& args, const char* command, std::optional<Scene>& scene,
+                       Problems& problems) {
+    if (args.positional.empty())
+        scene = defaultScene(&problems);
+    else
+        scene = loadSceneOrPreset(args.positional[0], problems);
+    if (!scene || problems.hasErrors()) {
+        printProblems(problems);
+        return BadInput;
+    }
+    if (args.has("light-rig")) {
+        auto lights = lightRigLights(args.value("light-rig"));
+        if (!lights) {
+            std::cerr << "velvet " << command << ": --light-rig: unknown rig '"
+                      << args.value("light-rig") << "'\nRun 'velvet " << command
+                      << " --help' for usage.\n";
+            return UsageError;
+        }
+        scene->lights = std::move(*lights);
+    }
+    return Ok;
+}
+
+bool parseSize(const std::string& text, int& w, int& h) {
+    auto x = text.find_first_of("xX");
+    if (x == std::string::npos)
+        return false;
+    auto parse = [](std::string_view s, int& v) {
+        auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+        return ec == std::errc() && ptr == s.data() + s.size() && v >= 1 && v <= 8192;
+    };
+    return parse(std::string_view(text).substr(0, x), w) &&
+           parse(std::string_view(text).substr(x + 1), h);
+}
+
+bool parseFloat(const std::string& text, float& v) {
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    return ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(v);
 }
 
 void printProblems(const Problems& problems) {

@@ -2,6 +2,7 @@
 /// @file load_document.h
 /// Opens whatever the user named — a scene or a material preset — as a scene.
 
+#include "app/cli.h"
 #include "core/diagnostics.h"
 #include "core/scene.h"
 
@@ -13,6 +14,16 @@ namespace velvet::cli {
 /// Loads @p file as a scene: a scene file as is, a material preset shown in the default scene.
 /// nullopt when @p problems holds errors (missing file, malformed JSON, unknown format…).
 std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Problems& problems);
+
+/// The scene options `velvet render` and `velvet reference` share: FILE (args.positional[0];
+/// none: the default scene) and --light-rig. Returns Ok with @p scene set, BadInput (problems
+/// printed) or UsageError (message printed, naming @p command).
+int loadSceneArguments(const Arguments& args, const char* command, std::optional<Scene>& scene,
+                       Problems& problems);
+/// "WxH" with each side in [1, 8192].
+bool parseSize(const std::string& text, int& w, int& h);
+/// A finite number, the whole text.
+bool parseFloat(const std::string& text, float& v);
 
 /// Prints each problem as one line on stderr ("file: path: message", warnings marked).
 void printProblems(const Problems& problems);
