@@ -1,0 +1,126 @@
+// The reference path tracer (reference/reference_renderer.h) against known answers: a white
+// furnace (a white Lambertian sphere under a uniform white environment is invisible: every pixel
+// converges to the environment's radiance), determinism (the same seed gives the same image
+// whatever the thread count; another seed another), and Monte Carlo convergence (the error
+// against a 16x-spp image roughly halves for every 4x spp).
+#include "core/image.h"
+#include "core/material.h"
+#include "core/scene.h"
+#include "reference/reference_renderer.h"
+
+#include <QTest>
+#include <cmath>
+
+using namespace velvet;
+
+namespace {
+
+/// A white diffuse sphere (no specular, sheen or clearcoat) under a uniform white environment.
+Scene furnaceScene() {
+    Scene s;
+    s.lights.clear();
+    s.environment = Environment{};
+    s.environment.hdri.clear();
+    s.environment.color = glm::vec3(1.0f);
+    s.environment.intensity = 1.0f;
+    s.material.setColor(ParamId::BaseColor, glm::vec3(1.0f));
+    s.material.setScalar(ParamId::Metallic, 0.0f);
+    s.material.setScalar(ParamId::Roughness, 1.0f);
+    s.material.setScalar(ParamId::SpecularWeight, 0.0f);
+    s.material.setScalar(ParamId::SheenWeight, 0.0f);
+    s.material.setScalar(ParamId::ClearcoatWeight, 0.0f);
+    return s;
+}
+
+/// A lit, shiny scene whose pixels vary (a gold sphere under the key light and a grey sky).
+Scene variedScene() {
+    Scene s;
+    s.environment.hdri.clear();
+    s.environment.color = glm::vec3(0.3f, 0.35f, 0.4f);
+    s.material.setColor(ParamId::BaseColor, glm::vec3(1.0f, 0.78f, 0.34f));
+    s.material.setScalar(ParamId::Metallic, 1.0f);
+    s.material.setScalar(ParamId::Roughness, 0.35f);
+    return s;
+}
+
+reference::Result renderOrFail(const Scene& scene, reference::Options o) {
+    reference::Result r;
+    std::string error;
+    if (!reference::render(scene, o, r, &error))
+        qWarning("reference render failed: %s", error.c_str());
+    return r;
+}
+
+double rmse(const Image& a, const Image& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const double d = double(a.pixels[i]) - double(b.pixels[i]);
+        sum += d * d;
+    }
+    return std::sqrt(sum / double(a.pixels.size()));
+}
+
+} // namespace
+
+class TestReferenceRenderer : public QObject {
+    Q_OBJECT
+
+private slots:
+    void whiteFurnaceIsInvisible() {
+        reference::Options o;
+        o.width = o.height = 24;
+        o.samplesPerPixel = 1024;
+        o.maxBounces = 16; // a convex sphere: few paths bounce more than once
+        // Enough samples that Russian roulette's noise stays under the tolerance (64 spp: 5 %).
+        const reference::Result r = renderOrFail(furnaceScene(), o);
+        QCOMPARE(r.image.width, 24);
+        QCOMPARE(r.passesDone, o.samplesPerPixel);
+        // The centre pixel is on the sphere; the mean covers sphere and background alike.
+        const int c = r.image.channels;
+        const float* centre = &r.image.pixels[(size_t(12) * 24 + 12) * size_t(c)];
+        for (int k = 0; k < 3; ++k)
+            QVERIFY2(std::abs(centre[k] - 1.0f) < 0.05f, qPrintable(QString::number(centre[k])));
+        double mean = 0.0;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 24; ++x)
+                mean += r.image.pixels[(size_t(y) * 24 + x) * size_t(c)];
+        mean /= 24.0 * 24.0;
+        QVERIFY2(std::abs(mean - 1.0) < 0.02, qPrintable(QString::number(mean)));
+    }
+
+    void sameSeedSameImageWhateverTheThreads() {
+        reference::Options o;
+        o.width = o.height = 20;
+        o.samplesPerPixel = 4;
+        o.threads = 1;
+        const reference::Result one = renderOrFail(variedScene(), o);
+        o.threads = 2;
+        const reference::Result two = renderOrFail(variedScene(), o);
+        QVERIFY(!one.image.pixels.empty());
+        QVERIFY(one.image.pixels == two.image.pixels);
+        o.seed = 7;
+        const reference::Result other = renderOrFail(variedScene(), o);
+        QVERIFY(other.image.pixels != one.image.pixels);
+    }
+
+    void errorHalvesForFourTimesTheSamples() {
+        reference::Options o;
+        o.width = o.height = 24;
+        o.samplesPerPixel = 256;
+        o.seed = 99; // independent of the images compared with it
+        const Image truth = renderOrFail(variedScene(), o).image;
+        o.seed = 1;
+        o.samplesPerPixel = 4;
+        const double e4 = rmse(renderOrFail(variedScene(), o).image, truth);
+        o.samplesPerPixel = 16;
+        const double e16 = rmse(renderOrFail(variedScene(), o).image, truth);
+        // 1/sqrt(spp): 4x the samples halve the error (the truth's own noise lowers the ratio a
+        // little).
+        const double ratio = e4 / e16;
+        QVERIFY2(ratio > 1.6 && ratio < 2.6,
+                 qPrintable(QStringLiteral("%1 / %2 = %3").arg(e4).arg(e16).arg(ratio)));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestReferenceRenderer)
+#include "test_reference_renderer.moc"
