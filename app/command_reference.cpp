@@ -92,12 +92,8 @@ int runReference(const std::vector<std::string>& argv) {
                          "'");
         options.timeLimitSeconds = seconds;
     }
-    const std::filesystem::path folder = out.parent_path().empty() ? "." : out.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(folder, ec)) {
-        std::cerr << out.string() << ": the folder '" << folder.string() << "' does not exist\n";
-        return BadInput;
-    }
+    if (const int code = checkOutputFolder(out); code != Ok)
+        return code;
 
     Problems problems;
     std::optional<Scene> scene;

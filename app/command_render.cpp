@@ -276,12 +276,8 @@ int runRender(const std::vector<std::string>& argv) {
         return code;
 
     // Check the destination before the (slow) render so bad input writes nothing and fails fast.
-    const std::filesystem::path folder = out.parent_path().empty() ? "." : out.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(folder, ec)) {
-        std::cerr << out.string() << ": the folder '" << folder.string() << "' does not exist\n";
-        return BadInput;
-    }
+    if (const int code = checkOutputFolder(out); code != Ok)
+        return code;
 
     Problems problems;
     std::optional<Scene> scene;

@@ -81,4 +81,13 @@ void printProblems(const Problems& problems) {
                   << "\n";
 }
 
+int checkOutputFolder(const std::filesystem::path& out) {
+    const std::filesystem::path folder = out.parent_path().empty() ? "." : out.parent_path();
+    std::error_code ec;
+    if (std::filesystem::is_directory(folder, ec))
+        return Ok;
+    std::cerr << out.string() << ": the folder '" << folder.string() << "' does not exist\n";
+    return BadInput;
+}
+
 } // namespace velvet::cli

@@ -28,4 +28,9 @@ bool parseFloat(const std::string& text, float& v);
 /// Prints each problem as one line on stderr ("file: path: message", warnings marked).
 void printProblems(const Problems& problems);
 
+/// Ok when @p out's folder (the current one for a bare name) exists; otherwise BadInput, with a
+/// message on stderr naming @p out and the folder. Commands check this before slow work, so bad
+/// input fails fast and writes nothing.
+int checkOutputFolder(const std::filesystem::path& out);
+
 } // namespace velvet::cli
