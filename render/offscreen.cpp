@@ -40,6 +40,7 @@ bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Ima
             renderer.setColorManagement(std::move(colorManagement));
         renderer.finishEnvironment(); // the whole IBL bake before the one frame
         renderer.finishGraph();       // and the material graph's program
+        renderer.finishTextures();    // and every texture, complete (never a proxy)
         ColorTarget target;
         if (!target.resize(settings.width, settings.height, GL_RGBA8, error))
             return false;
