@@ -22,7 +22,7 @@ namespace {
 
 constexpr const char* kMagic = "velvet-mip-cache 1";
 /// TIFF compression of entries (BENCHMARKS.md, "Texture loading": measured against "none").
-constexpr const char* kCompression = "zip";
+constexpr const char* kCompression = "none";
 
 std::string hex64(std::uint64_t v) {
     char text[17];

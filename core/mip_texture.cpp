@@ -147,8 +147,12 @@ std::shared_ptr<MipTexture> build8(std::vector<std::uint8_t>&& rgba, int width, 
             above.width, above.height,
             [&](int y, float* out) {
                 const std::uint8_t* p = above.bytes.data() + size_t(y) * size_t(above.width) * 4;
-                for (int i = 0; i < above.width * 4; ++i)
-                    out[i] = decode(i & 3, p[i]);
+                for (int x = 0; x < above.width; ++x, p += 4, out += 4) {
+                    out[0] = decode.colour[p[0]];
+                    out[1] = decode.colour[p[1]];
+                    out[2] = decode.colour[p[2]];
+                    out[3] = decode.alpha[p[3]];
+                }
             },
             [&](int y, const float* in) {
                 std::uint8_t* p = next.bytes.data() + size_t(y) * size_t(next.width) * 4;
@@ -289,9 +293,16 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
         options.useCache ? (options.cacheDir.empty() ? defaultMipCacheDir() : options.cacheDir)
                          : std::filesystem::path();
     std::string key;
+    auto lap = [last = std::chrono::steady_clock::now()]() mutable {
+        const auto now = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+        last = now;
+        return ms;
+    };
     if (!dir.empty()) {
         std::string error;
         const std::string hash = fileContentHash(file, &error);
+        result.hashMs = lap();
         if (!hash.empty()) {
             key = "v" + std::to_string(kBuildVersion) + " " + hash + " space=" + colorSpace +
                   (usage == TextureUsage::Color ? " color" : " data") +
@@ -301,7 +312,9 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
             result.cacheKey = key;
             auto cached = std::make_shared<MipTexture>();
             std::string why;
-            if (readMipCache(result.cacheEntry, key, *cached, &why)) {
+            const bool hit = readMipCache(result.cacheEntry, key, *cached, &why);
+            result.cacheReadMs = lap();
+            if (hit) {
                 result.texture = std::move(cached);
                 result.fromCache = true;
                 return finish();
@@ -332,6 +345,7 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
             problem(Problem::Severity::Error, withoutFilePrefix(error, file));
             return finish();
         }
+        result.decodeMs = lap();
         result.texture = build8(std::move(rgba), info.width, info.height,
                                 conversion == Conversion::Srgb, options.threads);
     } else {
@@ -348,8 +362,10 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
                     "cannot convert from colour space \"" + colorSpace + "\": " + error);
             return finish();
         }
+        result.decodeMs = lap();
         result.texture = buildHalf(std::move(image), options.threads);
     }
+    result.filterMs = lap();
     if (options.writeCache && !key.empty())
         storeMipTexture(result);
     return finish();
@@ -359,7 +375,11 @@ void storeMipTexture(MipLoadResult& result) {
     if (!result.texture || result.cacheKey.empty() || result.fromCache)
         return;
     std::string error;
-    if (!writeMipCache(result.cacheEntry, result.cacheKey, *result.texture, &error))
+    const auto start = std::chrono::steady_clock::now();
+    const bool written = writeMipCache(result.cacheEntry, result.cacheKey, *result.texture, &error);
+    result.cacheWriteMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!written)
         result.problems.push_back({Problem::Severity::Warning, std::string(), std::string(),
                                    "texture not cached: " + error});
 }

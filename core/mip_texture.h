@@ -71,6 +71,9 @@ struct MipLoadResult {
     bool decoded = false;   ///< the image file was decoded (a cache miss or no cache)
     bool fromCache = false; ///< the levels came from the on-disk cache
     double milliseconds = 0;
+    /// Where the time went: hashing the file, reading the cache entry, decoding, filtering the
+    /// levels, writing the entry (0 for steps not taken).
+    double hashMs = 0, cacheReadMs = 0, decodeMs = 0, filterMs = 0, cacheWriteMs = 0;
     std::filesystem::path cacheEntry; ///< where the entry is or goes ("" without a cache)
     std::string cacheKey;
 };

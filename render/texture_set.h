@@ -73,7 +73,8 @@ public:
     /// poll() load and upload everything before returning. Drops the textures.
     void setAsync(bool async);
     bool async() const { return m_async; }
-    /// Bytes one poll() may upload in asynchronous mode (default 16 MiB).
+    /// Bytes one poll() may upload in asynchronous mode (default 8 MiB: a 4096² RGBA8 level 0
+    /// in 8 frames; a 16 MiB copy measured 3-20 ms on llvmpipe, idle).
     void setUploadBudget(std::uint64_t bytes) { m_budget = bytes; }
     std::uint64_t uploadBudget() const { return m_budget; }
     /// The on-disk mip cache's folder (empty: core::defaultMipCacheDir()). Drops the textures.
@@ -142,7 +143,7 @@ private:
     Problems m_problems;
     TextureUploadStats m_stats;
     std::filesystem::path m_cacheDir;
-    std::uint64_t m_budget = std::uint64_t(16) << 20;
+    std::uint64_t m_budget = std::uint64_t(8) << 20;
     std::uint64_t m_generation = 0;
     int m_maxSide = 0;
     int m_allocations = 0;

@@ -112,6 +112,10 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     m_progressLabel->setMinimumWidth(
         m_progressLabel->fontMetrics().horizontalAdvance(tr("Prefiltering environment 100 %")) + 8);
     m_progressLabel->hide();
+    m_textureLabel = new QLabel(this);
+    m_textureLabel->setObjectName(QStringLiteral("textureProgress"));
+    m_textureLabel->hide();
+    statusBar()->addPermanentWidget(m_textureLabel);
     statusBar()->addPermanentWidget(m_progressLabel);
     statusBar()->addPermanentWidget(m_frameLabel);
 
@@ -471,6 +475,18 @@ void MainWindow::showFrameTime(double cpuMs) {
             text += tr(" · GPU %1 ms").arg(gpuMs, 0, 'f', 1);
     }
     m_frameLabel->setText(text);
+
+    // Textures loading off the drawing thread (the viewport keeps frames coming meanwhile).
+    const render::TextureLoadProgress textures = m_viewport->textureProgress();
+    if (textures.loading > 0) {
+        m_textureLabel->setText(tr("Loading textures: %1 of %2 · %3 %")
+                                    .arg(textures.total - textures.loading)
+                                    .arg(textures.total)
+                                    .arg(int(textures.fraction * 100.0)));
+        m_textureLabel->show();
+    } else {
+        m_textureLabel->hide();
+    }
 
     // Environment prefiltering, where the renderer reports it (negative: it does not).
     const double progress = m_viewport->environmentProgress();

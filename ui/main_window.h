@@ -127,6 +127,7 @@ private:
     QMenu* m_recentMenu = nullptr;
     QLabel* m_frameLabel = nullptr;
     QLabel* m_progressLabel = nullptr;
+    QLabel* m_textureLabel = nullptr; // textures loading: "Loading textures: 1 of 3 · 40 %"
     bool m_saveLayout;
 };
 
