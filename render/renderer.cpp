@@ -418,6 +418,10 @@ void Renderer::setAsyncTextures(bool async) {
     }
 }
 
+void Renderer::setTextureUploadBudget(std::uint64_t bytes) {
+    m_impl->textures.setUploadBudget(bytes);
+}
+
 TextureLoadProgress Renderer::textureProgress() const {
     return m_impl->textures.progress();
 }

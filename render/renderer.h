@@ -277,6 +277,8 @@ public:
     /// textureProgress().loading > 0; load problems come through takeWarnings().
     /// @{
     void setAsyncTextures(bool async);
+    /// Bytes one render() may upload while textures load asynchronously (default 8 MiB).
+    void setTextureUploadBudget(std::uint64_t bytes);
     TextureLoadProgress textureProgress() const;
     /// Loads and uploads every texture now (headless rendering: renderSceneOffscreen calls it).
     void finishTextures();

@@ -235,7 +235,7 @@ void TextureSet::setMaterial(const Material& material, Problems* problems) {
         updateSlots(problems);
         return;
     }
-    poll();
+    updateSlots(nullptr); // a slot whose texture is already on the GPU draws it at once
 }
 
 void TextureSet::reportProblems(const Entry& e, Problems& into) const {
@@ -307,8 +307,12 @@ std::uint64_t TextureSet::upload(Entry& e, std::uint64_t budget, bool& becameVis
     while (e.data && e.uploadLevel >= 0 && spent < budget) {
         const MipLevel& l = e.data->levels[size_t(e.uploadLevel)];
         const std::uint64_t rowBytes = std::uint64_t(l.width) * bpp;
-        const int rows = int(std::clamp<std::uint64_t>((budget - spent) / rowBytes, 1,
-                                                       std::uint64_t(l.height - e.uploadRow)));
+        // Whole rows within the budget; one row past it only when nothing fitted yet (a row
+        // wider than the budget still makes progress).
+        std::uint64_t fit = (budget - spent) / rowBytes;
+        if (fit == 0 && spent > 0)
+            break;
+        const int rows = int(std::clamp<std::uint64_t>(fit, 1, std::uint64_t(l.height - e.uploadRow)));
         // Row 0 (the image's top) goes to t = 0, matching glTF's UV space (v = 0 at the top).
         glTextureSubImage2D(e.texture, e.uploadLevel, 0, e.uploadRow, l.width, rows, GL_RGBA, type,
                             l.bytes.data() + std::uint64_t(e.uploadRow) * rowBytes);
