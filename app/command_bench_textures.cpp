@@ -114,7 +114,8 @@ int runTextureBench(bool json, bool quick) {
             const auto t = std::chrono::steady_clock::now();
             TextureCache floats(cm);
             const Texture tex = floats.get(png, TextureUsage::Color);
-            std::vector<Image> chain = tex.image ? mipChain(*tex.image, &error) : std::vector<Image>{};
+            std::vector<Image> chain =
+                tex.image ? mipChain(*tex.image, &error) : std::vector<Image>{};
             put("texture_float_path_ms", msSince(t));
             (void)chain; // alive until here: its levels count in the peak
             put("texture_float_path_peak_mb", statusMb("VmHWM:") - before);

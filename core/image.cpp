@@ -208,8 +208,8 @@ bool readImage(const std::filesystem::path& file, Image& out, std::string* error
     return true;
 }
 
-bool readImage8(const std::filesystem::path& file, std::vector<std::uint8_t>& rgba,
-                ImageInfo& info, std::string* error, const ImageReadLimits& limits) {
+bool readImage8(const std::filesystem::path& file, std::vector<std::uint8_t>& rgba, ImageInfo& info,
+                std::string* error, const ImageReadLimits& limits) {
     auto in = openChecked(file, limits, info, error);
     if (!in)
         return false;

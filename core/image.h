@@ -99,8 +99,8 @@ bool readImage(const std::filesystem::path& file, Image& out, std::string* error
 /// what it cannot read exactly as readImage() would: a file whose samples are not 8-bit or that
 /// carries an EXIF orientation other than 1 (the caller falls back to readImage()); the same
 /// header limits are checked first. @p info receives the header.
-bool readImage8(const std::filesystem::path& file, std::vector<std::uint8_t>& rgba,
-                ImageInfo& info, std::string* error, const ImageReadLimits& limits = {});
+bool readImage8(const std::filesystem::path& file, std::vector<std::uint8_t>& rgba, ImageInfo& info,
+                std::string* error, const ImageReadLimits& limits = {});
 
 /// Options of writeImage().
 struct ImageWriteOptions {

@@ -50,10 +50,10 @@ OIIO::TypeDesc typeOf(MipFormat f) {
 /// magic line, the key, the format and the mean.
 std::string describe(const std::string& key, const MipTexture& t) {
     char mean[160];
-    std::snprintf(mean, sizeof mean, "mean=%.9g %.9g %.9g %.9g", double(t.mean.r),
-                  double(t.mean.g), double(t.mean.b), double(t.mean.a));
-    return std::string(kMagic) + "\nkey=" + key + "\nformat=" + formatName(t.format) + "\n" +
-           mean + "\n";
+    std::snprintf(mean, sizeof mean, "mean=%.9g %.9g %.9g %.9g", double(t.mean.r), double(t.mean.g),
+                  double(t.mean.b), double(t.mean.a));
+    return std::string(kMagic) + "\nkey=" + key + "\nformat=" + formatName(t.format) + "\n" + mean +
+           "\n";
 }
 
 std::string oneLine(std::string s) {
@@ -155,8 +155,7 @@ bool readMipCache(const std::filesystem::path& entry, const std::string& key, Mi
         level.width = w;
         level.height = h;
         level.bytes.resize(size_t(w) * size_t(h) * size_t(bpp));
-        if (!in->read_image(0, m, 0, 4, typeOf(t.format), level.bytes.data()) ||
-            in->has_error())
+        if (!in->read_image(0, m, 0, 4, typeOf(t.format), level.bytes.data()) || in->has_error())
             return fail("mip level " + std::to_string(m) +
                         " is truncated or corrupt (OpenImageIO: " + oneLine(in->geterror()) + ")");
         t.levels.push_back(std::move(level));
@@ -216,8 +215,7 @@ bool writeMipCache(const std::filesystem::path& entry, const std::string& key,
             spec.attribute("oiio:ColorSpace", "sRGB");
         spec.attribute("ImageDescription", describe(key, texture));
         const bool opened =
-            out->open(tmp.string(), spec,
-                      m == 0 ? OIIO::ImageOutput::Create : appendMode);
+            out->open(tmp.string(), spec, m == 0 ? OIIO::ImageOutput::Create : appendMode);
         if (!opened || !out->write_image(type, level.bytes.data())) {
             const std::string why = oneLine(out->geterror());
             out->close();

@@ -249,8 +249,8 @@ Image MipTexture::linearLevel(int maxSide) const {
     Image out(pick->width, pick->height, 4);
     const size_t n = out.pixels.size();
     if (format == MipFormat::Rgba16F) {
-        OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, pick->bytes.data(),
-                                   OIIO::TypeDesc::FLOAT, out.pixels.data(), int(n));
+        OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, pick->bytes.data(), OIIO::TypeDesc::FLOAT,
+                                   out.pixels.data(), int(n));
     } else {
         const Decode8 decode(format == MipFormat::Srgb8Alpha8);
         for (size_t i = 0; i < n; ++i)
@@ -276,9 +276,9 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
         result.problems.push_back({severity, file.string(), std::string(), std::move(message)});
     };
     auto finish = [&] {
-        result.milliseconds = std::chrono::duration<double, std::milli>(
-                                  std::chrono::steady_clock::now() - start)
-                                  .count();
+        result.milliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
         return result;
     };
     std::error_code ec;
@@ -335,10 +335,10 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
     }
     const bool fits = options.maxTextureSide < 1 || (info.width <= options.maxTextureSide &&
                                                      info.height <= options.maxTextureSide);
-    const Conversion conversion = info.bitsPerSample == 8 && !info.isFloat &&
-                                          info.orientation == 1 && fits
-                                      ? classify(colorManagement, colorSpace)
-                                      : Conversion::Other;
+    const Conversion conversion =
+        info.bitsPerSample == 8 && !info.isFloat && info.orientation == 1 && fits
+            ? classify(colorManagement, colorSpace)
+            : Conversion::Other;
     if (conversion != Conversion::Other) {
         std::vector<std::uint8_t> rgba;
         if (!readImage8(file, rgba, info, &error, options.limits)) {

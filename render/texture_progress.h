@@ -16,11 +16,11 @@ struct TextureLoadProgress {
 
 /// What the uploads cost the frames (tests, bench): per poll() that uploaded anything.
 struct TextureUploadStats {
-    int frames = 0;                     ///< polls that uploaded at least one row
-    std::uint64_t bytes = 0;            ///< uploaded in all
-    std::uint64_t worstFrameBytes = 0;  ///< the most one poll uploaded
-    double worstFrameMs = 0;            ///< the longest one poll spent uploading (wall clock)
-    int proxyFrames = 0;                ///< polls after which a texture showed only coarse levels
+    int frames = 0;                    ///< polls that uploaded at least one row
+    std::uint64_t bytes = 0;           ///< uploaded in all
+    std::uint64_t worstFrameBytes = 0; ///< the most one poll uploaded
+    double worstFrameMs = 0;           ///< the longest one poll spent uploading (wall clock)
+    int proxyFrames = 0;               ///< polls after which a texture showed only coarse levels
 };
 
 } // namespace velvet::render

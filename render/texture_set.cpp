@@ -40,11 +40,11 @@ struct TextureSet::Entry {
     GLuint texture = 0;
     int width = 0, height = 0, levels = 0;
     MipFormat format = MipFormat::Rgba8;
-    int finest = -1;                        ///< finest level complete on the GPU; -1 none
+    int finest = -1; ///< finest level complete on the GPU; -1 none
     glm::vec4 mean{1.0f};
-    Image meanLevel;                        ///< linear level <= 256 px: atlas-region means
-    std::uint64_t generation = 0;           ///< new levels taken (slots recompute region, mean)
-    std::vector<Problem> problems;          ///< of the last load
+    Image meanLevel;               ///< linear level <= 256 px: atlas-region means
+    std::uint64_t generation = 0;  ///< new levels taken (slots recompute region, mean)
+    std::vector<Problem> problems; ///< of the last load
     std::uint64_t bytesTotal = 0, bytesDone = 0;
 };
 
@@ -85,7 +85,8 @@ bool bit(std::uint32_t mask, TextureSlot s) {
 
 std::string keyOf(const std::filesystem::path& file, const std::string& colorSpace,
                   TextureUsage usage) {
-    return file.string() + "\n" + colorSpace + (usage == TextureUsage::Color ? "\ncolor" : "\ndata");
+    return file.string() + "\n" + colorSpace +
+           (usage == TextureUsage::Color ? "\ncolor" : "\ndata");
 }
 
 GLenum internalFormat(MipFormat f) {
@@ -312,7 +313,8 @@ std::uint64_t TextureSet::upload(Entry& e, std::uint64_t budget, bool& becameVis
         std::uint64_t fit = (budget - spent) / rowBytes;
         if (fit == 0 && spent > 0)
             break;
-        const int rows = int(std::clamp<std::uint64_t>(fit, 1, std::uint64_t(l.height - e.uploadRow)));
+        const int rows =
+            int(std::clamp<std::uint64_t>(fit, 1, std::uint64_t(l.height - e.uploadRow)));
         // Row 0 (the image's top) goes to t = 0, matching glTF's UV space (v = 0 at the top).
         glTextureSubImage2D(e.texture, e.uploadLevel, 0, e.uploadRow, l.width, rows, GL_RGBA, type,
                             l.bytes.data() + std::uint64_t(e.uploadRow) * rowBytes);
@@ -362,11 +364,13 @@ bool TextureSet::updateSlots(Problems* problems) {
                 r = q;
                 s.useRegion = true;
             } else if (problems) {
-                problems->warning(s.ref.file,
-                                  "textures." + std::string(textureSlotMeta(TextureSlot(
-                                                    int(&s - m_slots->data()))).id) + ".region",
-                                  "atlas region lies outside the " + std::to_string(w) + "x" +
-                                      std::to_string(h) + " image; the whole image is used");
+                problems->warning(
+                    s.ref.file,
+                    "textures." +
+                        std::string(textureSlotMeta(TextureSlot(int(&s - m_slots->data()))).id) +
+                        ".region",
+                    "atlas region lies outside the " + std::to_string(w) + "x" + std::to_string(h) +
+                        " image; the whole image is used");
             }
         }
         s.region = glm::vec4(float(r.width) / float(w), float(r.height) / float(h),
@@ -527,8 +531,7 @@ void TextureSet::bind(unsigned program) const {
         const Slot& s = (*m_slots)[size_t(i)];
         regions[i] = s.region;
         if (s.valid)
-            glBindTextureUnit(GLuint(binding::kMaterialTexFirst + i),
-                              m_entries->at(s.key).texture);
+            glBindTextureUnit(GLuint(binding::kMaterialTexFirst + i), m_entries->at(s.key).texture);
     }
     glProgramUniform4fv(program, 1, kTextureSlotCount, &regions[0].x);
 }

@@ -24,10 +24,10 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
-#include <map>
-#include <string>
 #include <glm/vec4.hpp>
+#include <map>
 #include <memory>
+#include <string>
 
 namespace velvet {
 class ColorManagement;

@@ -302,9 +302,8 @@ void TestUiScene::droppedImageFillsBaseColour() {
         c = after.pixelColor(after.width() / 2, after.height() / 2);
         return c.green() > c.red();
     };
-    QTRY_VERIFY2_WITH_TIMEOUT(green(),
-                              qPrintable(QStringLiteral("%1 -> %2").arg(before.name(), c.name())),
-                              20000);
+    QTRY_VERIFY2_WITH_TIMEOUT(
+        green(), qPrintable(QStringLiteral("%1 -> %2").arg(before.name(), c.name())), 20000);
     QVERIFY(before.red() > before.green());
     m_doc->undoStack()->undo();
     QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());

@@ -15,8 +15,8 @@
 #include <QMimeData>
 #include <QSignalSpy>
 #include <QStandardPaths>
-#include <QSurfaceFormat>
 #include <QStatusBar>
+#include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QUrl>
@@ -93,7 +93,8 @@ private slots:
         frames.clear();
 
         const QImage beforeImage = viewport->grabFramebuffer();
-        const QColor before0 = beforeImage.pixelColor(beforeImage.width() / 2, beforeImage.height() / 2);
+        const QColor before0 =
+            beforeImage.pixelColor(beforeImage.width() / 2, beforeImage.height() / 2);
         frames.clear();
         QElapsedTimer clock;
         clock.start();
@@ -125,7 +126,8 @@ private slots:
                  qPrintable(progressText));
         // The drop did not wait for the load, and frames kept coming meanwhile: at least one a
         // budget's worth of bytes (2048² RGBA8 with levels: 22.4 MB at 8 MiB: 3 frames).
-        QVERIFY2(dropMs * 2 < loadMs, qPrintable(QStringLiteral("%1 of %2 ms").arg(dropMs).arg(loadMs)));
+        QVERIFY2(dropMs * 2 < loadMs,
+                 qPrintable(QStringLiteral("%1 of %2 ms").arg(dropMs).arg(loadMs)));
         QVERIFY(framesWhileLoading >= 3);
         QVERIFY(up2.worstFrameBytes <= (std::uint64_t(8) << 20));
         QTRY_VERIFY(label->isHidden());
