@@ -66,7 +66,9 @@ struct MipLoadOptions {
 
 /// What loadMipTexture() did and found.
 struct MipLoadResult {
-    std::shared_ptr<const MipTexture> texture; ///< null when the file is missing or broken
+    /// Null when the file is missing or broken. Not const: whoever holds the last reference may
+    /// free levels as they reach the GPU (render/texture_set.cpp).
+    std::shared_ptr<MipTexture> texture;
     std::vector<Problem> problems;             ///< errors (texture null) and warnings
     bool decoded = false;   ///< the image file was decoded (a cache miss or no cache)
     bool fromCache = false; ///< the levels came from the on-disk cache

@@ -34,7 +34,7 @@ struct TextureSet::Entry {
     TextureUsage usage = TextureUsage::Color;
     TextureFileStamp stamp;
     std::shared_ptr<TextureJob> job;        ///< the load in flight
-    std::shared_ptr<const MipTexture> data; ///< levels still to upload (freed when all are)
+    std::shared_ptr<MipTexture> data; ///< levels still to upload (each freed once uploaded)
     int uploadLevel = -1;                   ///< level being uploaded (coarsest first), -1 none
     int uploadRow = 0;                      ///< rows of it done
     GLuint texture = 0;
@@ -329,6 +329,10 @@ std::uint64_t TextureSet::upload(Entry& e, std::uint64_t budget, bool& becameVis
             e.finest = e.uploadLevel;
             glTextureParameteri(e.texture, GL_TEXTURE_BASE_LEVEL, e.finest);
         }
+        // Its CPU copy goes now, unless someone else still reads the levels (the loader writing
+        // the cache entry): the peak stays near one copy of the chain, CPU and GPU together.
+        if (e.data.use_count() == 1)
+            std::vector<std::uint8_t>().swap(e.data->levels[size_t(e.uploadLevel)].bytes);
         --e.uploadLevel;
         e.uploadRow = 0;
     }
