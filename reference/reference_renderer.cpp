@@ -12,6 +12,7 @@
 #include "core/mesh.h"
 #include "core/mesh_import.h"
 #include "core/texture_cache.h"
+#include "reference/graph_material.h"
 
 #include <algorithm>
 #include <chrono>
@@ -231,6 +232,7 @@ struct Context {
     const MeshData* mesh = nullptr;
     brdf::Surface surface;
     Textures tex;
+    const GraphMaterial* graph = nullptr; ///< the material graph, when it feeds any input
     float normalScale = 1;
     EnvironmentLight env;
     std::vector<LocalLight> lights;
@@ -282,10 +284,17 @@ bool intersect(const Context& ctx, glm::vec3 o, glm::vec3 d, float tMax, Hit& hi
     }
     if (ctx.tex.emissive)
         s.emissive *= glm::vec3(sampleTexture(*ctx.tex.emissive, uv));
-    s.roughness = std::clamp(s.roughness, 0.0f, 1.0f);
-    if (ctx.tex.normal) { // glTF: normalize((t * 2 - 1) * (s, s, 1)), Gram-Schmidt frame
-        glm::vec3 tn = glm::vec3(sampleTexture(*ctx.tex.normal, uv)) * 2.0f - 1.0f;
+    glm::vec3 tn(0.0f, 0.0f, 1.0f);
+    bool normalMapped = false;
+    if (ctx.tex.normal) { // glTF: normalize((t * 2 - 1) * (s, s, 1))
+        tn = glm::vec3(sampleTexture(*ctx.tex.normal, uv)) * 2.0f - 1.0f;
         tn.x *= ctx.normalScale, tn.y *= ctx.normalScale;
+        normalMapped = true;
+    }
+    if (ctx.graph) // the graph's outputs over the parameters and textures (gbuffer.frag)
+        ctx.graph->apply(uv, s, tn, normalMapped);
+    s.roughness = std::clamp(s.roughness, 0.0f, 1.0f);
+    if (normalMapped) { // Gram-Schmidt frame from the interpolated tangent
         glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
         if (glm::dot(t, t) > 1e-12f) {
             t = glm::normalize(t);
@@ -556,10 +565,6 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
 
     ctx.surface = brdf::surfaceFromMaterial(scene.material);
     ctx.normalScale = scene.material.scalar(ParamId::NormalScale);
-    if (scene.material.graph && problems)
-        problems->warning(scene.materialPreset, "graph",
-                          "the reference does not evaluate the material graph on the CPU; "
-                          "parameter values are used");
 
     // Textures through the same cache and colour conversion as the viewport (TextureSet).
     ColorManagement colorManagement;
@@ -588,6 +593,10 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
     ctx.tex.specRoughMetal = load(TextureSlot::SpecRoughMetal);
     ctx.tex.normal = load(TextureSlot::Normal);
     ctx.tex.emissive = load(TextureSlot::Emissive);
+    // The material graph through the graph compiler's CPU twin, as the viewport runs its GLSL.
+    const GraphMaterial graphMaterial(scene.material, cache, problems);
+    if (graphMaterial.active())
+        ctx.graph = &graphMaterial;
 
     // Environment.
     const Environment& env = scene.environment;
