@@ -205,6 +205,9 @@ struct EnvironmentLight {
 // ---- Material at a hit: parameters and texture slots (glTF: factor x texture) ----
 struct Textures {
     std::shared_ptr<const Image> baseColor, metallicRoughness, specRoughMetal, normal, emissive;
+    // The KHR lobes' slots (factor x texture, the channels of texture_ref.h).
+    std::shared_ptr<const Image> clearcoat, clearcoatRoughness, sheenColor, sheenRoughness,
+        specular, specularColor;
 };
 
 glm::vec4 sampleTexture(const Image& img, glm::vec2 uv) { // bilinear, repeat (GL_REPEAT)
@@ -284,6 +287,18 @@ bool intersect(const Context& ctx, glm::vec3 o, glm::vec3 d, float tMax, Hit& hi
     }
     if (ctx.tex.emissive)
         s.emissive *= glm::vec3(sampleTexture(*ctx.tex.emissive, uv));
+    if (ctx.tex.clearcoat)
+        s.clearcoat *= sampleTexture(*ctx.tex.clearcoat, uv).r;
+    if (ctx.tex.clearcoatRoughness)
+        s.clearcoatRoughness *= sampleTexture(*ctx.tex.clearcoatRoughness, uv).g;
+    if (ctx.tex.sheenColor)
+        s.sheenColor *= glm::vec3(sampleTexture(*ctx.tex.sheenColor, uv));
+    if (ctx.tex.sheenRoughness)
+        s.sheenRoughness *= sampleTexture(*ctx.tex.sheenRoughness, uv).a;
+    if (ctx.tex.specular)
+        s.specularWeight *= sampleTexture(*ctx.tex.specular, uv).a;
+    if (ctx.tex.specularColor)
+        s.specularColor *= glm::vec3(sampleTexture(*ctx.tex.specularColor, uv));
     glm::vec3 tn(0.0f, 0.0f, 1.0f);
     bool normalMapped = false;
     if (ctx.tex.normal) { // glTF: normalize((t * 2 - 1) * (s, s, 1))
@@ -593,6 +608,19 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
     ctx.tex.specRoughMetal = load(TextureSlot::SpecRoughMetal);
     ctx.tex.normal = load(TextureSlot::Normal);
     ctx.tex.emissive = load(TextureSlot::Emissive);
+    ctx.tex.clearcoat = load(TextureSlot::Clearcoat);
+    ctx.tex.clearcoatRoughness = load(TextureSlot::ClearcoatRoughness);
+    ctx.tex.sheenColor = load(TextureSlot::SheenColor);
+    ctx.tex.sheenRoughness = load(TextureSlot::SheenRoughness);
+    ctx.tex.specular = load(TextureSlot::Specular);
+    ctx.tex.specularColor = load(TextureSlot::SpecularColor);
+    // A path tracer finds occlusion itself, so the occlusion map (a real-time stand-in for it)
+    // is not applied; the coat's own normal map has no counterpart in brdf::Surface yet.
+    if (!scene.material.texture(TextureSlot::ClearcoatNormal).empty() && problems)
+        problems->warning(scene.material.texture(TextureSlot::ClearcoatNormal).file,
+                          "textures.clearcoatNormal",
+                          "the reference shades the coat with the base normal; its own normal map "
+                          "is not applied");
     // The material graph through the graph compiler's CPU twin, as the viewport runs its GLSL.
     const GraphMaterial graphMaterial(scene.material, cache, problems);
     if (graphMaterial.active())

@@ -9,6 +9,7 @@
 #include "core/scene.h"
 #include "reference/reference_renderer.h"
 
+#include <QTemporaryDir>
 #include <QTest>
 #include <cmath>
 
@@ -146,6 +147,53 @@ private slots:
         const double withGrey = contrast(renderOrFail(grey, o).image);
         QVERIFY2(withChecker > 3.0 * withGrey,
                  qPrintable(QStringLiteral("%1 vs %2").arg(withChecker).arg(withGrey)));
+    }
+
+    // The KHR lobes' texture slots multiply their factors at every hit, in the channel
+    // texture_ref.h names: a constant grey map (128/255 in every channel) renders as the factor
+    // times 128/255 does.
+    void lobeTextureSlotsScaleTheirFactors_data() {
+        QTest::addColumn<int>("slot");
+        QTest::addColumn<int>("param");
+        QTest::newRow("clearcoat") << int(TextureSlot::Clearcoat) << int(ParamId::ClearcoatWeight);
+        QTest::newRow("clearcoatRoughness")
+            << int(TextureSlot::ClearcoatRoughness) << int(ParamId::ClearcoatRoughness);
+        QTest::newRow("sheenRoughness")
+            << int(TextureSlot::SheenRoughness) << int(ParamId::SheenRoughness);
+        QTest::newRow("specular") << int(TextureSlot::Specular) << int(ParamId::SpecularWeight);
+    }
+    void lobeTextureSlotsScaleTheirFactors() {
+        QFETCH(int, slot);
+        QFETCH(int, param);
+        QTemporaryDir dir;
+        const std::string file = dir.filePath("grey.png").toStdString();
+        Image grey(4, 4, 4);
+        std::fill(grey.pixels.begin(), grey.pixels.end(), 128.0f / 255.0f);
+        std::string error;
+        QVERIFY2(writeImage(file, grey, PixelFormat::UInt8, &error), error.c_str());
+        Scene base = variedScene();
+        base.material.setScalar(ParamId::Metallic, 0.0f);
+        base.material.setScalar(ParamId::ClearcoatWeight, 0.8f);
+        base.material.setScalar(ParamId::ClearcoatRoughness, 0.5f);
+        base.material.setScalar(ParamId::SheenWeight, 1.0f);
+        base.material.setScalar(ParamId::SheenRoughness, 0.8f);
+        Scene textured = base;
+        TextureRef ref;
+        ref.file = file;
+        textured.material.setTexture(TextureSlot(slot), ref);
+        Scene scaled = base;
+        scaled.material.setScalar(ParamId(param),
+                                  base.material.scalar(ParamId(param)) * (128.0f / 255.0f));
+        Scene untouched = base;
+        reference::Options o;
+        o.width = o.height = 16;
+        o.samplesPerPixel = 4;
+        const Image a = renderOrFail(textured, o).image;
+        const Image b = renderOrFail(scaled, o).image;
+        const Image c = renderOrFail(untouched, o).image;
+        QVERIFY(!a.pixels.empty());
+        QVERIFY2(rmse(a, b) < 1e-4, qPrintable(QString::number(rmse(a, b))));
+        QVERIFY2(rmse(a, c) > 1e-3, "the slot changed nothing");
     }
 
     void sameSeedSameImageWhateverTheThreads() {
