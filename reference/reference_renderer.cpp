@@ -383,6 +383,18 @@ glm::vec3 trace(const Context& ctx, glm::vec3 o, glm::vec3 d, Rng& rng) {
     return radiance;
 }
 
+/// Each pixel's sum divided by its own sample count (a cancelled pass leaves rows behind).
+Image averaged(const std::vector<glm::dvec3>& sum, const std::vector<int>& count, int w, int h) {
+    Image image(w, h, 3);
+    for (size_t i = 0; i < sum.size(); ++i) {
+        const glm::dvec3 c = count[i] ? sum[i] / double(count[i]) : glm::dvec3(0.0);
+        image.pixels[i * 3 + 0] = float(c.x);
+        image.pixels[i * 3 + 1] = float(c.y);
+        image.pixels[i * 3 + 2] = float(c.z);
+    }
+    return image;
+}
+
 } // namespace
 
 bool render(const Scene& scene, const Options& options, Result& out, std::string* error,
@@ -558,6 +570,10 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
             out.passesDone = pass + 1;
         if (progress)
             progress(pass + 1, options.samplesPerPixel);
+        const int done = pass + 1;
+        const bool showNow = done <= 32 ? (done & (done - 1)) == 0 : done % 32 == 0;
+        if (options.onPassImage && !stopped && showNow)
+            options.onPassImage(averaged(sum, count, w, h), done);
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (options.timeLimitSeconds > 0 && elapsed >= options.timeLimitSeconds)
@@ -566,13 +582,7 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
     rtcReleaseScene(ctx.scene);
     rtcReleaseDevice(device);
     out.cancelled = stopped;
-    out.image = Image(w, h, 3);
-    for (size_t i = 0; i < sum.size(); ++i) {
-        const glm::dvec3 c = count[i] ? sum[i] / double(count[i]) : glm::dvec3(0.0);
-        out.image.pixels[i * 3 + 0] = float(c.x);
-        out.image.pixels[i * 3 + 1] = float(c.y);
-        out.image.pixels[i * 3 + 2] = float(c.z);
-    }
+    out.image = averaged(sum, count, w, h);
     return true;
 }
 
