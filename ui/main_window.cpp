@@ -11,6 +11,7 @@
 #include "ui/log_panel.h"
 #include "ui/post_chain/post_chain_panel.h"
 #include "ui/properties/property_panel.h"
+#include "ui/reference/reference_panel.h"
 #include "ui/scene/scene_panel.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
@@ -225,6 +226,27 @@ void MainWindow::createDocks() {
     addDockWidget(Qt::RightDockWidgetArea, library);
     tabifyDockWidget(properties, library);
     properties->raise();
+    // Reference (issue 15): the path tracer's image against the viewport; renders only while
+    // its dock is shown (View > Reference, Ctrl+Shift+R), a tab beside the Log.
+    m_reference = new ReferencePanel(m_controller, m_viewport, this);
+    auto* referenceDock = new QDockWidget(tr("Reference"), this);
+    referenceDock->setObjectName(QStringLiteral("referenceDock"));
+    referenceDock->setWidget(m_reference);
+    tabifyDockWidget(log, referenceDock);
+    log->raise();
+    referenceDock->hide();
+    referenceDock->toggleViewAction()->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_R));
+    // Shown from the menu or the shortcut, its tab comes to the front; behind another tab it
+    // is not visible and stops rendering.
+    connect(referenceDock->toggleViewAction(), &QAction::triggered, referenceDock,
+            [referenceDock](bool shown) {
+                if (shown)
+                    referenceDock->raise();
+            });
+    connect(referenceDock, &QDockWidget::visibilityChanged, m_reference,
+            &ReferencePanel::setActive);
+    connect(m_reference, &ReferencePanel::status, this,
+            [this](const QString& text) { statusBar()->showMessage(text, 5000); });
     connect(m_postChain, &PostChainPanel::problemsReported, m_log, &LogPanel::error);
     connect(m_library, &LibraryPanel::problemsReported, m_log, &LogPanel::warning);
 
