@@ -18,6 +18,7 @@
 #include "gbuffer_read.glsl"
 #include "common_environment.glsl"
 #include "light_lobes.glsl"
+#include "stage_shading.glsl"
 
 layout(location = 0) out vec4 outColor;
 
@@ -45,6 +46,7 @@ void main() {
     vec3 v = p.v;
     vec3 posView = p.posView;
     float occlusion = p.occlusion;
+    float shadowNoise = interleavedGradientNoise(gl_FragCoord.xy); // shadow_sampling.glsl
 
 #if defined(LIGHTING_LOBE_VIEWS)
     {
@@ -52,7 +54,8 @@ void main() {
         vec3 lobes = vec3(0.0);
         for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
             vec3 l = frame.lightDirection[i].xyz;
-            lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb;
+            lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb *
+                     directionalShadow(i, p.posWorld, n, shadowNoise);
         }
         outColor = vec4(lobes, 0.0); // alpha 0: replaces the emission (see the header)
     }
@@ -67,7 +70,7 @@ void main() {
                      : view == DEBUG_SPECULAR  ? s.specularColor * s.specularWeight
                      : view == DEBUG_CLEARCOAT ? vec3(s.clearcoat, s.clearcoatRoughness, 0.0)
                      : view == DEBUG_SHEEN     ? s.sheenColor
-                     : view == DEBUG_OCCLUSION ? vec3(occlusion)
+                     : view == DEBUG_OCCLUSION ? vec3(occlusion * screenSpaceOcclusion(pixel, -posView.z))
                      : view == DEBUG_EMISSIVE  ? vec3(0.0)
                                                : vec3(float(p.materialId));
         // Alpha 0 replaces the emission the geometry pass wrote; the emissive view keeps it
@@ -76,10 +79,20 @@ void main() {
     }
 #else
 
-    // Direct light.
+    // The stage (stage_shading.glsl): screen-space occlusion of the environment's light, and the
+    // shadow catcher, which shows the background darkened by what the ground does not receive.
+    float ssao = screenSpaceOcclusion(pixel, -posView.z);
+    vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
+    if (p.materialId == GROUND_CATCHER_MATERIAL_ID) {
+        outColor = vec4(background(ndcXY) * catcherTransmission(p.posWorld, ssao, shadowNoise), 1.0);
+        return;
+    }
+
+    // Direct light, shadowed by the lights' shadow maps (shadow_sampling.glsl).
     vec3 color = vec3(0.0);
     for (int i = 0; i < frame.modes.x; ++i)
-        color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb;
+        color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb *
+                 directionalShadow(i, p.posWorld, n, shadowNoise);
 
     // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes; the split sum for
     // the specular ones, the GGX-prefiltered cube times the DFG LUT with Fdez-Aguera 2019's
@@ -111,7 +124,10 @@ void main() {
                   s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(r, cr);
         keepEmission = 1.0 - fc;
     }
-    color += ambient * occlusion;
+    color += ambient * occlusion * ssao;
+    if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher
+        color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, shadowNoise),
+                    groundFade(p.posWorld));
     outColor = vec4(color, keepEmission); // + emission x alpha, by the blend (see the header)
 #endif
 }
