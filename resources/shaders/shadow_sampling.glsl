@@ -9,6 +9,7 @@
 #include "render_bindings.glsl"
 #include "stage_interface.glsl"
 #include "common_frame.glsl"
+#include "common_hash.glsl"
 
 layout(binding = BINDING_SHADOW_COMPARE_TEX) uniform sampler2DArrayShadow uShadowCompare;
 layout(binding = BINDING_SHADOW_DEPTH_TEX) uniform sampler2DArray uShadowDepth;
@@ -21,10 +22,6 @@ const vec2 SHADOW_POISSON[16] = vec2[](
     vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
     vec2(0.14383161, -0.14100790));
 
-// Jimenez 2014, "Next Generation Post Processing in Call of Duty: Advanced Warfare".
-float interleavedGradientNoise(vec2 pixel) {
-    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
-}
 
 // The frame's pixel of a view-space position (the noise's seed for passes without gl_FragCoord).
 vec2 pixelOfViewPosition(vec3 posView) {
