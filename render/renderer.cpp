@@ -170,6 +170,11 @@ struct Renderer::Impl {
     /// stretched over the caller's (one linear blit).
     bool renderScaled(Renderer& self, const FrameSettings& fs, unsigned targetFbo,
                       std::string* error);
+    BackgroundMode stageBackground() const {
+        const BackgroundMode mode = scene.environment.background;
+        return mode == BackgroundMode::Blurred && !ibl.specularReady() ? BackgroundMode::Sharp
+                                                                       : mode;
+    }
     void finishFrame(unsigned targetFbo, const FrameSettings& fs,
                      std::chrono::steady_clock::time_point start) {
         lastTarget = targetFbo;
@@ -195,7 +200,10 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     graph.buildPending(textures.sharedCache());
     graph.refreshTextures(textures.sharedCache(), nullptr); // files changed on disk re-upload
     // lighting.frag's variant for this view (built the first time a debug family is shown).
-    surfaceProgram = lighting.surfaceProgram(fs.view, error);
+    // The ground's variants look the background up with its mode compiled in (Blurred only once
+    // the prefiltered cube is ready, as the background pass does).
+    surfaceProgram =
+        lighting.surfaceProgram(fs.view, error, scene.environment.ground, stageBackground());
     if (!surfaceProgram)
         return false;
     // An unknown display, view or look fails here, before anything is drawn. A tone-mapping view
@@ -509,7 +517,20 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         glClearBufferfv(GL_COLOR, 0, kNoEmission);
     if (fs.view == DebugView::Final) // debug views: no background (the HDR target is black)
         d.lighting.drawBackground(d.scene.environment.background, d.ibl.specularReady());
+    // With a shadow catcher only the mesh's rectangle needs the surface shading (render/stage.h).
+    int meshRect[4];
+    const bool scissored =
+        d.scene.environment.ground == GroundMode::ShadowCatcher &&
+        d.stage.meshRectangle(block.viewProjMatrix, fs.width, fs.height, meshRect);
+    if (scissored) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(meshRect[0], meshRect[1], meshRect[2], meshRect[3]);
+    }
     d.lighting.drawSurfaces(*surfaceProgram, emission);
+    glDisable(GL_SCISSOR_TEST);
+    if (fs.view == DebugView::Final && d.scene.environment.ground == GroundMode::ShadowCatcher &&
+        !d.lighting.drawCatcher(emission, d.stageBackground(), error)) // its own variant
+        return false;
     glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
 
     // 4. Local lights: point, spot and area.

@@ -59,6 +59,11 @@ public:
     /// the viewport for the caller to reset.
     bool drawOcclusion(const Environment& environment, int width, int height, unsigned emptyVao,
                        std::string* error);
+    /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through
+    /// @p viewProj in a @p width x @p height frame; false when they reach behind the camera.
+    /// With a shadow catcher the surface pass is scissored to it, so the ground's pixels outside
+    /// pay nothing for the mesh's shading (llvmpipe shades a discarded pixel to the end).
+    bool meshRectangle(const glm::mat4& viewProj, int width, int height, int rect[4]) const;
     /// Before lighting: the shadow maps and the occlusion at their units.
     void bind() const;
     void unbind() const;
