@@ -329,6 +329,10 @@ bool readMeshCache(const std::filesystem::path& file, MeshData& out, std::string
         return fail(error, tooMany(file, indexCount / 3, limits));
     if (s.size() != kHeaderBytes + vertexCount * sizeof(Vertex) + indexCount * 4)
         return fail(error, file.string() + ": mesh cache size does not match its header");
+    // Found by tests/fuzz (fuzz_mesh_cache): a header of zero counts reached memcpy with the
+    // null data() of empty vectors. A mesh without a triangle has nothing to preview anyway.
+    if (indexCount == 0 || vertexCount == 0)
+        return fail(error, file.string() + ": mesh cache holds no triangles");
     MeshData mesh;
     mesh.doubleSided = (get<std::uint32_t>(s, 32) & 1u) != 0;
     mesh.vertices.resize(size_t(vertexCount));
@@ -339,6 +343,11 @@ bool readMeshCache(const std::filesystem::path& file, MeshData& out, std::string
     for (std::uint32_t i : mesh.indices)
         if (i >= vertexCount)
             return fail(error, file.string() + ": mesh cache index out of range");
+    // Non-finite positions would poison the mesh's bounds, its framing and every pixel it covers.
+    for (const Vertex& v : mesh.vertices)
+        if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) ||
+            !std::isfinite(v.position.z))
+            return fail(error, file.string() + ": mesh cache has a non-finite vertex position");
     out = std::move(mesh);
     return true;
 }

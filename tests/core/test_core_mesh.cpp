@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <glm/geometric.hpp>
 #include <map>
 #include <unordered_map>
@@ -428,6 +429,23 @@ private slots:
         writeText(path("foreign.vmesh"), std::string(64, 'x'));
         QVERIFY(!readMeshCache(path("foreign.vmesh"), back, &error));
         QVERIFY2(error.find("not a Velvet mesh cache") != std::string::npos, error.c_str());
+    }
+
+    // Found by the fuzzer (tests/fuzz/corpus/fuzz_mesh_cache): a header with zero counts, and
+    // a vertex that is not finite, are refused with a reason instead of read.
+    void meshCacheRefusesEmptyAndNonFinite() {
+        std::string error;
+        MeshData empty;
+        QVERIFY2(writeMeshCache(path("empty.vmesh"), empty, &error), error.c_str());
+        MeshData back;
+        QVERIFY(!readMeshCache(path("empty.vmesh"), back, &error));
+        QVERIFY2(error.find("holds no triangles") != std::string::npos, error.c_str());
+        MeshData poisoned = makeCube();
+        poisoned.vertices[3].position.y = std::numeric_limits<float>::quiet_NaN();
+        QVERIFY2(writeMeshCache(path("nan.vmesh"), poisoned, &error), error.c_str());
+        QVERIFY(!readMeshCache(path("nan.vmesh"), back, &error));
+        QVERIFY2(error.find("non-finite vertex position") != std::string::npos, error.c_str());
+        QVERIFY(back.vertices.empty());  // nothing half-read
     }
 
     // The child-process importer (`velvet import-mesh`): gives the same mesh as in process;
