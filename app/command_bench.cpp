@@ -7,6 +7,7 @@
 #include "render/offscreen.h"
 #include "render/post_bench.h"
 #include "render/renderer.h"
+#include "render/stage_bench.h"
 
 #include <algorithm>
 #include <cctype>
@@ -26,6 +27,7 @@ const std::vector<OptionSpec> kOptions{
     {"textures", 0, false, "",
      "the texture path instead: a generated 4096² map (2048² with --short) loaded cold and from "
      "the mip cache, peak memory, frames drawn while it loads"},
+    {"stage", 0, false, "", "only the look-dev stage's figures (shadows, occlusion)"},
     {"help", 'h', false, "", "this text"},
 };
 
@@ -38,6 +40,8 @@ const char* kHelp =
     "Every figure is the median of 7 frames (3 with --short). A light path's cost is the frame's\n"
     "wall-clock time (to its last timer query) minus that of the frame without point lights;\n"
     "per-pass times are GPU timer queries (misattributed between passes on llvmpipe).\n"
+    "The look-dev stage: the shader ball on a shadow catcher under the key light, the frame with\n"
+    "its shadow (and ambient occlusion) against without, and the shadow-map and occlusion passes.\n"
     "Ratios compare variants of the same process; absolute times are machine-specific.\n\n";
 
 double median(std::vector<double> v) {
@@ -157,6 +161,22 @@ std::string jsonNumber(double v) {
     return s.str();
 }
 
+/// The look-dev stage's figures (issue 14, docs/shadows.md) as key/value pairs.
+bool stageFigures(int width, int height, int frames,
+                  std::vector<std::pair<std::string, double>>& figures, std::string* error) {
+    render::StageBenchReport stage;
+    if (!render::measureStage(width, height, frames, stage, error))
+        return false;
+    figures.emplace_back("stage_frame_off_ms", stage.frameOffMs);
+    figures.emplace_back("stage_frame_shadow_ms", stage.frameShadowMs);
+    figures.emplace_back("stage_frame_shadow_ao_ms", stage.frameStageMs);
+    figures.emplace_back("stage_shadow_overhead", stage.shadowOverhead);
+    figures.emplace_back("stage_shadow_ao_overhead", stage.stageOverhead);
+    figures.emplace_back("shadow_map_pass_ms", stage.shadowMapMs);
+    figures.emplace_back("occlusion_pass_ms", stage.occlusionMs);
+    return true;
+}
+
 } // namespace
 
 int runBench(const std::vector<std::string>& argv) {
@@ -193,6 +213,14 @@ int runBench(const std::vector<std::string>& argv) {
         };
         if (!b.renderer.initialize(&error) || !b.target.resize(b.width, b.height, &error))
             return failed("renderer initialisation failed");
+        // The look-dev stage: shadows and ambient occlusion on and off (--stage: only these).
+        if (!stageFigures(b.width, b.height, b.frames, figures, &error))
+            return failed("stage measurement failed");
+        if (args->has("stage")) {
+            for (const auto& [k, v] : figures)
+                std::cout << (json ? "\"" + k + "\": " : "  " + k + " ") << jsonNumber(v) << "\n";
+            return Ok;
+        }
 
         // Radii for about 20 lights per pixel at 1,000 lights: start from the density estimate
         // (20 = density * 4/3 pi r^3) and correct twice by the measured average.

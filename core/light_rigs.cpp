@@ -23,8 +23,10 @@ constexpr std::array kRigs = {
     LightRig{"environment", "Environment only", "No lights: the HDRI alone"},
 };
 
-Light directional(std::string name, glm::vec3 color, float lux, glm::vec3 direction) {
+Light directional(std::string name, glm::vec3 color, float lux, glm::vec3 direction,
+                  bool castShadows = false) {
     Light light;
+    light.castShadows = castShadows;
     light.type = LightType::Directional;
     light.name = std::move(name);
     light.color = color;
@@ -48,17 +50,22 @@ Light rectangle(std::string name, glm::vec3 position, glm::vec2 size, float nits
 
 std::vector<Light> rigLights(std::string_view id) {
     if (id == "key") // the default scene's light (core/document_io.cpp)
-        return {directional("Key", {1.0f, 0.93f, 0.85f}, 3.0f, {0.5f, -0.6f, -0.62f})};
+        return {directional("Key", {1.0f, 0.93f, 0.85f}, 3.0f, {0.5f, -0.6f, -0.62f}, true)};
     if (id == "three-point")
-        return {directional("Key", {1.0f, 0.92f, 0.82f}, 3.0f, {0.55f, -0.55f, -0.63f}),
+        return {directional("Key", {1.0f, 0.92f, 0.82f}, 3.0f, {0.55f, -0.55f, -0.63f}, true),
                 directional("Fill", {0.78f, 0.86f, 1.0f}, 0.9f, {-0.7f, -0.2f, -0.68f}),
                 directional("Rim", {1.0f, 1.0f, 1.0f}, 2.5f, {-0.25f, -0.45f, 0.86f})};
     if (id == "softboxes")
-        return {rectangle("Softbox left", {-2.2f, 1.2f, 1.8f}, {1.2f, 1.6f}, 9.0f),
+        return {[] {
+                    // The key of the rig: its shadow is soft from the box's size.
+                    Light key = rectangle("Softbox left", {-2.2f, 1.2f, 1.8f}, {1.2f, 1.6f}, 9.0f);
+                    key.castShadows = true;
+                    return key;
+                }(),
                 rectangle("Softbox right", {2.2f, 0.8f, 1.8f}, {1.2f, 1.6f}, 5.0f),
                 directional("Rim", {1.0f, 1.0f, 1.0f}, 1.5f, {0.2f, -0.4f, 0.9f})};
     if (id == "sun")
-        return {directional("Sun", {1.0f, 0.95f, 0.88f}, 6.0f, {0.3f, -0.85f, -0.43f})};
+        return {directional("Sun", {1.0f, 0.95f, 0.88f}, 6.0f, {0.3f, -0.85f, -0.43f}, true)};
     if (id == "stage-spot") {
         Light spot;
         spot.type = LightType::Spot;
@@ -69,6 +76,7 @@ std::vector<Light> rigLights(std::string_view id) {
         spot.range = 8.0f;
         spot.innerConeDeg = 8.0f;
         spot.outerConeDeg = 14.0f;
+        spot.castShadows = true;
         Light ambient;
         ambient.type = LightType::Ambient;
         ambient.name = "Ambient";

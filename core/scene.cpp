@@ -15,6 +15,13 @@ constexpr std::array<std::string_view, 4> kBackgroundModes{"sharp", "blurred", "
 constexpr std::array<std::string_view, 7> kMeshKinds{
     "sphere", "cube", "rounded-cube", "plane", "cloth-drape", "shader-ball", "custom"};
 
+constexpr std::array<std::string_view, 3> kGroundModes{"off", "shadow-catcher", "plain"};
+static_assert(kGroundModes.size() == static_cast<size_t>(GroundMode::Plain) + 1);
+
+bool standsOnGround(PreviewMeshKind kind) {
+    return kind == PreviewMeshKind::ClothDrape || kind == PreviewMeshKind::ShaderBall;
+}
+
 static_assert(kLightTypes.size() == static_cast<size_t>(LightType::Ambient) + 1);
 static_assert(kAreaShapes.size() == static_cast<size_t>(AreaShape::Rectangle) + 1);
 static_assert(kBackgroundModes.size() == static_cast<size_t>(BackgroundMode::ProceduralFbm) + 1);
@@ -33,6 +40,22 @@ std::span<const std::string_view> backgroundModeNames() {
 }
 std::span<const std::string_view> previewMeshKindNames() {
     return kMeshKinds;
+}
+
+std::span<const std::string_view> groundModeNames() {
+    return kGroundModes;
+}
+
+void applyStageDefaults(Environment& environment, PreviewMeshKind kind) {
+    const bool stand = standsOnGround(kind);
+    environment.ground = stand ? GroundMode::ShadowCatcher : GroundMode::Off;
+    environment.ambientOcclusion = stand;
+}
+
+bool hasStageDefaults(const Environment& environment, PreviewMeshKind kind) {
+    Environment expected = environment;
+    applyStageDefaults(expected, kind);
+    return expected == environment;
 }
 
 bool sceneReadsTime(const Scene& scene) {

@@ -46,11 +46,28 @@ struct Light {
     float outerConeDeg = 30.0f; ///< spot: zero outside this half-angle
     AreaShape shape = AreaShape::Sphere;
     glm::vec2 size{0.5f}; ///< area: radius (sphere, x) or width × height (rectangle)
+    /// @name Shadows (docs/shadows.md)
+    /// Whether the light casts shadows from the preview mesh (directional, spot, point and area
+    /// lights; at most render::kMaxShadowLights of them, the strongest at the mesh, do).
+    /// @{
+    bool castShadows = false;
+    /// Directional: the source's angular diameter in degrees (the sun's is about 0.53°), which
+    /// widens the penumbra with the distance to the occluder (PCSS); shading treats it as a point.
+    float sourceAngleDeg = 2.0f;
+    /// Point and spot: the source's radius in metres, for the penumbra only (area lights use their
+    /// own size).
+    float sourceRadius = 0.05f;
+    /// @}
     bool operator==(const Light&) const = default;
 };
 
 /// How the environment appears behind the mesh.
 enum class BackgroundMode : int { Sharp, Blurred, SolidColor, ProceduralFbm };
+
+/// The floor under the mesh (docs/shadows.md): none, a shadow catcher (the background shows
+/// through, darkened where the mesh shadows or occludes it) or a plain diffuse-ish material that
+/// fades into the background with distance. Its height follows the mesh's lowest point.
+enum class GroundMode : int { Off, ShadowCatcher, Plain };
 
 struct Environment {
     std::string hdri;         ///< equirectangular HDR/EXR path; empty: uniform `color`
@@ -59,6 +76,18 @@ struct Environment {
     float rotationDeg = 0.0f; ///< rotation about +Y
     BackgroundMode background = BackgroundMode::Sharp;
     glm::vec3 backgroundColor{0.18f}; ///< for BackgroundMode::SolidColor
+    /// @name The look-dev stage: ground and screen-space ambient occlusion (docs/shadows.md)
+    /// Off by default so that a scene file that names neither keeps its image; the editor's mesh
+    /// chooser applies groundDefaultsFor() the new mesh.
+    /// @{
+    GroundMode ground = GroundMode::Off;
+    glm::vec3 groundColor{0.18f}; ///< scene-linear albedo of GroundMode::Plain
+    float groundRoughness = 0.7f; ///< perceptual roughness of GroundMode::Plain
+    /// Screen-space ambient occlusion (GTAO) on the environment's and ambient lights' light,
+    /// multiplied with the material's occlusion map.
+    bool ambientOcclusion = false;
+    float occlusionRadius = 0.3f; ///< world-space radius of the occlusion search, metres
+    /// @}
     bool operator==(const Environment&) const = default;
 };
 
@@ -98,6 +127,15 @@ std::span<const std::string_view> lightTypeNames();
 std::span<const std::string_view> areaShapeNames();
 std::span<const std::string_view> backgroundModeNames();
 std::span<const std::string_view> previewMeshKindNames();
+std::span<const std::string_view> groundModeNames();
+
+/// The look-dev stage a preview mesh is shown on by default: the cloth drape and the shader ball
+/// stand on a shadow-catching ground with ambient occlusion, the other meshes float (no ground,
+/// no occlusion). Applied by the editor when the mesh changes (core/scene.h's Environment
+/// defaults stay Off, so files that do not mention a ground keep their image).
+void applyStageDefaults(Environment& environment, PreviewMeshKind kind);
+/// Whether @p environment's ground and occlusion are @p kind's stage defaults.
+bool hasStageDefaults(const Environment& environment, PreviewMeshKind kind);
 
 /// Whether the image of @p scene depends on FrameSettings::time: the procedural FBM background
 /// drifts, or an enabled post effect reads time (postChainReadsTime). A still scene needs no new

@@ -95,6 +95,15 @@ bool hasDirection(const Light& l) {
     return l.type == LightType::Directional || l.type == LightType::Spot ||
            l.type == LightType::Area;
 }
+bool castsShadows(const Light& l) {
+    return l.type != LightType::Ambient;
+}
+bool isDirectional(const Light& l) {
+    return l.type == LightType::Directional;
+}
+bool isPointOrSpot(const Light& l) {
+    return l.type == LightType::Point || l.type == LightType::Spot;
+}
 bool never(const Light&) {
     return false;
 }
@@ -117,13 +126,13 @@ const std::array<Field<Camera>, 9> kCamera{
            "Visible height in metres (orthographic)."),
 };
 
-const std::array<Field<Light>, 11> kLight = [] {
+const std::array<Field<Light>, 14> kLight = [] {
     auto typeField = choice<Light>(
         "type", lightTypeNames(), [](const Light& l) { return static_cast<int>(l.type); },
         [](Light& l, int i) { l.type = static_cast<LightType>(i); },
         "Directional (lux), point and spot (candela), area (nits), ambient (multiplier).");
     typeField.required = true;
-    return std::array<Field<Light>, 11>{
+    return std::array<Field<Light>, 14>{
         typeField,
         onlyWhen(text("name", FieldKind::Text, &Light::name, "Shown in the light list."), never),
         vec3("color", &Light::color, kNonNegative, "Scene-linear Rec.709 colour."),
@@ -150,10 +159,24 @@ const std::array<Field<Light>, 11> kLight = [] {
         onlyWhen(vec2("size", &Light::size, kPositive,
                       "Area light: radius (sphere, first number) or width and height in metres."),
                  isArea),
+        onlyWhen(flag("castShadows", &Light::castShadows,
+                      "Casts shadows from the preview mesh (the strongest few lights do; "
+                      "docs/shadows.md)."),
+                 castsShadows),
+        onlyWhen(number("sourceAngle", &Light::sourceAngleDeg, closedRange(0, 20),
+                        "Directional: angular diameter of the source in degrees (soft shadows)."),
+                 isDirectional),
+        onlyWhen(number("sourceRadius", &Light::sourceRadius, closedRange(0, 10),
+                        "Point and spot: radius of the source in metres (soft shadows)."),
+                 isPointOrSpot),
     };
 }();
 
-const std::array<Field<Environment>, 6> kEnvironment{
+bool hasPlainGround(const Environment& e) {
+    return e.ground == GroundMode::Plain;
+}
+
+const std::array<Field<Environment>, 11> kEnvironment{
     onlyWhen(
         text("hdri", FieldKind::Path, &Environment::hdri,
              "Equirectangular HDR or EXR image; empty for a uniform colour."),
@@ -174,6 +197,22 @@ const std::array<Field<Environment>, 6> kEnvironment{
         vec3("backgroundColor", &Environment::backgroundColor, kNonNegative,
              "Scene-linear colour of the solid-color background."),
         +[](const Environment& e) { return e.background == BackgroundMode::SolidColor; }),
+    choice<Environment>(
+        "ground", groundModeNames(),
+        [](const Environment& e) { return static_cast<int>(e.ground); },
+        [](Environment& e, int i) { e.ground = static_cast<GroundMode>(i); },
+        "A floor under the mesh at its lowest point: off, a shadow catcher (the background shows "
+        "through, darkened by shadows and occlusion) or a plain material."),
+    onlyWhen(vec3("groundColor", &Environment::groundColor, closedRange(0, 1),
+                  "Scene-linear albedo of the plain ground."),
+             hasPlainGround),
+    onlyWhen(number("groundRoughness", &Environment::groundRoughness, closedRange(0, 1),
+                    "Perceptual roughness of the plain ground."),
+             hasPlainGround),
+    flag("ambientOcclusion", &Environment::ambientOcclusion,
+         "Screen-space ambient occlusion (GTAO) on the environment's light."),
+    number("occlusionRadius", &Environment::occlusionRadius, closedRange(0.01, 10),
+           "World-space radius of the ambient occlusion search in metres."),
 };
 
 const std::array<Field<MeshRef>, 2> kMesh{

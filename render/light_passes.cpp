@@ -205,11 +205,12 @@ bool LightPasses::initialize(std::string* error) {
     return true;
 }
 
-void LightPasses::upload(const std::vector<Light>& lights) {
+void LightPasses::upload(const std::vector<Light>& lights, const std::vector<int>* shadowSlots) {
     std::vector<GpuLight> packed, cones;
     packed.reserve(lights.size());
     const float coneMaxCos = std::cos(glm::radians(kConeProxyMaxOuterDeg));
-    for (const Light& l : lights) {
+    for (size_t index = 0; index < lights.size(); ++index) {
+        const Light& l = lights[index];
         GpuLight g{};
         const float len = glm::length(l.direction);
         const glm::vec3 dir = len > 0.0f ? l.direction / len : glm::vec3(0, -1, 0);
@@ -233,6 +234,8 @@ void LightPasses::upload(const std::vector<Light>& lights) {
         }
         if (g.positionRange.w <= 0.0f)
             continue;
+        if (shadowSlots && index < shadowSlots->size()) // light_common.glsl: params.z
+            g.params.z = float((*shadowSlots)[index]);
         const bool cone = l.type == LightType::Spot && g.params.x >= coneMaxCos;
         (cone ? cones : packed).push_back(g);
     }

@@ -48,7 +48,8 @@ public:
 
     /// Packs the point, spot and area lights of @p lights into the light buffer (directional and
     /// ambient lights stay with the full-screen pass).
-    void upload(const std::vector<Light>& lights);
+    /// @p shadowSlots, when given, holds each light's shadow slot + 1 (0: none; Stage).
+    void upload(const std::vector<Light>& lights, const std::vector<int>* shadowSlots = nullptr);
     int lightCount() const { return m_count; }
 
     /// Adds the lights to @p hdrTexture (RGBA16F, bound in @p hdrFbo). Expects the frame UBO,

@@ -19,7 +19,15 @@ bool LightingPass::buildVariant(Variant v, std::string* error) {
         defines.emplace_back("LIGHTING_LOBE_VIEWS");
     else if (v == kGBufferViews)
         defines.emplace_back("LIGHTING_GBUFFER_VIEWS");
-    else if (v >= kBackground) {
+    else if (v == kFinalCatcherGround)
+        defines.emplace_back("STAGE_GROUND_CATCHER");
+    else if (v >= kFinalPlainGround && v < kCatcher) {
+        defines.emplace_back("STAGE_GROUND_PLAIN");
+        defines.emplace_back("BACKGROUND_MODE " + std::to_string(v - kFinalPlainGround));
+    } else if (v >= kCatcher && v < kBackground) {
+        defines.emplace_back("LIGHTING_CATCHER");
+        defines.emplace_back("BACKGROUND_MODE " + std::to_string(v - kCatcher));
+    } else if (v >= kBackground) {
         defines.emplace_back("LIGHTING_BACKGROUND");
         defines.emplace_back("BACKGROUND_MODE " + std::to_string(v - kBackground));
     }
@@ -32,7 +40,8 @@ bool LightingPass::buildVariant(Variant v, std::string* error) {
 bool LightingPass::build(std::string* error, bool keepGoing) {
     std::string errors;
     for (int v = 0; v < kCount && (keepGoing || errors.empty()); ++v) {
-        if ((v == kLobeViews || v == kGBufferViews) && m_programs[v].id() == 0)
+        // The debug families and the stage's variants only once they have been used.
+        if (v != kFinal && v < kBackground && m_programs[v].id() == 0)
             continue;
         std::string message;
         if (!buildVariant(Variant(v), &message))
@@ -43,11 +52,34 @@ bool LightingPass::build(std::string* error, bool keepGoing) {
     return errors.empty();
 }
 
-const ShaderProgram* LightingPass::surfaceProgram(DebugView view, std::string* error) {
-    const Variant v = variantFor(view);
+const ShaderProgram* LightingPass::variant(Variant v, std::string* error) {
     if (m_programs[v].id() == 0 && !buildVariant(v, error))
         return nullptr;
     return &m_programs[v];
+}
+
+namespace {
+int modeIndex(BackgroundMode mode) {
+    return int(mode) >= 0 && int(mode) <= 3 ? int(mode) : 0; // unknown: Sharp (as GLSL)
+}
+} // namespace
+
+const ShaderProgram* LightingPass::surfaceProgram(DebugView view, std::string* error,
+                                                  GroundMode ground, BackgroundMode background) {
+    Variant v = variantFor(view);
+    if (v == kFinal && ground == GroundMode::ShadowCatcher)
+        v = kFinalCatcherGround;
+    else if (v == kFinal && ground == GroundMode::Plain)
+        v = Variant(kFinalPlainGround + modeIndex(background));
+    return variant(v, error);
+}
+
+bool LightingPass::drawCatcher(bool emission, BackgroundMode background, std::string* error) {
+    const ShaderProgram* program = variant(Variant(kCatcher + modeIndex(background)), error);
+    if (!program)
+        return false;
+    drawSurfaces(*program, emission);
+    return true;
 }
 
 void LightingPass::drawBackground(BackgroundMode mode, bool prefilteredReady) {

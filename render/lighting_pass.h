@@ -25,7 +25,12 @@ public:
     bool build(std::string* error, bool keepGoing = false);
     /// The surface variant for @p view, built the first time a debug family is shown (a
     /// debug-view switch may compile once); null + message on failure.
-    const ShaderProgram* surfaceProgram(DebugView view, std::string* error);
+    /// In the final image a ground adds its own code (docs/shadows.md): the shadow catcher's
+    /// pixels are discarded (drawCatcher() shades them), the plain ground fades into the
+    /// @p background (built per mode, as llvmpipe runs every branch of a runtime switch).
+    const ShaderProgram* surfaceProgram(DebugView view, std::string* error,
+                                        GroundMode ground = GroundMode::Off,
+                                        BackgroundMode background = BackgroundMode::Sharp);
 
     /// The background (FrameSettings::view Final only: debug views leave the HDR target black).
     /// Blurred falls back to Sharp (the same lookup) until the prefiltered cube is ready.
@@ -34,6 +39,11 @@ public:
     /// emission is kept: result = surface + emission x alpha (lighting.frag's header), the
     /// target's alpha staying 1; without it the surfaces replace the black (no blend to pay).
     void drawSurfaces(const ShaderProgram& program, bool emission);
+    /// The shadow-catching ground's pixels (GroundMode::ShadowCatcher, the final image only):
+    /// the background times the light it receives (lighting.frag's LIGHTING_CATCHER). The
+    /// surface variants discard those pixels.
+    /// Built the first time for each background mode (null + message on failure).
+    bool drawCatcher(bool emission, BackgroundMode background, std::string* error);
 
     /// Programs built since construction.
     int compileCount() const { return m_compileCount; }
@@ -45,11 +55,15 @@ private:
         kFinal,
         kLobeViews,
         kGBufferViews,
-        kBackground, ///< + int(BackgroundMode)
+        kFinalCatcherGround,
+        kFinalPlainGround,                ///< + int(BackgroundMode)
+        kCatcher = kFinalPlainGround + 4, ///< + int(BackgroundMode)
+        kBackground = kCatcher + 4,       ///< + int(BackgroundMode)
         kCount = kBackground + 4
     };
     static Variant variantFor(DebugView view);
     bool buildVariant(Variant v, std::string* error);
+    const ShaderProgram* variant(Variant v, std::string* error);
 
     ShaderProgram m_programs[kCount];
     int m_compileCount = 0;

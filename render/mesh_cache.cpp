@@ -24,6 +24,7 @@ const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems
         if (entry->failure.empty()) {
             entry->gpu.upload(data);
             entry->doubleSided = data.doubleSided;
+            entry->bounds = meshBounds(data);
         }
     }
     if (!entry->failure.empty()) {

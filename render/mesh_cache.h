@@ -19,6 +19,7 @@ public:
     struct Entry {
         GpuMesh gpu;
         bool doubleSided = false;
+        MeshBounds bounds;   ///< of the vertices (the stage fits shadows and the ground to it)
         std::string failure; ///< why the import failed ("" when the mesh is uploaded)
     };
 

@@ -17,6 +17,7 @@
 #include "render/mesh_cache.h"
 #include "render/post_chain.h"
 #include "render/shader_program.h"
+#include "render/stage.h"
 #include "render/texture_set.h"
 
 #include <algorithm>
@@ -49,6 +50,7 @@ struct Renderer::Impl {
     LightPasses lights;         ///< point, spot and area lights
     PostChainRenderer post;     ///< the scene's post chain, run after lighting
     DisplayOutput display;      ///< tone mapping / OCIO into the caller's framebuffer
+    Stage stage;                ///< shadow maps, the ground, screen-space occlusion
     /// @}
 
     FrameTargets targets; ///< G-buffer, HDR colour, the framebuffers over them
@@ -58,7 +60,8 @@ struct Renderer::Impl {
     const MeshCache::Entry* mesh = nullptr;
     TextureSet textures;
     MaterialTable materials;
-    GpuMaterial packedA{}; ///< the scene's material as last packed (material id 0)
+    GpuMaterial packedA{};      ///< the scene's material as last packed (material id 0)
+    GpuMaterial packedGround{}; ///< the ground's record (ids 2 and 3, render/stage_interface.h)
     EnvironmentCache environments;
     IblBaker ibl; ///< prefiltered cube, DFG LUT, sheen tables
     GLuint emptyVao = 0;
@@ -110,19 +113,34 @@ struct Renderer::Impl {
         GpuMaterial g = packMaterial(scene.material);
         textures.applyTo(g);
         packedA = g;
-        materials.upload({g});
+        writeMaterialTable(nullptr);
+    }
+    /// The table: A, B (A again without a split), the plain ground and the catcher.
+    void writeMaterialTable(const GpuMaterial* b) {
+        materials.upload({packedA, b ? *b : packedA, packedGround, packedGround});
+    }
+    void uploadGround() {
+        packedGround = groundMaterial(scene.environment);
+        writeMaterialTable(nullptr);
     }
 
     /// A/B split: material id 1 is FrameSettings::splitMaterial with A's textures.
     void uploadSplitMaterial(const Material& b) {
         GpuMaterial g = packMaterial(b);
         textures.applyTo(g);
-        materials.upload({packedA, g});
+        writeMaterialTable(&g);
     }
 
     void selectMesh(Problems* problems) {
         ++uploads.meshSelections;
         mesh = &meshes.select(scene.mesh, problems);
+        planStage(nullptr); // the shadow maps fit the new mesh
+    }
+    /// The shadow slots for the lights and the mesh, and the local lights with their slots.
+    void planStage(Problems* problems) {
+        stage.plan(scene.lights, mesh ? mesh->bounds : MeshBounds{}, problems);
+        const std::vector<int> slots = stage.slotOfLight(scene.lights.size());
+        lights.upload(scene.lights, &slots);
     }
     void refreshTextureSlots(Problems* problems) {
         ++uploads.textureSlotRefreshes;
@@ -152,6 +170,11 @@ struct Renderer::Impl {
     /// stretched over the caller's (one linear blit).
     bool renderScaled(Renderer& self, const FrameSettings& fs, unsigned targetFbo,
                       std::string* error);
+    BackgroundMode stageBackground() const {
+        const BackgroundMode mode = scene.environment.background;
+        return mode == BackgroundMode::Blurred && !ibl.specularReady() ? BackgroundMode::Sharp
+                                                                       : mode;
+    }
     void finishFrame(unsigned targetFbo, const FrameSettings& fs,
                      std::chrono::steady_clock::time_point start) {
         lastTarget = targetFbo;
@@ -177,7 +200,10 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     graph.buildPending(textures.sharedCache());
     graph.refreshTextures(textures.sharedCache(), nullptr); // files changed on disk re-upload
     // lighting.frag's variant for this view (built the first time a debug family is shown).
-    surfaceProgram = lighting.surfaceProgram(fs.view, error);
+    // The ground's variants look the background up with its mode compiled in (Blurred only once
+    // the prefiltered cube is ready, as the background pass does).
+    surfaceProgram =
+        lighting.surfaceProgram(fs.view, error, scene.environment.ground, stageBackground());
     if (!surfaceProgram)
         return false;
     // An unknown display, view or look fails here, before anything is drawn. A tone-mapping view
@@ -208,7 +234,7 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
 
 void Renderer::Impl::uploadLights(Problems* problems) {
     ++uploads.lightUploads;
-    lights.upload(scene.lights);
+    planStage(problems);
     if (!problems)
         return;
     // The full-screen pass has a fixed array of directional lights (MAX_LIGHTS in
@@ -316,8 +342,9 @@ bool Renderer::initialize(std::string* error) {
     glCreateVertexArrays(1, &d.emptyVao);
     glCreateQueries(GL_TIMESTAMP, 4, d.queries);
     glCreateQueries(GL_TIMESTAMP, 1, &d.lightsQuery);
-    if (!d.lights.initialize(error))
+    if (!d.lights.initialize(error) || !d.stage.initialize(error))
         return false;
+    d.packedGround = groundMaterial(d.scene.environment);
     if (d.haveScene)
         d.uploadLights(nullptr);
     if (!d.ibl.initialize(error))
@@ -348,6 +375,7 @@ bool Renderer::reloadShaders(std::string* error) {
     std::string message;
     collect(d.buildPrograms(&message, /*keepGoing=*/true), message);
     collect(d.lights.reload(&message), message);
+    collect(d.stage.reload(&message), message);
     collect(d.ibl.reload(&message), message);
     collect(d.display.reload(&message), message);
     collect(d.post.reload(&message), message); // counted by shaderCompileCount() through post
@@ -392,8 +420,10 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
         d.graph.setGraph(d.scene.material, d.textures.sharedCache(), problems);
     if (touches(parts, ScenePart::Lights))
         d.uploadLights(problems);
-    if (touches(parts, ScenePart::Environment))
+    if (touches(parts, ScenePart::Environment)) {
         d.requestEnvironment(problems);
+        d.uploadGround(); // the ground's colour and roughness (no count: not the material)
+    }
     // PostChain: PostChainRenderer::run reads scene.post at each frame, nothing to upload.
     // Camera: the stored camera is all (makeFrameBlock reads it when FrameSettings::camera is
     // unset). Atlases: nothing in the renderer today — atlas regions reach it as texture slots
@@ -470,9 +500,11 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         return false;
 
     // The per-frame camera (an orbit) or the scene's.
-    const FrameBlock block =
+    FrameBlock block =
         makeFrameBlock(d.scene, fs.camera ? *fs.camera : d.scene.camera, *d.environment, fs);
+    d.stage.annotate(block, d.scene.lights); // which directional lights have shadow maps
     d.uniforms.bindFrame(block);
+    d.stage.beginFrame(d.scene, fs.width, fs.height);
     if (fs.splitMaterial)
         d.uploadSplitMaterial(*fs.splitMaterial);
     d.materials.bind();
@@ -484,6 +516,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glDisable(GL_FRAMEBUFFER_SRGB);
     glDisable(GL_MULTISAMPLE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // 0. The shadow maps, when the lights or the mesh changed (render/stage.h).
+    d.stage.drawShadows(d.mesh->gpu);
     glViewport(0, 0, fs.width, fs.height);
     glQueryCounter(d.queries[0], GL_TIMESTAMP);
 
@@ -500,7 +534,13 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     geometry.split = fs.splitMaterial.has_value();
     geometry.splitPosition = fs.splitPosition;
     drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
+    d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
+    // Screen-space occlusion of the G-buffer, at half resolution (off: nothing runs).
+    d.targets.gbuffer().bindTextures();
+    if (!d.stage.drawOcclusion(d.scene.environment, fs.width, fs.height, d.emptyVao, error))
+        return false;
+    glViewport(0, 0, fs.width, fs.height);
 
     // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only.
     glDepthMask(GL_FALSE);
@@ -512,13 +552,27 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glBindTextureUnit(binding::kIblSpecularTex, d.ibl.specularCube());
     glBindTextureUnit(binding::kIblDfgTex, d.ibl.dfgLut());
     d.uniforms.bindIbl(makeIblBlock(d.ibl, fs));
+    d.stage.bind();
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glBindVertexArray(d.emptyVao);
     if (!emission) // nothing in the HDR target yet: start from black, opaque
         glClearBufferfv(GL_COLOR, 0, kNoEmission);
     if (fs.view == DebugView::Final) // debug views: no background (the HDR target is black)
         d.lighting.drawBackground(d.scene.environment.background, d.ibl.specularReady());
+    // With a shadow catcher only the mesh's rectangle needs the surface shading (render/stage.h).
+    int meshRect[4];
+    const bool scissored =
+        d.scene.environment.ground == GroundMode::ShadowCatcher &&
+        d.stage.meshRectangle(block.viewProjMatrix, fs.width, fs.height, meshRect);
+    if (scissored) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(meshRect[0], meshRect[1], meshRect[2], meshRect[3]);
+    }
     d.lighting.drawSurfaces(*surfaceProgram, emission);
+    glDisable(GL_SCISSOR_TEST);
+    if (fs.view == DebugView::Final && d.scene.environment.ground == GroundMode::ShadowCatcher &&
+        !d.lighting.drawCatcher(emission, d.stageBackground(), error)) // its own variant
+        return false;
     glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
 
     // 4. Local lights: point, spot and area.
@@ -546,6 +600,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.queriesIssued = true;
 
     // Leave sane defaults for the host.
+    d.stage.unbind();
     glUseProgram(0);
     glBindVertexArray(0);
     glDepthMask(GL_TRUE);
@@ -600,7 +655,8 @@ bool Renderer::parallelShaderCompile() const {
 int Renderer::shaderCompileCount() const {
     const Impl& d = *m_impl;
     return d.graph.compileCount() + d.lighting.compileCount() + d.lights.compileCount() +
-           d.ibl.compileCount() + d.display.compileCount() + d.post.compileCount();
+           d.ibl.compileCount() + d.display.compileCount() + d.post.compileCount() +
+           d.stage.compileCount();
 }
 
 PostChainRenderer& Renderer::postChain() {
@@ -620,6 +676,8 @@ FrameTimings Renderer::lastTimings() const {
         GLuint64 lightsStart = t[2];
         glGetQueryObjectui64v(d.lightsQuery, GL_QUERY_RESULT, &lightsStart);
         d.timings.localLightsMs = double(t[2] - lightsStart) * 1e-6;
+        d.timings.shadowMapsMs = d.stage.lastShadowMs();
+        d.timings.occlusionMs = d.stage.lastOcclusionMs();
     }
     return d.timings;
 }

@@ -151,6 +151,9 @@ struct FrameTimings {
     /// Environment prefiltering (IBL bake slices) run at the start of this frame, wall clock
     /// with glFinish; 0 once the bake is complete.
     double iblMs = 0;
+    /// The look-dev stage (docs/shadows.md): the shadow maps, drawn only in frames after the
+    /// lights or the mesh changed (0 otherwise), and the screen-space occlusion (0 when off).
+    double shadowMapsMs = 0, occlusionMs = 0;
 };
 
 /// What the renderer uploaded since construction (Renderer::uploadStats), one count per kind

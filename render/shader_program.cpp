@@ -3,6 +3,7 @@
 #include "core/resources.h"
 #include "render/gbuffer_layout.h"
 #include "render/render_interface.h"
+#include "render/stage_interface.h"
 
 #include <epoxy/gl.h>
 #include <fstream>
@@ -43,6 +44,10 @@ bool readSource(const std::string& name, const GeneratedSources& generated, std:
     }
     if (name == "render_interface.glsl") {
         text = renderInterfaceGlsl();
+        return true;
+    }
+    if (name == "stage_interface.glsl") {
+        text = stageInterfaceGlsl();
         return true;
     }
     if (name == "post_interface.glsl") {

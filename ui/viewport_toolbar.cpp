@@ -16,6 +16,7 @@
 #include <QSettings>
 #include <QSignalBlocker>
 #include <QSlider>
+#include <QToolButton>
 #include <cmath>
 #include <filesystem>
 
@@ -276,6 +277,21 @@ SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
                            this);
     addWidget(m_lightRig);
 
+    m_ground = new QToolButton(this);
+    m_ground->setObjectName(QStringLiteral("groundToggle"));
+    m_ground->setText(tr("Ground"));
+    m_ground->setCheckable(true);
+    m_ground->setToolTip(tr("A shadow-catching ground under the mesh (its look and the ambient "
+                            "occlusion: Scene panel)"));
+    addWidget(m_ground);
+    connect(m_ground, &QToolButton::toggled, this, [this](bool on) {
+        if (m_updating)
+            return;
+        Environment env = m_controller->scene().environment;
+        env.ground = on ? GroundMode::ShadowCatcher : GroundMode::Off;
+        m_controller->editEnvironment(env, on ? tr("Ground on") : tr("Ground off"));
+    });
+
     m_intensityKey = SetEnvironmentCommand::nextMergeKey();
     refresh(ScenePart::All);
     connect(m_lightRig, &QComboBox::activated, this,
@@ -325,6 +341,10 @@ void SceneToolbar::refresh(ScenePart parts) {
     }
     if (touches(parts, ScenePart::Lights))
         fillLightRigCombo(m_lightRig, scene);
+    {
+        const QSignalBlocker block(m_ground);
+        m_ground->setChecked(scene.environment.ground != GroundMode::Off);
+    }
     m_updating = false;
 }
 

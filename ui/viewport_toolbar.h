@@ -24,6 +24,7 @@ class QAction;
 class QComboBox;
 class QDoubleSpinBox;
 class QSlider;
+class QToolButton;
 
 namespace velvet {
 class ColorManagement;
@@ -101,6 +102,7 @@ private:
     QDoubleSpinBox* m_intensity;
     QSlider* m_rotation;
     QComboBox* m_lightRig;
+    QToolButton* m_ground; ///< the ground on (shadow catcher) or off (docs/shadows.md)
     int m_intensityKey = 0;
     int m_rotationKey = 0;
     bool m_updating = false;

@@ -21,3 +21,9 @@ float hash13(vec3 p3) {
     p3 += dot(p3, p3.zyx + 31.32);
     return fract((p3.x + p3.y) * p3.z);
 }
+
+// Jimenez 2014, "Next Generation Post Processing in Call of Duty: Advanced Warfare": a per-pixel
+// value in [0, 1) whose neighbours differ evenly (the shadow taps' rotation, shadow_sampling.glsl).
+float interleavedGradientNoise(vec2 pixel) {
+    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}

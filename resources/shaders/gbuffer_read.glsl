@@ -23,6 +23,11 @@ struct ShadingPoint {
     int materialId;  // index into the material table
 };
 
+// The material id of @p pixel alone (passes that keep only some materials test it first).
+int readMaterialId(ivec2 pixel) {
+    return decodeMaterialId(texelFetch(gMaterialTex, pixel, 0).b);
+}
+
 // Decodes @p pixel, whose hardware depth is @p depth (read by the caller, which decides what the
 // far plane means for it).
 ShadingPoint readShadingPoint(ivec2 pixel, float depth) {

@@ -4,6 +4,7 @@
 #include "gbuffer_read.glsl"
 #include "light_lobes.glsl"
 #include "light_bindings.glsl"
+#include "shadow_sampling.glsl"
 
 #define LIGHT_POINT 1
 #define LIGHT_SPOT 2
@@ -16,7 +17,8 @@ struct GpuLight {
     vec4 positionRange;  // xyz world position, w influence radius (m)
     vec4 colorIntensity; // rgb colour x intensity (candela; nits for area lights)
     vec4 directionType;  // xyz unit direction the light travels, w type (LIGHT_*)
-    vec4 params;         // spot: cos outer, cos inner; area: radius or half width, half height
+    vec4 params;         // spot: cos outer, cos inner; area: radius or half width, half height;
+                         // z: shadow slot + 1 (0: no shadow; shadow_sampling.glsl)
 };
 
 layout(std430, binding = BINDING_LIGHT_SSBO) readonly buffer LightBuffer {
@@ -91,7 +93,8 @@ bool lightReaches(GpuLight L, vec3 posWorld) {
 // One light's contribution to the pixel for debug view `view`: radiance for the final image and
 // the lobe views, 1 for the lights-per-pixel view, 0 where the light does not reach.
 vec3 shadeLocalLight(GpuLight L, ShadingPoint p, int view) {
-    if (!lightReaches(L, p.posWorld))
+    // The shadow catcher only darkens the background (lighting.frag): no light is added to it.
+    if (!lightReaches(L, p.posWorld) || p.materialId == GROUND_CATCHER_MATERIAL_ID)
         return vec3(0.0);
     if (view == DEBUG_LIGHTS_PER_PIXEL)
         return vec3(1.0);
@@ -128,6 +131,10 @@ vec3 shadeLocalLight(GpuLight L, ShadingPoint p, int view) {
     }
     if (illuminance <= 0.0)
         return vec3(0.0);
+    int shadowSlot = int(L.params.z) - 1;
+    if (shadowSlot >= 0)
+        illuminance *= shadowVisibility(shadowSlot, p.posWorld, p.n, l,
+                                        interleavedGradientNoise(pixelOfViewPosition(p.posView)));
     Lobes o = shadeLobes(p.s, p.n, p.v, l, lSpecular, widen);
     return selectLobes(o, view) * L.colorIntensity.rgb * illuminance;
 }

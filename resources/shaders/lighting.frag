@@ -8,6 +8,9 @@
 //   LIGHTING_BACKGROUND     the background only; drawn where the G-buffer depth is the far plane
 //   LIGHTING_LOBE_VIEWS     surfaces, the lobe views and lights per pixel
 //   LIGHTING_GBUFFER_VIEWS  surfaces, the G-buffer views (albedo .. material id)
+//   LIGHTING_CATCHER        the shadow-catching ground only, per BACKGROUND_MODE (docs/shadows.md)
+//   STAGE_GROUND_CATCHER    (with the final image) discards the catcher's pixels
+//   STAGE_GROUND_PLAIN      (with the final image and BACKGROUND_MODE) the plain ground's fade
 //   (none of them)          surfaces, the final image
 // The surface variants are drawn only where there is geometry (depth test against the G-buffer
 // depth, the full-screen triangle at the far plane: fullscreen.vert's FULLSCREEN_FAR_PLANE).
@@ -18,6 +21,7 @@
 #include "gbuffer_read.glsl"
 #include "common_environment.glsl"
 #include "light_lobes.glsl"
+#include "stage_shading.glsl"
 
 layout(location = 0) out vec4 outColor;
 
@@ -34,10 +38,30 @@ void main() {
     vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
     outColor = vec4(background(ndcXY), 1.0);
 }
+#elif defined(LIGHTING_CATCHER)
+// The shadow catcher's pixels only (stage_shading.glsl): the background times how much of the
+// light the ground receives. Every other pixel is discarded first, so it costs them nothing.
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    if (readMaterialId(pixel) != GROUND_CATCHER_MATERIAL_ID)
+        discard;
+    vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
+    vec3 posView = viewPositionFromDepth(ndcXY, texelFetch(gDepthTex, pixel, 0).r);
+    vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
+    float ssao = screenSpaceOcclusion(pixel, -posView.z);
+    outColor = vec4(background(ndcXY) *
+                        catcherTransmission(posWorld, ssao, interleavedGradientNoise(gl_FragCoord.xy)),
+                    1.0);
+}
 #else
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     int view = frame.modes.y;
+#if defined(STAGE_GROUND_CATCHER)
+    // The catcher has its own variant (above); discarded pixels skip the rest on llvmpipe too.
+    if (readMaterialId(pixel) == GROUND_CATCHER_MATERIAL_ID)
+        discard;
+#endif
     // Drawn only where there is geometry (see the header), so the depth is never the far plane.
     ShadingPoint p = readShadingPoint(pixel, texelFetch(gDepthTex, pixel, 0).r);
     Surface s = p.s;
@@ -45,6 +69,7 @@ void main() {
     vec3 v = p.v;
     vec3 posView = p.posView;
     float occlusion = p.occlusion;
+    float shadowNoise = interleavedGradientNoise(gl_FragCoord.xy); // shadow_sampling.glsl
 
 #if defined(LIGHTING_LOBE_VIEWS)
     {
@@ -52,7 +77,8 @@ void main() {
         vec3 lobes = vec3(0.0);
         for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
             vec3 l = frame.lightDirection[i].xyz;
-            lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb;
+            lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb *
+                     directionalShadow(i, p.posWorld, n, shadowNoise);
         }
         outColor = vec4(lobes, 0.0); // alpha 0: replaces the emission (see the header)
     }
@@ -67,7 +93,7 @@ void main() {
                      : view == DEBUG_SPECULAR  ? s.specularColor * s.specularWeight
                      : view == DEBUG_CLEARCOAT ? vec3(s.clearcoat, s.clearcoatRoughness, 0.0)
                      : view == DEBUG_SHEEN     ? s.sheenColor
-                     : view == DEBUG_OCCLUSION ? vec3(occlusion)
+                     : view == DEBUG_OCCLUSION ? vec3(occlusion * screenSpaceOcclusion(pixel, -posView.z))
                      : view == DEBUG_EMISSIVE  ? vec3(0.0)
                                                : vec3(float(p.materialId));
         // Alpha 0 replaces the emission the geometry pass wrote; the emissive view keeps it
@@ -76,10 +102,15 @@ void main() {
     }
 #else
 
-    // Direct light.
+    // The stage (stage_shading.glsl): screen-space occlusion of the environment's light.
+    float ssao = screenSpaceOcclusion(pixel, -posView.z);
+    vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
+
+    // Direct light, shadowed by the lights' shadow maps (shadow_sampling.glsl).
     vec3 color = vec3(0.0);
     for (int i = 0; i < frame.modes.x; ++i)
-        color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb;
+        color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb *
+                 directionalShadow(i, p.posWorld, n, shadowNoise);
 
     // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes; the split sum for
     // the specular ones, the GGX-prefiltered cube times the DFG LUT with Fdez-Aguera 2019's
@@ -111,7 +142,12 @@ void main() {
                   s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(r, cr);
         keepEmission = 1.0 - fc;
     }
-    color += ambient * occlusion;
+    color += ambient * occlusion * ssao;
+#if defined(STAGE_GROUND_PLAIN)
+    if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher
+        color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, shadowNoise),
+                    groundFade(p.posWorld));
+#endif
     outColor = vec4(color, keepEmission); // + emission x alpha, by the blend (see the header)
 #endif
 }

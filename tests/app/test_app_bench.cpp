@@ -47,7 +47,12 @@ private slots:
                               "orbit_frame_whole_scene_ms",
                               "orbit_speedup_vs_whole_scene",
                               "param_edit_mask_ms",
-                              "param_edit_whole_scene_ms"};
+                              "param_edit_whole_scene_ms",
+                              "stage_frame_off_ms",
+                              "stage_frame_shadow_ms",
+                              "stage_shadow_overhead",
+                              "shadow_map_pass_ms",
+                              "occlusion_pass_ms"};
         for (const char* k : keys)
             QVERIFY2(o.contains(k) && o.value(k).isDouble(), k);
         QVERIFY(o.value("gbuffer_bytes_per_pixel").toDouble() <= 16.0);

@@ -91,6 +91,9 @@ Scene everyLightScene(const fs::path& dir) {
         l.outerConeDeg = 45.0f;
         l.shape = AreaShape::Rectangle;
         l.size = {2.0f, 0.75f};
+        l.castShadows = t % 2 == 0;
+        l.sourceAngleDeg = 0.5f + float(t);
+        l.sourceRadius = 0.1f * float(t + 1);
         s.lights.push_back(l);
     }
     s.lights[0].innerConeDeg = 5.0f; // irrelevant to a directional light, kept anyway
@@ -100,6 +103,11 @@ Scene everyLightScene(const fs::path& dir) {
     s.environment.rotationDeg = -45.0f;
     s.environment.background = BackgroundMode::SolidColor;
     s.environment.backgroundColor = {0.05f, 0.05f, 0.06f};
+    s.environment.ground = GroundMode::Plain;
+    s.environment.groundColor = {0.3f, 0.25f, 0.2f};
+    s.environment.groundRoughness = 0.45f;
+    s.environment.ambientOcclusion = true;
+    s.environment.occlusionRadius = 0.6f;
     s.mesh.kind = PreviewMeshKind::Custom;
     s.mesh.file = (dir / "meshes/dress.glb").generic_string();
     s.material = everythingSet(dir);
@@ -217,6 +225,34 @@ private slots:
         QCOMPARE(detectDocumentKind(dir / "scene.json"), DocumentKind::Scene);
         QCOMPARE(detectDocumentKind(dir / "presets/red.json"), DocumentKind::Material);
         QCOMPARE(detectDocumentKind(dir / "missing.json"), DocumentKind::Unknown);
+    }
+
+    // Scenes written before the look-dev stage have no ground, no occlusion and lights that cast
+    // no shadows (their image is unchanged); the rigs' key lights cast shadows; the editor's mesh
+    // switch puts the drape and the shader ball on a shadow catcher (core/scene.h).
+    void stageDefaults() {
+        Problems problems;
+        const auto old =
+            parseScene(R"({"format":"velvet.scene","version":2,"lights":[{"type":"directional"}]})",
+                       "", {}, problems);
+        QVERIFY2(old, problemsText(problems).c_str());
+        QCOMPARE(old->environment.ground, GroundMode::Off);
+        QVERIFY(!old->environment.ambientOcclusion);
+        QVERIFY(!old->lights[0].castShadows);
+        QVERIFY(defaultScene().lights[0].castShadows);
+        Environment env;
+        QVERIFY(hasStageDefaults(env, PreviewMeshKind::Sphere));
+        applyStageDefaults(env, PreviewMeshKind::ShaderBall);
+        QCOMPARE(env.ground, GroundMode::ShadowCatcher);
+        QVERIFY(env.ambientOcclusion);
+        QVERIFY(hasStageDefaults(env, PreviewMeshKind::ClothDrape));
+        QVERIFY(!hasStageDefaults(env, PreviewMeshKind::Cube));
+        const auto bad =
+            parseScene(R"({"format":"velvet.scene","version":2,"environment":{"ground":"floor"}})",
+                       "", {}, problems);
+        QVERIFY(!bad);
+        QVERIFY2(problemsText(problems).find("environment.ground") != std::string::npos,
+                 problemsText(problems).c_str());
     }
 
     void version1Migrates() {

@@ -11,6 +11,7 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QSignalBlocker>
+#include <QUndoStack>
 #include <filesystem>
 
 namespace velvet::ui {
@@ -103,7 +104,21 @@ void applyMeshChoice(DocumentController* controller, QComboBox* combo, int index
             mesh.file = controller->scene().mesh.file;
         }
     }
-    controller->editMesh(mesh);
+    // The new mesh's stage (core/scene.h, applyStageDefaults: the drape and the shader ball on
+    // a shadow-catching ground with occlusion) comes with it in one undo step, unless the artist
+    // has set the ground or the occlusion by hand (they differ from the old mesh's defaults).
+    const Scene& scene = controller->scene();
+    Environment env = scene.environment;
+    const bool followStage = mesh != scene.mesh && hasStageDefaults(env, scene.mesh.kind);
+    applyStageDefaults(env, mesh.kind);
+    if (followStage && env != scene.environment) {
+        controller->undoStack()->beginMacro(QObject::tr("Preview mesh"));
+        controller->editMesh(mesh);
+        controller->editEnvironment(env, QObject::tr("Ground and occlusion"));
+        controller->undoStack()->endMacro();
+    } else {
+        controller->editMesh(mesh);
+    }
     fillMeshCombo(combo, controller->scene()); // a no-op choice sends no signal
 }
 

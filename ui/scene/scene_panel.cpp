@@ -4,7 +4,9 @@
 #include "ui/commands/set_scene_command.h"
 #include "ui/document_controller.h"
 #include "ui/scene/scene_choosers.h"
+#include "ui/scene/stage_group.h"
 
+#include <QCheckBox>
 #include <QColorDialog>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -181,6 +183,7 @@ ScenePanel::ScenePanel(DocumentController* controller, QWidget* parent)
     auto* envForm = new QFormLayout(envBox);
     buildEnvironmentGroup(envForm);
     layout->addWidget(envBox);
+    layout->addWidget(new StageGroup(m_controller, this));
 
     auto* lightsBox = new QGroupBox(tr("Lights"), this);
     auto* lightsLayout = new QVBoxLayout(lightsBox);
@@ -353,6 +356,17 @@ void ScenePanel::buildLightEditor(QFormLayout* form) {
     m_sizeY = makeSpin(QStringLiteral("lightSizeY"), 0.001, 100.0, 0.05, 3,
                        tr("Rectangle height (m)"), m_editor);
     form->addRow(tr("Height"), m_sizeY);
+    m_castShadows = new QCheckBox(tr("Casts shadows"), m_editor);
+    m_castShadows->setObjectName(QStringLiteral("lightCastShadows"));
+    m_castShadows->setToolTip(tr("Shadows from the preview mesh (the %1 strongest such lights at "
+                                 "the mesh cast them; docs/shadows.md)")
+                                  .arg(4));
+    form->addRow(m_castShadows);
+    m_sourceSize = makeSpin(QStringLiteral("lightSourceSize"), 0.0, 20.0, 0.1, 2,
+                            tr("The source's size for soft shadows: a directional light's angular "
+                               "diameter, a point or spot light's radius"),
+                            m_editor);
+    form->addRow(tr("Source size"), m_sourceSize);
 
     // Every field edits a copy of the selected light; one gesture (typing, arrows, a wheel
     // session) is one command.
@@ -423,6 +437,16 @@ void ScenePanel::buildLightEditor(QFormLayout* form) {
     });
     for (QDoubleSpinBox* spin : {m_sizeX, m_sizeY})
         connect(spin, &QDoubleSpinBox::editingFinished, this, nextGesture);
+    connect(m_castShadows, &QCheckBox::toggled, this, [edit](bool on) {
+        edit(on ? tr("Light casts shadows") : tr("Light casts no shadows"),
+             [on](Light& l) { l.castShadows = on; });
+    });
+    connect(m_sourceSize, &QDoubleSpinBox::valueChanged, this, [gesture](double v) {
+        gesture(tr("Light source size"), [v](Light& l) {
+            (l.type == LightType::Directional ? l.sourceAngleDeg : l.sourceRadius) = float(v);
+        });
+    });
+    connect(m_sourceSize, &QDoubleSpinBox::editingFinished, this, nextGesture);
     m_position->onChanged = [gesture](int axis, float v) {
         gesture(tr("Move light"), [axis, v](Light& l) { l.position[axis] = v; });
     };
@@ -565,7 +589,7 @@ void ScenePanel::refreshLightEditor() {
     m_updating = true;
     {
         const QSignalBlocker a(m_name), b(m_type), c(m_shape), d(m_intensity), e(m_range),
-            f(m_inner), g(m_outer), h(m_sizeX), i(m_sizeY);
+            f(m_inner), g(m_outer), h(m_sizeX), i(m_sizeY), j(m_castShadows), k(m_sourceSize);
         // Keep what is being typed into the name of the light shown, never another light's.
         if (index != m_shownLight || !m_name->isModified())
             m_name->setText(QString::fromStdString(light.name)); // clears isModified()
@@ -579,6 +603,10 @@ void ScenePanel::refreshLightEditor() {
         m_outer->setValue(double(light.outerConeDeg));
         m_sizeX->setValue(double(light.size.x));
         m_sizeY->setValue(double(light.size.y));
+        m_castShadows->setChecked(light.castShadows);
+        const bool directional = light.type == LightType::Directional;
+        m_sourceSize->setSuffix(directional ? tr("°") : tr(" m"));
+        m_sourceSize->setValue(double(directional ? light.sourceAngleDeg : light.sourceRadius));
     }
     m_position->setValue(light.position);
     m_direction->setValue(light.direction);
@@ -598,6 +626,11 @@ void ScenePanel::refreshLightEditor() {
     m_editorForm->setRowVisible(m_sizeX, light.type == LightType::Area);
     m_editorForm->setRowVisible(m_sizeY, light.type == LightType::Area &&
                                              light.shape == AreaShape::Rectangle);
+    m_editorForm->setRowVisible(m_castShadows, light.type != LightType::Ambient);
+    // Area lights' penumbra comes from their own size.
+    m_editorForm->setRowVisible(m_sourceSize, light.type == LightType::Directional ||
+                                                  light.type == LightType::Point ||
+                                                  light.type == LightType::Spot);
     m_updating = false;
 }
 

@@ -87,6 +87,8 @@ private:
     QDoubleSpinBox* m_outer;
     QDoubleSpinBox* m_sizeX;
     QDoubleSpinBox* m_sizeY;
+    QCheckBox* m_castShadows;
+    QDoubleSpinBox* m_sourceSize; ///< directional: angle (°); point and spot: radius (m)
 };
 
 } // namespace velvet::ui

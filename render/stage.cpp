@@ -1,0 +1,199 @@
+#include "render/stage.h"
+
+#include "render/gpu_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <epoxy/gl.h>
+#include <glm/common.hpp>
+
+namespace velvet::render {
+namespace {
+
+/// The ground's half size in bounding-sphere radii (at least kGroundMinHalfSize metres): far
+/// enough to reach the horizon of any sensible view; the catcher's far part is invisible and the
+/// plain ground fades into it between kFadeStart and kFadeEnd radii from the mesh.
+constexpr float kGroundHalfSizeRadii = 40.0f, kGroundMinHalfSize = 20.0f;
+constexpr float kFadeStart = 1.6f, kFadeEnd = 4.0f;
+/// Below the mesh's lowest point by this fraction of its radius, so that a face lying on the
+/// floor (the drape's hem) does not fight the ground for depth.
+constexpr float kGroundGap = 0.002f;
+
+BoundingSphere sphereOf(const MeshBounds& bounds) {
+    return boundingSphere(bounds);
+}
+
+} // namespace
+
+GpuMaterial groundMaterial(const Environment& environment) {
+    Material m;
+    m.setColor(ParamId::BaseColor, glm::clamp(environment.groundColor, 0.0f, 1.0f));
+    m.setScalar(ParamId::Metallic, 0.0f);
+    m.setScalar(ParamId::Roughness, std::clamp(environment.groundRoughness, 0.0f, 1.0f));
+    return packMaterial(m);
+}
+
+Stage::~Stage() {
+    if (m_ubo)
+        glDeleteBuffers(1, &m_ubo);
+    if (m_queries[0])
+        glDeleteQueries(4, m_queries);
+}
+
+bool Stage::initialize(std::string* error) {
+    if (!m_shadows.initialize(error) || !reload(error))
+        return false;
+    glCreateBuffers(1, &m_ubo);
+    glNamedBufferStorage(m_ubo, sizeof(StageBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glCreateQueries(GL_TIMESTAMP, 4, m_queries);
+    return true;
+}
+
+bool Stage::reload(std::string* error) {
+    std::string errors, message;
+    if (m_groundProgram.build("ground.vert", "ground.frag", {}, &message))
+        ++m_groundCompiles;
+    else
+        errors = message;
+    if (!m_occlusion.build(&message))
+        errors += (errors.empty() ? "" : "\n") + message;
+    if (m_groundCompiles > 1 && !m_shadows.reload(&message)) // initialize() built it once
+        errors += (errors.empty() ? "" : "\n") + message;
+    if (!errors.empty() && error)
+        *error = errors;
+    return errors.empty();
+}
+
+int Stage::compileCount() const {
+    return m_shadows.compileCount() + m_occlusion.compileCount() + m_groundCompiles;
+}
+
+void Stage::plan(const std::vector<Light>& lights, const MeshBounds& bounds, Problems* problems) {
+    m_bounds = bounds;
+    m_shadows.plan(lights, sphereOf(bounds), problems);
+}
+
+void Stage::annotate(FrameBlock& block, const std::vector<Light>& lights) const {
+    const std::vector<int> slots = m_shadows.slotOfLight(lights.size());
+    int directional = 0;
+    for (size_t i = 0; i < lights.size() && directional < kMaxDirectionalLights; ++i)
+        if (lights[i].type == LightType::Directional)
+            block.lightDirection[directional++].w = float(slots[i]);
+}
+
+void Stage::drawShadows(const GpuMesh& mesh) {
+    glQueryCounter(m_queries[0], GL_TIMESTAMP);
+    m_shadowTimed = m_shadows.draw(mesh);
+    glQueryCounter(m_queries[1], GL_TIMESTAMP);
+}
+
+void Stage::beginFrame(const Scene& scene, int width, int height) {
+    StageBlock b{};
+    m_shadows.fill(b, scene.lights);
+    const Environment& env = scene.environment;
+    const BoundingSphere sphere = sphereOf(m_bounds);
+    const float r = sphere.radius;
+    const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
+    b.ground = glm::vec4(height0, float(int(env.ground)), kFadeStart * r, kFadeEnd * r);
+    b.meshSphere = glm::vec4(sphere.center, r);
+    b.occlusion =
+        glm::vec4(env.ambientOcclusion ? 1.0f : 0.0f, std::max(env.occlusionRadius, 0.0f),
+                  float(OcclusionPass::halfSize(width)), float(OcclusionPass::halfSize(height)));
+    glNamedBufferSubData(m_ubo, 0, sizeof(StageBlock), &b);
+    glBindBufferBase(GL_UNIFORM_BUFFER, stage_binding::kStageUbo, m_ubo);
+}
+
+void Stage::drawGround(const Environment& environment) {
+    if (environment.ground == GroundMode::Off)
+        return;
+    const BoundingSphere sphere = sphereOf(m_bounds);
+    const float r = sphere.radius;
+    const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
+    const float half = std::max(kGroundHalfSizeRadii * r, kGroundMinHalfSize);
+    const int id = environment.ground == GroundMode::ShadowCatcher ? kGroundCatcherMaterialId
+                                                                   : kGroundPlainMaterialId;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE); // unseen from below: a camera under the floor still sees the mesh
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+    const unsigned program = m_groundProgram.id();
+    glUseProgram(program);
+    glProgramUniform1i(program, 0, id);
+    glProgramUniform4f(program, 1, sphere.center.x, height0, sphere.center.z, half);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+}
+
+bool Stage::drawOcclusion(const Environment& environment, int width, int height, unsigned emptyVao,
+                          std::string* error) {
+    m_occlusionOn = environment.ambientOcclusion;
+    m_occlusionTimed = false;
+    if (!m_occlusionOn)
+        return true;
+    glQueryCounter(m_queries[2], GL_TIMESTAMP);
+    if (!m_occlusion.run(width, height, emptyVao, error))
+        return false;
+    glQueryCounter(m_queries[3], GL_TIMESTAMP);
+    m_occlusionTimed = true;
+    return true;
+}
+
+bool Stage::meshRectangle(const glm::mat4& viewProj, int width, int height, int rect[4]) const {
+    if (m_bounds.empty())
+        return false;
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? m_bounds.max.x : m_bounds.min.x,
+                               (i & 2) ? m_bounds.max.y : m_bounds.min.y,
+                               (i & 4) ? m_bounds.max.z : m_bounds.min.z);
+        const glm::vec4 clip = viewProj * glm::vec4(corner, 1.0f);
+        if (clip.w <= 1e-4f)
+            return false;
+        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        lo = glm::min(lo, ndc);
+        hi = glm::max(hi, ndc);
+    }
+    // To pixels, one pixel of margin each side, clamped to the frame.
+    const auto px = [](float ndc, int size) { return (ndc * 0.5f + 0.5f) * float(size); };
+    const int x0 = std::clamp(int(std::floor(px(lo.x, width))) - 1, 0, width);
+    const int y0 = std::clamp(int(std::floor(px(lo.y, height))) - 1, 0, height);
+    const int x1 = std::clamp(int(std::ceil(px(hi.x, width))) + 1, 0, width);
+    const int y1 = std::clamp(int(std::ceil(px(hi.y, height))) + 1, 0, height);
+    rect[0] = x0;
+    rect[1] = y0;
+    rect[2] = x1 - x0;
+    rect[3] = y1 - y0;
+    return true;
+}
+
+void Stage::bind() const {
+    m_shadows.bind();
+    if (m_occlusionOn)
+        m_occlusion.bind();
+}
+
+void Stage::unbind() const {
+    m_shadows.unbind();
+    glBindTextureUnit(stage_binding::kOcclusionTex, 0);
+}
+
+double Stage::lastShadowMs() const {
+    if (!m_shadowTimed)
+        return 0.0;
+    GLuint64 t0 = 0, t1 = 0;
+    glGetQueryObjectui64v(m_queries[0], GL_QUERY_RESULT, &t0);
+    glGetQueryObjectui64v(m_queries[1], GL_QUERY_RESULT, &t1);
+    return double(t1 - t0) * 1e-6;
+}
+
+double Stage::lastOcclusionMs() const {
+    if (!m_occlusionTimed)
+        return 0.0;
+    GLuint64 t0 = 0, t1 = 0;
+    glGetQueryObjectui64v(m_queries[2], GL_QUERY_RESULT, &t0);
+    glGetQueryObjectui64v(m_queries[3], GL_QUERY_RESULT, &t1);
+    return double(t1 - t0) * 1e-6;
+}
+
+} // namespace velvet::render

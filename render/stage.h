@@ -1,0 +1,87 @@
+#pragma once
+/// @file stage.h
+/// Render-private: the look-dev stage around the preview mesh (docs/shadows.md) — the shadow maps
+/// (render/shadow_maps.h), the ground drawn into the G-buffer after the mesh (ground.vert/.frag:
+/// a square at the mesh's lowest point, material id kGroundPlainMaterialId or
+/// kGroundCatcherMaterialId), screen-space ambient occlusion (render/ao_pass.h) — and the
+/// StageBlock every lighting pass reads them through. Renderer::render() calls it at four
+/// points: shadows before the geometry pass, the ground after it, occlusion after that, and
+/// bind() before lighting.
+
+#include "core/diagnostics.h"
+#include "core/mesh.h"
+#include "core/scene.h"
+#include "render/ao_pass.h"
+#include "render/material_table.h"
+#include "render/render_interface.h"
+#include "render/shadow_maps.h"
+
+#include <string>
+#include <vector>
+
+namespace velvet::render {
+
+class GpuMesh;
+
+/// The plain ground's record of the material table (also the catcher's): its colour and
+/// roughness, a dielectric.
+GpuMaterial groundMaterial(const Environment& environment);
+
+class Stage {
+public:
+    Stage() = default;
+    /// Needs the renderer's context current.
+    ~Stage();
+    Stage(const Stage&) = delete;
+    Stage& operator=(const Stage&) = delete;
+
+    bool initialize(std::string* error);
+    bool reload(std::string* error);
+    int compileCount() const;
+
+    /// The lights or the mesh changed: plans the shadow slots around @p bounds (warnings for
+    /// the lights left out go to @p problems).
+    void plan(const std::vector<Light>& lights, const MeshBounds& bounds, Problems* problems);
+    /// Per scene light: its shadow slot + 1, or 0 (LightPasses::upload).
+    std::vector<int> slotOfLight(size_t lightCount) const {
+        return m_shadows.slotOfLight(lightCount);
+    }
+    /// Marks each shadowed directional light of @p block (lightDirection[i].w = slot + 1).
+    void annotate(FrameBlock& block, const std::vector<Light>& lights) const;
+
+    /// Before the geometry pass: the shadow maps, when the lights or the mesh changed (timed).
+    void drawShadows(const GpuMesh& mesh);
+    /// The frame's StageBlock, uploaded and bound at stage_binding::kStageUbo.
+    void beginFrame(const Scene& scene, int width, int height);
+    /// After the geometry pass, into its (still bound) framebuffer: the ground, if any.
+    void drawGround(const Environment& environment);
+    /// After the ground: the occlusion term, if on; expects the G-buffer textures bound. Leaves
+    /// the viewport for the caller to reset.
+    bool drawOcclusion(const Environment& environment, int width, int height, unsigned emptyVao,
+                       std::string* error);
+    /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through
+    /// @p viewProj in a @p width x @p height frame; false when they reach behind the camera.
+    /// With a shadow catcher the surface pass is scissored to it, so the ground's pixels outside
+    /// pay nothing for the mesh's shading (llvmpipe shades a discarded pixel to the end).
+    bool meshRectangle(const glm::mat4& viewProj, int width, int height, int rect[4]) const;
+    /// Before lighting: the shadow maps and the occlusion at their units.
+    void bind() const;
+    void unbind() const;
+
+    /// GPU milliseconds of the last frame's shadow-map and occlusion passes (0 when not run).
+    double lastShadowMs() const;
+    double lastOcclusionMs() const;
+
+private:
+    ShadowMaps m_shadows;
+    OcclusionPass m_occlusion;
+    ShaderProgram m_groundProgram;
+    int m_groundCompiles = 0;
+    MeshBounds m_bounds;
+    unsigned m_ubo = 0;
+    unsigned m_queries[4] = {};
+    mutable bool m_shadowTimed = false, m_occlusionTimed = false;
+    bool m_occlusionOn = false;
+};
+
+} // namespace velvet::render

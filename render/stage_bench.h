@@ -1,0 +1,24 @@
+#pragma once
+/// @file stage_bench.h
+/// `velvet bench`'s look-dev stage figures (docs/shadows.md, BENCHMARKS.md): the shader ball on a
+/// shadow-catching ground under the key light at the bench's size, frames with the stage off,
+/// with one shadowed light, and with shadows and ambient occlusion, interleaved in one process.
+
+#include <string>
+
+namespace velvet::render {
+
+struct StageBenchReport {
+    double frameOffMs = 0;     ///< wall clock: no shadow, no occlusion (the ground drawn)
+    double frameShadowMs = 0;  ///< one shadowed directional light (maps cached, as an orbit)
+    double frameStageMs = 0;   ///< shadows and ambient occlusion
+    double shadowOverhead = 0; ///< frameShadowMs / frameOffMs - 1
+    double stageOverhead = 0;  ///< frameStageMs / frameOffMs - 1
+    double shadowMapMs = 0;    ///< GPU time of drawing the shadow map (a light or mesh edit)
+    double occlusionMs = 0;    ///< GPU time of the occlusion passes
+};
+
+/// Median of @p frames frames each; needs a current context. False + message on failure.
+bool measureStage(int width, int height, int frames, StageBenchReport& report, std::string* error);
+
+} // namespace velvet::render

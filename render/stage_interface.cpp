@@ -1,0 +1,56 @@
+#include "render/stage_interface.h"
+
+#include <cstddef>
+
+namespace velvet::render {
+
+// std140 with 16-byte members: each member starts where the one before ends.
+static_assert(offsetof(StageBlock, shadowView) == 64 * kMaxShadowLights);
+static_assert(offsetof(StageBlock, shadowParams) == 128 * kMaxShadowLights);
+static_assert(offsetof(StageBlock, shadowScale) == 144 * kMaxShadowLights);
+static_assert(offsetof(StageBlock, shadowLight) == 160 * kMaxShadowLights);
+static_assert(offsetof(StageBlock, shadowRadiance) == 176 * kMaxShadowLights);
+static_assert(offsetof(StageBlock, shadowSpot) == 192 * kMaxShadowLights);
+static_assert(offsetof(StageBlock, ground) == 208 * kMaxShadowLights);
+static_assert(offsetof(StageBlock, meshSphere) == 208 * kMaxShadowLights + 16);
+static_assert(offsetof(StageBlock, occlusion) == 208 * kMaxShadowLights + 32);
+static_assert(offsetof(StageBlock, counts) == 208 * kMaxShadowLights + 48);
+static_assert(sizeof(StageBlock) == 208 * kMaxShadowLights + 64);
+
+std::string stageInterfaceGlsl() {
+    const std::string n = std::to_string(kMaxShadowLights);
+    std::string s = "// Generated from render/stage_interface.cpp; do not edit.\n";
+    s += "#define MAX_SHADOW_LIGHTS " + n + "\n";
+    s += "#define GROUND_PLAIN_MATERIAL_ID " + std::to_string(kGroundPlainMaterialId) + "\n";
+    s += "#define GROUND_CATCHER_MATERIAL_ID " + std::to_string(kGroundCatcherMaterialId) + "\n";
+    s += "#define BINDING_SHADOW_COMPARE_TEX " + std::to_string(stage_binding::kShadowCompareTex) +
+         "\n";
+    s +=
+        "#define BINDING_SHADOW_DEPTH_TEX " + std::to_string(stage_binding::kShadowDepthTex) + "\n";
+    s += "#define BINDING_OCCLUSION_TEX " + std::to_string(stage_binding::kOcclusionTex) + "\n";
+    s += "#define BINDING_OCCLUSION_RAW_TEX " + std::to_string(stage_binding::kOcclusionRawTex) +
+         "\n";
+    s += "layout(std140, binding = " + std::to_string(stage_binding::kStageUbo) +
+         ") uniform StageBlock {\n"
+         "    mat4 shadowViewProj[" +
+         n +
+         "];\n"
+         "    mat4 shadowView[" +
+         n +
+         "];\n"
+         "    vec4 shadowParams[" +
+         n + "]; // perspective, near, far, source size\n    vec4 shadowScale[" + n +
+         "]; // metres per uv (per metre of depth if perspective), 1 / size\n"
+         "    vec4 shadowLight[" +
+         n + "]; // position or direction to the light, w kind\n    vec4 shadowRadiance[" + n +
+         "]; // rgb radiance, w range\n    vec4 shadowSpot[" + n +
+         "]; // direction travelled, w cos outer (-2: none)\n"
+         "    vec4 ground; // height, mode, fade start, fade end\n"
+         "    vec4 meshSphere; // centre, radius\n"
+         "    vec4 occlusion; // on, radius, half width, half height\n"
+         "    ivec4 counts; // shadow slots\n"
+         "} stage;\n";
+    return s;
+}
+
+} // namespace velvet::render

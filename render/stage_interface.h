@@ -1,0 +1,65 @@
+#pragma once
+/// @file stage_interface.h
+/// Render-private: the look-dev stage's contract with the shaders — shadow maps, the ground and
+/// screen-space ambient occlusion (docs/shadows.md) — generated into GLSL as the virtual include
+/// "stage_interface.glsl", the way render/render_interface.cpp generates FrameBlock: the block
+/// StageBlock (binding kStageUbo, instance `stage`), its texture units and the ground's material
+/// ids. Same member names on both sides; offsets static_asserted in stage_interface.cpp.
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+#include <string>
+
+namespace velvet::render {
+
+/// Lights that cast shadows at once (the strongest at the mesh; docs/shadows.md). Each has one
+/// layer of a kShadowMapSize² depth array.
+inline constexpr int kMaxShadowLights = 4;
+inline constexpr int kShadowMapSize = 2048;
+
+/// Material ids of the ground in the G-buffer (ids 0 and 1 are the scene's material and the A/B
+/// split's): the plain ground has its own record in the material table; the shadow catcher's
+/// pixels show the background, darkened (lighting.frag).
+inline constexpr int kGroundPlainMaterialId = 2;
+inline constexpr int kGroundCatcherMaterialId = 3;
+
+namespace stage_binding {
+inline constexpr int kStageUbo = 5;
+inline constexpr int kShadowCompareTex = 10; ///< sampler2DArrayShadow: hardware 2x2 PCF
+inline constexpr int kShadowDepthTex = 11;   ///< sampler2DArray: raw depth, PCSS blocker search
+inline constexpr int kOcclusionTex = 12;     ///< half-resolution GTAO (r) and its depth (g)
+inline constexpr int kOcclusionRawTex = 13;  ///< the unblurred GTAO, read by the blur
+} // namespace stage_binding
+
+/// std140, vec4 / mat4 members only. Slot s describes the s-th shadow-casting light.
+struct StageBlock {
+    glm::mat4 shadowViewProj[kMaxShadowLights]; ///< world -> the light's clip space
+    glm::mat4 shadowView[kMaxShadowLights];     ///< world -> the light's view (looks down -z)
+    /// x: 1 perspective, 0 orthographic; y near, z far (m); w source size: perspective the
+    /// diameter in metres, orthographic 2 tan(angular diameter / 2)
+    glm::vec4 shadowParams[kMaxShadowLights];
+    /// x: metres per unit of map uv (orthographic) or per uv per metre of depth (perspective:
+    /// 2 tan(fov / 2)); y: 1 / map size; zw unused
+    glm::vec4 shadowScale[kMaxShadowLights];
+    /// The light, for the shadow catcher: xyz position (local) or direction towards it
+    /// (directional), w: 0 directional, 1 point/spot, 2 area
+    glm::vec4 shadowLight[kMaxShadowLights];
+    /// rgb colour x intensity (x area for area lights), w range (m)
+    glm::vec4 shadowRadiance[kMaxShadowLights];
+    /// xyz the way the light travels, w cos of the outer cone (-2: no cone)
+    glm::vec4 shadowSpot[kMaxShadowLights];
+    /// x ground height (m), y ground mode (0 off, 1 catcher, 2 plain), z fade start, w fade end (m
+    /// from the mesh's centre)
+    glm::vec4 ground;
+    /// xyz the mesh's bounding-sphere centre, w its radius
+    glm::vec4 meshSphere;
+    /// x: occlusion on, y: radius (m), z: half-resolution width, w: height
+    glm::vec4 occlusion;
+    /// x: shadow slots in use, yzw unused
+    glm::ivec4 counts;
+};
+
+/// The GLSL text of "stage_interface.glsl".
+std::string stageInterfaceGlsl();
+
+} // namespace velvet::render

@@ -1,0 +1,93 @@
+#version 450 core
+// Screen-space ambient occlusion at half resolution: GTAO (Jimenez et al. 2016, "Practical
+// Real-Time Strategies for Accurate Indirect Occlusion"), the horizon search on both sides of
+// two slices per pixel and the slice's cosine-weighted visibility integrated in closed form with
+// the projected normal (as Intel's XeGTAO). Writes r: visibility in [0, 1] (1 on an open plane),
+// g: the view depth (m) of the pixel it stands for (r is clamped by the blur), for the depth-aware blur and upsample.
+#include "gbuffer_read.glsl"
+#include "stage_interface.glsl"
+
+layout(location = 0) out vec2 outOcclusion;
+
+const int SLICES = 2;
+const int STEPS = 4;
+
+vec3 viewPositionAt(ivec2 fullPixel) {
+    float depth = texelFetch(gDepthTex, fullPixel, 0).r;
+    vec2 ndc = (vec2(fullPixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+    return viewPositionFromDepth(ndc, depth);
+}
+
+void main() {
+    ivec2 halfPixel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel = min(halfPixel * 2, ivec2(frame.viewport.xy) - 1);
+    float depth = texelFetch(gDepthTex, pixel, 0).r;
+    if (depth >= 1.0) {
+        outOcclusion = vec2(1.0, 1e6);
+        return;
+    }
+    vec3 P = viewPositionAt(pixel);
+    vec3 N = normalize(mat3(frame.viewMatrix) * octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg));
+    bool ortho = frame.cameraPosition.w > 0.5;
+    vec3 V = ortho ? vec3(0.0, 0.0, 1.0) : normalize(-P);
+    float radius = stage.occlusion.y;
+    // The radius in full-resolution pixels: the projection's y scale over the depth.
+    float pixelsPerMetre = 0.5 * frame.viewport.y * frame.projMatrix[1][1] / (ortho ? 1.0 : -P.z);
+    float radiusPixels = radius * pixelsPerMetre;
+    if (radiusPixels < 1.0) {
+        outOcclusion = vec2(1.0, -P.z);
+        return;
+    }
+    radiusPixels = min(radiusPixels, 0.25 * frame.viewport.y);
+    // A 4x4 pattern of slice rotations and step offsets, which the blur averages away.
+    int cell = (halfPixel.x & 3) + 4 * (halfPixel.y & 3);
+    float rotation = (float((cell * 7) & 15) + 0.5) / 16.0 * PI / float(SLICES);
+    float jitter = float((cell * 11 + 5) & 15) / 16.0;
+    float falloffFrom = 0.6 * radius;
+    float visibility = 0.0;
+    for (int slice = 0; slice < SLICES; ++slice) {
+        float phi = rotation + float(slice) * PI / float(SLICES);
+        vec2 omega = vec2(cos(phi), sin(phi));
+        vec3 direction = vec3(omega, 0.0);
+        vec3 orthoDirection = direction - dot(direction, V) * V;
+        vec3 axis = normalize(cross(orthoDirection, V));
+        vec3 projectedNormal = N - axis * dot(N, axis);
+        float projectedLength = length(projectedNormal);
+        if (projectedLength < 1e-4)
+            continue;
+        float signN = sign(dot(orthoDirection, projectedNormal));
+        float cosN = saturate(dot(projectedNormal, V) / projectedLength);
+        float angleN = signN * acos(cosN);
+        float horizon0 = cos(angleN + 0.5 * PI), horizon1 = cos(angleN - 0.5 * PI);
+        float low0 = horizon0, low1 = horizon1;
+        for (int k = 0; k < STEPS; ++k) {
+            float t = (float(k) + jitter) / float(STEPS);
+            vec2 offset = omega * max(t * t * radiusPixels, 1.0 + float(k));
+            for (int side = 0; side < 2; ++side) {
+                ivec2 q = pixel + ivec2(round(side == 0 ? offset : -offset));
+                if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(frame.viewport.xy))))
+                    continue;
+                vec3 delta = viewPositionAt(q) - P;
+                float dist = length(delta);
+                float c = dot(delta / max(dist, 1e-6), V);
+                // Samples beyond the radius fade back to the open horizon (XeGTAO's falloff).
+                float weight = saturate((radius - dist) / (radius - falloffFrom));
+                if (side == 0)
+                    horizon0 = max(horizon0, mix(low0, c, weight));
+                else
+                    horizon1 = max(horizon1, mix(low1, c, weight));
+            }
+        }
+        float h0 = -acos(clamp(horizon1, -1.0, 1.0));
+        float h1 = acos(clamp(horizon0, -1.0, 1.0));
+        h0 = angleN + max(h0 - angleN, -0.5 * PI);
+        h1 = angleN + min(h1 - angleN, 0.5 * PI);
+        float sinN = sin(angleN);
+        float arc0 = (cosN + 2.0 * h0 * sinN - cos(2.0 * h0 - angleN)) * 0.25;
+        float arc1 = (cosN + 2.0 * h1 * sinN - cos(2.0 * h1 - angleN)) * 0.25;
+        visibility += projectedLength * (arc0 + arc1);
+    }
+    // Not clamped to 1 yet: one pixel's two slices over- or under-estimate a tilted plane, and
+    // only the blur's average over the 4x4 rotations comes back to 1 (ao_blur.frag clamps).
+    outOcclusion = vec2(clamp(visibility / float(SLICES), 0.0, 2.0), -P.z);
+}

@@ -1,0 +1,80 @@
+// The look-dev stage in the full-screen lighting pass (docs/shadows.md): the screen-space ambient
+// occlusion term (ao_gtao.frag, half resolution, read back with a depth-aware bilinear
+// upsample), and the ground's two looks: the shadow catcher (the background times how much of
+// the light the ground would receive, shadowed / unshadowed) and the plain ground's fade into it.
+// Needs common_environment.glsl and shadow_sampling.glsl.
+#include "shadow_sampling.glsl"
+
+layout(binding = BINDING_OCCLUSION_TEX) uniform sampler2D uOcclusion;
+
+// The occlusion of full-resolution pixel `pixel` at view depth `viewDepth` (m, positive): 1 when
+// the term is off. The four half-resolution neighbours weigh by bilinear position times depth
+// likeness, so occlusion does not bleed across silhouettes.
+float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
+    if (stage.occlusion.x < 0.5)
+        return 1.0;
+    ivec2 size = ivec2(stage.occlusion.zw);
+    vec2 h = (vec2(pixel) + 0.5) * 0.5 - 0.5;
+    ivec2 b = ivec2(floor(h));
+    vec2 f = h - vec2(b);
+    float sum = 0.0, weights = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        vec2 t = texelFetch(uOcclusion, clamp(b + o, ivec2(0), size - 1), 0).rg;
+        float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        float d = abs(t.g - viewDepth) / (0.03 * viewDepth + 0.01);
+        float w = (bilinear + 1e-3) * exp(-d * d) + 1e-6 / (1.0 + d); // the nearest in depth wins
+                                                                       // where none is alike
+        sum += t.r * w;
+        weights += w;
+    }
+    return weights > 0.0 ? sum / weights : 1.0;
+}
+
+// Illuminance a shadow slot's local light gives a horizontal ground point (its shadow apart).
+vec3 slotIlluminance(int s, vec3 pos, vec3 n) {
+    vec4 L = stage.shadowLight[s];
+    if (L.w < 0.5)
+        return vec3(0.0); // directional: the frame block's loop has it
+    vec3 toLight = L.xyz - pos;
+    float d = max(length(toLight), 0.01);
+    vec3 l = toLight / d;
+    float range = stage.shadowRadiance[s].w;
+    float r = d / max(range, 1e-4);
+    float window = saturate(1.0 - r * r * r * r);
+    float e = max(dot(n, l), 0.0) * window * window / (d * d);
+    vec4 spot = stage.shadowSpot[s];
+    if (spot.w > -1.5)
+        e *= smoothstep(spot.w, spot.w + 0.02, dot(spot.xyz, -l));
+    if (L.w > 1.5) // a rectangle emits on one side only
+        e *= saturate(dot(spot.xyz, -l));
+    return stage.shadowRadiance[s].rgb * e;
+}
+
+// How much of the light the ground at p receives, shadowed and occluded over unshadowed: the
+// environment (SH9 irradiance x occlusion), the directional lights and the shadowed local
+// lights. Lights without shadows cancel out but for their share of the sum.
+vec3 catcherTransmission(vec3 pos, float occlusion, float noise) {
+    vec3 n = vec3(0.0, 1.0, 0.0);
+    vec3 env = irradianceOverPi(n) * PI;
+    vec3 full = env, lit = env * occlusion;
+    for (int i = 0; i < frame.modes.x; ++i) {
+        vec3 e = frame.lightRadiance[i].rgb * max(dot(n, frame.lightDirection[i].xyz), 0.0);
+        full += e;
+        lit += e * directionalShadow(i, pos, n, noise);
+    }
+    for (int s = 0; s < stage.counts.x; ++s) {
+        vec3 e = slotIlluminance(s, pos, n);
+        if (max3(e) <= 0.0)
+            continue;
+        full += e;
+        lit += e * shadowVisibility(s, pos, n, normalize(stage.shadowLight[s].xyz - pos), noise);
+    }
+    return clamp(lit / max(full, vec3(1e-6)), 0.0, 1.0);
+}
+
+// 0 near the mesh, 1 where the plain ground has faded into the shadow catcher.
+float groundFade(vec3 pos) {
+    float d = length(pos.xz - stage.meshSphere.xz);
+    return smoothstep(stage.ground.z, stage.ground.w, d);
+}

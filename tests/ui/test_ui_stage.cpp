@@ -1,0 +1,145 @@
+// Drives the real MainWindow under xvfb-run (issue 14, docs/shadows.md): a light's "Casts
+// shadows" box, the Scene toolbar's ground toggle, the Scene panel's ground and occlusion, and
+// the mesh chooser's stage defaults are undoable document edits that change the viewport.
+#include "core/scene.h"
+#include "ui/document_controller.h"
+#include "ui/main_window.h"
+#include "ui/scene/scene_panel.h"
+#include "ui/viewport_widget.h"
+#include "ui_test_util.h"
+#include "ui_test_window.h"
+
+#include <QApplication>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QStandardPaths>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QToolButton>
+#include <QUndoStack>
+
+using namespace velvet;
+using namespace velvet::ui;
+
+class TestUiStage : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase() {
+        m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
+        m_doc = m_window->controller();
+        const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
+        QVERIFY2(up.isEmpty(), qPrintable(up));
+        m_window->findChild<QDockWidget*>(QStringLiteral("sceneDock"))->raise();
+    }
+    void cleanupTestCase() {
+        m_doc->newDocument();
+        QVERIFY(m_window->close());
+        m_window.reset();
+    }
+    void init() { m_doc->newDocument(); }
+
+    // The default rig's key light casts shadows; the box turns it off in one undo step.
+    void castShadowsBoxIsOneUndoStep() {
+        QVERIFY(m_doc->scene().lights.at(0).castShadows);
+        m_window->scenePanel()->selectLight(0);
+        auto* box = m_window->findChild<QCheckBox*>(QStringLiteral("lightCastShadows"));
+        QVERIFY(box && box->isVisible() && box->isChecked());
+        QTest::mouseClick(box, Qt::LeftButton, {}, QPoint(8, box->height() / 2));
+        QVERIFY(!m_doc->scene().lights[0].castShadows);
+        QCOMPARE(m_doc->undoStack()->count(), 1);
+        QCOMPARE(m_doc->undoStack()->undoText(), QStringLiteral("Light casts no shadows"));
+        m_doc->undoStack()->undo();
+        QVERIFY(m_doc->scene().lights[0].castShadows);
+        QVERIFY(box->isChecked());
+    }
+
+    // Choosing the shader ball brings its stage (a shadow catcher, occlusion) in the same step;
+    // the toolbar's toggle and the panel show it, and the toggle turns the ground off, which
+    // changes the viewport under the ball.
+    void shaderBallStandsOnACatcher() {
+        auto* mesh = m_window->findChild<QComboBox*>(QStringLiteral("sceneMesh"));
+        const int index = mesh->findData(int(PreviewMeshKind::ShaderBall));
+        QVERIFY(index >= 0);
+        mesh->setCurrentIndex(index);
+        emit mesh->activated(index);
+        QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::ShaderBall);
+        QCOMPARE(m_doc->scene().environment.ground, GroundMode::ShadowCatcher);
+        QVERIFY(m_doc->scene().environment.ambientOcclusion);
+        QCOMPARE(m_doc->undoStack()->count(), 1);
+        auto* toggle = m_window->findChild<QToolButton*>(QStringLiteral("groundToggle"));
+        QVERIFY(toggle && toggle->isChecked());
+        auto* ground = m_window->findChild<QComboBox*>(QStringLiteral("sceneGround"));
+        QCOMPARE(ground->currentData().toInt(), int(GroundMode::ShadowCatcher));
+        QVERIFY(
+            m_window->findChild<QCheckBox*>(QStringLiteral("sceneAmbientOcclusion"))->isChecked());
+
+        // A mid-grey backdrop, so the catcher's darkening shows (the studio HDRI is dark there).
+        Environment grey = m_doc->scene().environment;
+        grey.background = BackgroundMode::SolidColor;
+        grey.backgroundColor = glm::vec3(0.5f);
+        m_doc->editEnvironment(grey, QStringLiteral("Grey backdrop"));
+        const QImage withGround = m_window->viewport()->grabFramebuffer();
+        QTest::mouseClick(toggle, Qt::LeftButton);
+        QCOMPARE(m_doc->scene().environment.ground, GroundMode::Off);
+        QCOMPARE(ground->currentData().toInt(), int(GroundMode::Off));
+        const QImage without = m_window->viewport()->grabFramebuffer();
+        // The ball's shadow and contact occlusion only darken: the lower half is darker with it.
+        const auto lowerLuma = [](const QImage& image) {
+            double sum = 0.0;
+            int n = 0;
+            for (int y = image.height() / 2; y < image.height(); ++y)
+                for (int x = 0; x < image.width(); ++x, ++n) {
+                    const QColor c = image.pixelColor(x, y);
+                    sum += 0.2126 * c.red() + 0.7152 * c.green() + 0.0722 * c.blue();
+                }
+            return sum / std::max(n, 1);
+        };
+        qInfo("lower half luma with the ground %.1f, without %.1f", lowerLuma(withGround),
+              lowerLuma(without));
+        QVERIFY(lowerLuma(withGround) < lowerLuma(without) - 1.0);
+
+        m_doc->undoStack()->undo(); // the ground again
+        QCOMPARE(m_doc->scene().environment.ground, GroundMode::ShadowCatcher);
+        m_doc->undoStack()->undo(); // the backdrop
+        m_doc->undoStack()->undo(); // the sphere, and its stage: none
+        QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::Sphere);
+        QCOMPARE(m_doc->scene().environment.ground, GroundMode::Off);
+        QVERIFY(!m_doc->scene().environment.ambientOcclusion);
+        QVERIFY(!toggle->isChecked());
+    }
+
+    // A ground set by hand stays when the mesh changes.
+    void handSetGroundSurvivesAMeshSwitch() {
+        auto* ground = m_window->findChild<QComboBox*>(QStringLiteral("sceneGround"));
+        const int plain = ground->findData(int(GroundMode::Plain));
+        ground->setCurrentIndex(plain);
+        emit ground->activated(plain);
+        QCOMPARE(m_doc->scene().environment.ground, GroundMode::Plain);
+        auto* mesh = m_window->findChild<QComboBox*>(QStringLiteral("sceneMesh"));
+        const int drape = mesh->findData(int(PreviewMeshKind::ClothDrape));
+        mesh->setCurrentIndex(drape);
+        emit mesh->activated(drape);
+        QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::ClothDrape);
+        QCOMPARE(m_doc->scene().environment.ground, GroundMode::Plain);
+        QVERIFY(!m_doc->scene().environment.ambientOcclusion);
+    }
+
+private:
+    std::unique_ptr<MainWindow> m_window;
+    DocumentController* m_doc = nullptr;
+};
+
+int main(int argc, char** argv) {
+    QStandardPaths::setTestModeEnabled(true); // QSettings go to a throwaway place
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("VelvetStageTest"));
+    QApplication::setOrganizationName(QStringLiteral("VelvetTest"));
+    TestUiStage test;
+    return QTest::qExec(&test, argc, argv);
+}
+#include "test_ui_stage.moc"
