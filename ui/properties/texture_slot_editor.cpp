@@ -4,6 +4,7 @@
 #include "core/image.h"
 #include "render/texture_set.h"
 #include "ui/document_controller.h"
+#include "ui/properties/uv_transform_editor.h"
 
 #include <QComboBox>
 #include <QCoreApplication>
@@ -251,6 +252,8 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
     connect(m_colorSpace, &QComboBox::activated, this, &TextureSlotEditor::onColorSpaceActivated);
     buttons->addWidget(m_colorSpace, 1);
     column->addLayout(buttons);
+    m_uv = new UvTransformEditor(controller, slot, name, this);
+    column->addWidget(m_uv);
     row->addLayout(column, 1);
 
     refresh();
@@ -316,6 +319,7 @@ void TextureSlotEditor::fillColorSpaces() {
 
 void TextureSlotEditor::refresh() {
     const TextureRef& ref = m_controller->material().texture(m_slot);
+    m_uv->refresh();
     if (m_shownValid && ref == m_shown)
         return;
     colorManagement();
