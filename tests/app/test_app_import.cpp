@@ -17,6 +17,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 #include <cmath>
+#include <glm/common.hpp>
 
 using namespace velvet;
 
