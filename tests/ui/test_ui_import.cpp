@@ -4,6 +4,7 @@
 // undo step, a malformed file is refused with its place in the Log and the document untouched,
 // a dropped MaterialX file is applied, and typing a UV offset is one undo step.
 #include "core/image.h"
+#include "core/material_export.h"
 #include "core/material.h"
 #include "ui/document_controller.h"
 #include "ui/log_panel.h"
@@ -143,6 +144,27 @@ private slots:
         QCOMPARE(m_doc->undoStack()->count(), history + 1);
         // What was not mapped is in the Log, by name.
         QVERIFY(m_window->logPanel()->text().contains(QStringLiteral("thin_film_thickness")));
+    }
+
+    void droppedGlbBringsMaterialAndMeshInOneStep() {
+        Scene scene;
+        scene.material.name = "Exported";
+        scene.material.setScalar(ParamId::Metallic, 0.75f);
+        scene.mesh.kind = PreviewMeshKind::Cube;
+        const ExportOutcome exported = exportMaterial(scene, m_dir.filePath("glb").toStdString(),
+                                                      "cube", ExportOptions{});
+        QVERIFY2(exported.ok(), exported.error.c_str());
+        const QString glb = QString::fromStdString(exported.written.back().string());
+        const Scene before = m_doc->scene();
+        const int history = m_doc->undoStack()->count();
+        QVERIFY(dropFile(m_window.get(), glb));
+        QCOMPARE(m_doc->material().scalar(ParamId::Metallic), 0.75f);
+        QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::Custom);
+        QCOMPARE(QString::fromStdString(m_doc->scene().mesh.file), glb);
+        QCOMPARE(m_doc->undoStack()->count(), history + 1);
+        m_doc->undoStack()->undo(); // material and mesh together
+        QVERIFY(m_doc->material() == before.material);
+        QVERIFY(m_doc->scene().mesh == before.mesh);
     }
 
     void typedUvOffsetIsOneUndoStep() {
