@@ -8,6 +8,7 @@
 
 #include "core/graph/graph.h"
 #include "core/import_text.h"
+#include "core/mtlx_shader_inputs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,92 +30,11 @@ struct Failure {
     ImportProblem problem;
 };
 
-/// Where one shader input is mapped: a parameter, optionally a texture slot and the channel
-/// the slot reads (so `extract` of that channel of an image fills the slot directly).
-struct Target {
-    ParamId param = ParamId::Count;
-    TextureSlot slot = TextureSlot::Count;
-    int channel = -1; ///< the channel the slot reads for a scalar; -1: RGB
-    bool normal = false;
-};
-
 using S = TextureSlot;
 using P = ParamId;
-
-const std::map<std::string, Target>& targetsOf(const std::string& shader) {
-    static const std::map<std::string, Target> standard{
-        {"base_color", {P::BaseColor, S::BaseColor}},
-        {"metalness", {P::Metallic, S::MetallicRoughness, 2}},
-        {"specular", {P::SpecularWeight, S::Specular, 3}},
-        {"specular_color", {P::SpecularColor, S::SpecularColor}},
-        {"specular_roughness", {P::Roughness, S::MetallicRoughness, 1}},
-        {"specular_IOR", {P::Ior}},
-        {"coat", {P::ClearcoatWeight, S::Clearcoat, 0}},
-        {"coat_roughness", {P::ClearcoatRoughness, S::ClearcoatRoughness, 1}},
-        {"sheen", {P::SheenWeight}},
-        {"sheen_color", {P::SheenColor, S::SheenColor}},
-        {"sheen_roughness", {P::SheenRoughness, S::SheenRoughness, 3}},
-        {"emission", {P::EmissiveStrength}},
-        {"emission_color", {P::EmissiveColor, S::Emissive}},
-        {"normal", {P::NormalScale, S::Normal, -1, true}},
-        {"coat_normal", {P::ClearcoatNormalScale, S::ClearcoatNormal, -1, true}},
-    };
-    static const std::map<std::string, Target> openPbr{
-        {"base_color", {P::BaseColor, S::BaseColor}},
-        {"base_metalness", {P::Metallic, S::MetallicRoughness, 2}},
-        {"specular_weight", {P::SpecularWeight, S::Specular, 3}},
-        {"specular_color", {P::SpecularColor, S::SpecularColor}},
-        {"specular_roughness", {P::Roughness, S::MetallicRoughness, 1}},
-        {"specular_ior", {P::Ior}},
-        {"coat_weight", {P::ClearcoatWeight, S::Clearcoat, 0}},
-        {"coat_roughness", {P::ClearcoatRoughness, S::ClearcoatRoughness, 1}},
-        {"fuzz_weight", {P::SheenWeight}},
-        {"fuzz_color", {P::SheenColor, S::SheenColor}},
-        {"fuzz_roughness", {P::SheenRoughness, S::SheenRoughness, 3}},
-        {"emission_luminance", {P::EmissiveStrength}},
-        {"emission_color", {P::EmissiveColor, S::Emissive}},
-        {"geometry_normal", {P::NormalScale, S::Normal, -1, true}},
-        {"geometry_coat_normal", {P::ClearcoatNormalScale, S::ClearcoatNormal, -1, true}},
-    };
-    static const std::map<std::string, Target> gltf{
-        {"base_color", {P::BaseColor, S::BaseColor}},
-        {"metallic", {P::Metallic, S::MetallicRoughness, 2}},
-        {"roughness", {P::Roughness, S::MetallicRoughness, 1}},
-        {"specular", {P::SpecularWeight, S::Specular, 3}},
-        {"specular_color", {P::SpecularColor, S::SpecularColor}},
-        {"ior", {P::Ior}},
-        {"sheen_color", {P::SheenColor, S::SheenColor}},
-        {"sheen_roughness", {P::SheenRoughness, S::SheenRoughness, 3}},
-        {"clearcoat", {P::ClearcoatWeight, S::Clearcoat, 0}},
-        {"clearcoat_roughness", {P::ClearcoatRoughness, S::ClearcoatRoughness, 1}},
-        {"emissive", {P::EmissiveColor, S::Emissive}},
-        {"emissive_strength", {P::EmissiveStrength}},
-        {"normal", {P::NormalScale, S::Normal, -1, true}},
-        {"clearcoat_normal", {P::ClearcoatNormalScale, S::ClearcoatNormal, -1, true}},
-        {"occlusion", {P::OcclusionStrength, S::Occlusion, 0}},
-    };
-    static const std::map<std::string, Target> none;
-    if (shader == "standard_surface")
-        return standard;
-    if (shader == "open_pbr_surface")
-        return openPbr;
-    if (shader == "gltf_pbr")
-        return gltf;
-    return none;
-}
-
-/// MaterialX colour space names (the ACES/OCIO "cg-config" aliases) as Velvet's config names
-/// them (resources/ocio/config.ocio); others are kept as they are.
-std::string velvetColorSpace(const std::string& mx) {
-    static const std::map<std::string, std::string> names{{"srgb_texture", "sRGB texture"},
-                                                          {"lin_rec709", "Linear Rec.709"},
-                                                          {"acescg", "ACEScg"},
-                                                          {"lin_ap1", "ACEScg"},
-                                                          {"raw", "Raw"},
-                                                          {"none", "Raw"}};
-    const auto it = names.find(mx);
-    return it == names.end() ? mx : it->second;
-}
+using mtlx::Target;
+using mtlx::targetsOf;
+using mtlx::velvetColorSpace;
 
 std::vector<float> numbers(const std::string& text) {
     std::vector<float> out;
