@@ -529,9 +529,27 @@ private:
         if (mode == "MASK" && cutoff != 0.5)
             warn(at(place, "alphaCutoff") + ": " + formatValue(float(cutoff)) +
                  " is not mapped; Velvet's cut-out threshold is 0.5");
+        if (mode == "OPAQUE" && baseTextureHasAlpha())
+            warn(at(place, "alphaMode") + ": OPAQUE ignores the base colour texture's alpha; "
+                                          "Velvet cuts out where it is below 0.5");
         if (m_baseAlpha < 1.0f)
             warn(at(place, "pbrMetallicRoughness.baseColorFactor") + "[3]: alpha " +
                  formatValue(m_baseAlpha) + " is not mapped (Velvet has no opacity factor)");
+    }
+
+    /// Whether the base colour image has an alpha channel: an embedded PNG's colour type (grey
+    /// or RGB with alpha, PNG specification 11.2.2), else the file's header.
+    bool baseTextureHasAlpha() const {
+        const std::string& file = m_out->material.texture(TextureSlot::BaseColor).file;
+        if (file.empty())
+            return false;
+        for (const ExportFile& f : m_out->images)
+            if ((m_imageFolder / f.name).lexically_normal().string() == file)
+                return f.bytes.size() > 25 && f.bytes.compare(1, 3, "PNG") == 0 &&
+                       (f.bytes[25] == 4 || f.bytes[25] == 6);
+        ImageInfo info;
+        std::string error;
+        return readImageInfo(file, info, &error) && (info.channels == 2 || info.channels == 4);
     }
 
     void readSpecGloss(const Json& sg, const std::string& p, bool hasPbr) {

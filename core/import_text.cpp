@@ -8,7 +8,8 @@ namespace {
 
 std::uint32_t u32(const std::string& b, size_t o) {
     return std::uint32_t(std::uint8_t(b[o])) | std::uint32_t(std::uint8_t(b[o + 1])) << 8 |
-           std::uint32_t(std::uint8_t(b[o + 2])) << 16 | std::uint32_t(std::uint8_t(b[o + 3])) << 24;
+           std::uint32_t(std::uint8_t(b[o + 2])) << 16 |
+           std::uint32_t(std::uint8_t(b[o + 3])) << 24;
 }
 
 int hexValue(char c) {
@@ -84,8 +85,8 @@ bool splitGlb(const std::string& b, GlbChunks& out, std::string& place, std::str
         return false;
     }
     if (u32(b, 4) != 2) {
-        message = "container version " + std::to_string(u32(b, 4)) +
-                  "; glTF 2.0 binaries are version 2";
+        message =
+            "container version " + std::to_string(u32(b, 4)) + "; glTF 2.0 binaries are version 2";
         return false;
     }
     if (u32(b, 8) > b.size()) {

@@ -3,8 +3,8 @@
 // embedded images written beside the preset under safe names, node graphs as Velvet nodes, and
 // every refusal (broken JSON / XML with the place, dangling references, missing buffers,
 // out-of-range values, ambiguous selection), each with the file and the place.
-#include "core/gltf_spec_gloss.h"
 #include "core/document_io.h"
+#include "core/gltf_spec_gloss.h"
 #include "core/graph/graph.h"
 #include "core/image.h"
 #include "core/material_import.h"
@@ -128,7 +128,8 @@ private slots:
         for (const char* bad : {R"("uv": {"scale": [0, 1]})", R"("uv": {"rotation": 400})"}) {
             Problems p;
             const std::string t = std::string(R"({"format": "velvet.material", "version": 2,
-              "name": "t", "textures": {"baseColor": {"file": "c.png", )") + bad + "}}}";
+              "name": "t", "textures": {"baseColor": {"file": "c.png", )") +
+                                  bad + "}}}";
             parseMaterial(t, "t.json", "/x", p);
             QVERIFY(p.hasErrors());
             const auto error = std::find_if(p.items.begin(), p.items.end(), [](const Problem& x) {

@@ -4,8 +4,8 @@
 // undo step, a malformed file is refused with its place in the Log and the document untouched,
 // a dropped MaterialX file is applied, and typing a UV offset is one undo step.
 #include "core/image.h"
-#include "core/material_export.h"
 #include "core/material.h"
+#include "core/material_export.h"
 #include "ui/document_controller.h"
 #include "ui/log_panel.h"
 #include "ui/main_window.h"
@@ -151,8 +151,8 @@ private slots:
         scene.material.name = "Exported";
         scene.material.setScalar(ParamId::Metallic, 0.75f);
         scene.mesh.kind = PreviewMeshKind::Cube;
-        const ExportOutcome exported = exportMaterial(scene, m_dir.filePath("glb").toStdString(),
-                                                      "cube", ExportOptions{});
+        const ExportOutcome exported =
+            exportMaterial(scene, m_dir.filePath("glb").toStdString(), "cube", ExportOptions{});
         QVERIFY2(exported.ok(), exported.error.c_str());
         const QString glb = QString::fromStdString(exported.written.back().string());
         const Scene before = m_doc->scene();

@@ -3,7 +3,7 @@
 #include "ui/document_controller.h"
 
 #include <QDoubleSpinBox>
-#include <QHBoxLayout>
+#include <QGridLayout>
 #include <QLabel>
 #include <QSignalBlocker>
 #include <QToolButton>
@@ -20,31 +20,41 @@ QString fromView(std::string_view s) {
 UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot slot,
                                      const QString& namePrefix, QWidget* parent)
     : QWidget(parent), m_controller(controller), m_slot(slot) {
-    auto* row = new QHBoxLayout(this);
-    row->setContentsMargins(0, 0, 0, 0);
-    row->setSpacing(2);
+    // Two rows, so every value stays readable in a narrow Properties dock:
+    //   Tiling [u] [v]  Rotation [deg]
+    //   Offset [u] [v]  [1:1]
+    auto* grid = new QGridLayout(this);
+    grid->setContentsMargins(0, 0, 0, 0);
+    grid->setHorizontalSpacing(4);
+    grid->setVerticalSpacing(2);
     struct Spec {
         const char* name;
         QString tip;
         double min, max, step;
+        int row, column;
     };
     const std::array<Spec, 5> specs{{
         {"uvScaleU", tr("Tiling in U (how often the texture repeats across the UV square)"),
-         -kUvScaleLimit, kUvScaleLimit, 0.1},
-        {"uvScaleV", tr("Tiling in V"), -kUvScaleLimit, kUvScaleLimit, 0.1},
+         -kUvScaleLimit, kUvScaleLimit, 0.1, 0, 1},
+        {"uvScaleV", tr("Tiling in V"), -kUvScaleLimit, kUvScaleLimit, 0.1, 0, 2},
         {"uvOffsetU", tr("Offset in U, after tiling and rotation (UV units)"), -kUvOffsetLimit,
-         kUvOffsetLimit, 0.05},
+         kUvOffsetLimit, 0.05, 1, 1},
         {"uvOffsetV",
-         tr("Offset in V, after tiling and rotation (UV units; V runs down the "
-            "image)"),
-         -kUvOffsetLimit, kUvOffsetLimit, 0.05},
+         tr("Offset in V, after tiling and rotation (UV units; V runs down the image)"),
+         -kUvOffsetLimit, kUvOffsetLimit, 0.05, 1, 2},
         {"uvRotation", tr("Rotation in degrees, counter-clockwise, after tiling"),
-         -kUvRotationLimit, kUvRotationLimit, 5.0},
+         -kUvRotationLimit, kUvRotationLimit, 5.0, 0, 4},
     }};
-    auto* label = new QLabel(tr("UV"), this);
-    label->setToolTip(tr("Tiling, offset and rotation of the texture coordinates (glTF's "
-                         "KHR_texture_transform)"));
-    row->addWidget(label);
+    const QString transformTip =
+        tr("Tiling, offset and rotation of the texture coordinates (glTF's KHR_texture_transform)");
+    const auto addLabel = [&](const QString& text, int row, int column) {
+        auto* label = new QLabel(text, this);
+        label->setToolTip(transformTip);
+        grid->addWidget(label, row, column);
+    };
+    addLabel(tr("Tiling"), 0, 0);
+    addLabel(tr("Offset"), 1, 0);
+    addLabel(tr("Rotation"), 0, 3);
     for (size_t i = 0; i < specs.size(); ++i) {
         auto* box = new QDoubleSpinBox(this);
         box->setObjectName(namePrefix + QLatin1Char('/') + QLatin1String(specs[i].name));
@@ -56,14 +66,16 @@ UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot
         box->setFocusPolicy(Qt::StrongFocus);
         if (i == 4)
             box->setSuffix(QStringLiteral("°"));
-        box->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
         connect(box, &QDoubleSpinBox::valueChanged, this, [this] {
             if (!m_refreshing)
                 commit();
         });
-        row->addWidget(box, 1);
+        grid->addWidget(box, specs[i].row, specs[i].column);
         m_boxes[i] = box;
     }
+    grid->setColumnStretch(1, 1);
+    grid->setColumnStretch(2, 1);
+    grid->setColumnStretch(4, 1);
     m_reset = new QToolButton(this);
     m_reset->setObjectName(namePrefix + QStringLiteral("/uvReset"));
     m_reset->setText(tr("1:1"));
@@ -76,7 +88,7 @@ UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot
         m_controller->editTexture(
             m_slot, ref, tr("Reset %1 UV transform").arg(fromView(textureSlotMeta(m_slot).label)));
     });
-    row->addWidget(m_reset);
+    grid->addWidget(m_reset, 1, 4, Qt::AlignLeft);
     refresh();
 }
 
