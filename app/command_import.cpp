@@ -100,6 +100,8 @@ int runImport(const std::vector<std::string>& argv) {
         std::cerr << outcome.error << "\n";
         return BadInput;
     }
+    fs::create_directories(out.parent_path(), ec); // as export makes its folder; a failure
+                                                   // is said by the save below
     if (mesh && !outcome.hasMesh)
         std::cerr << "warning: " << file.string() << ": --mesh: the file holds no mesh; the "
                   << "scene keeps the sphere\n";

@@ -90,8 +90,18 @@ public:
         } else {
             text = std::move(*bytes);
         }
+        // A hostile file nested a million deep must not exhaust the stack: glTF needs a few
+        // levels (extensions inside textureInfos inside materials), 64 is plenty.
+        struct TooDeep {};
+        const Json::parser_callback_t depthLimit = [](int depth, Json::parse_event_t, Json&) {
+            if (depth > 64)
+                throw TooDeep{};
+            return true;
+        };
         try {
-            m_doc = Json::parse(text);
+            m_doc = Json::parse(text, depthLimit);
+        } catch (const TooDeep&) {
+            fail("", "JSON nested deeper than 64 levels");
         } catch (const Json::parse_error& e) {
             std::string what = e.what();
             if (const size_t p = what.find("parse error"); p != std::string::npos)

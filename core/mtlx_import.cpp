@@ -173,14 +173,16 @@ private:
     /// The node an input connects to (nodename in @p scope or the document; nodegraph + output;
     /// interfacename: the graph's own input, followed). Null for a plain value. Dangling names
     /// are malformed.
-    pugi::xml_node resolve(pugi::xml_node in, pugi::xml_node scope) {
+    pugi::xml_node resolve(pugi::xml_node in, pugi::xml_node scope, int hops = 0) {
+        if (hops > 64) // graph inputs and outputs naming each other round in a circle
+            fail(in, "connections loop through node graph inputs and outputs");
         if (const char* iface = in.attribute("interfacename").value(); *iface) {
             const pugi::xml_node graphInput = findInput(scope, iface);
             if (!scope || !graphInput)
                 fail(in, "interfacename \"" + std::string(iface) +
                              "\" names no input of the "
                              "node graph");
-            return resolve(graphInput, pugi::xml_node()); // a graph's inputs connect outside it
+            return resolve(graphInput, pugi::xml_node(), hops + 1); // graph inputs: from outside
         }
         if (const char* graphName = in.attribute("nodegraph").value(); *graphName) {
             const pugi::xml_node g = m_root.find_child_by_attribute("nodegraph", "name", graphName);
@@ -193,7 +195,7 @@ private:
             if (!out)
                 fail(in,
                      "output \"" + output + "\" of nodegraph \"" + graphName + "\" does not exist");
-            return resolve(out, g);
+            return resolve(out, g, hops + 1);
         }
         if (const char* nodeName = in.attribute("nodename").value(); *nodeName) {
             pugi::xml_node n;
@@ -421,6 +423,14 @@ private:
         const auto key = n.offset_debug();
         if (auto it = m_built.find(key); it != m_built.end())
             return it->second;
+        // A cycle would recurse forever (MaterialX forbids them; Velvet's graph refuses them too).
+        if (!m_visiting.insert(key).second || depth > 256)
+            fail(n, "is part of a cycle of connections");
+        struct Leave {
+            std::set<ptrdiff_t>& set;
+            ptrdiff_t key;
+            ~Leave() { set.erase(key); }
+        } leave{m_visiting, key};
         const std::string c = n.name();
         const std::string name = n.attribute("name").value();
         static const std::map<std::string, std::string> direct{{"multiply", "math.multiply"},
@@ -565,6 +575,7 @@ private:
     std::map<ptrdiff_t, std::pair<NodeId, int>> m_built;
     std::map<ptrdiff_t, pugi::xml_node> m_scopeOf;
     std::set<ParamId> m_driven;
+    std::set<ptrdiff_t> m_visiting; ///< graphNode()'s nodes being built (cycle check)
 
 public:
     std::vector<std::string> m_warnings;

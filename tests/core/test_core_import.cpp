@@ -255,6 +255,8 @@ private slots:
                    R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [2, 0, 0]}}})")
             << "materials[0].extensions.KHR_materials_sheen.sheenColorFactor[0]";
         QTest::newRow("no materials") << QByteArray(R"({"asset": {"version": "2.0"}})") << "";
+        QTest::newRow("nested too deep")
+            << QByteArray(R"({"asset": {"version": "2.0"}, "x": )") + QByteArray(100000, '[') << "";
     }
     void gltfRefusals() {
         QFETCH(QByteArray, text);
@@ -425,6 +427,21 @@ private slots:
                    "<surfacematerial name=\"M\" type=\"material\"><input name=\"surfaceshader\" "
                    "type=\"surfaceshader\" nodename=\"S\" /></surfacematerial>\n</materialx>")
             << "line 2";
+        QTest::newRow("cycle")
+            << QByteArray(
+                   "<materialx version=\"1.39\">\n<add name=\"a\" type=\"color3\"><input "
+                   "name=\"in1\" "
+                   "type=\"color3\" nodename=\"b\" /></add>\n<add name=\"b\" "
+                   "type=\"color3\"><input "
+                   "name=\"in1\" type=\"color3\" nodename=\"a\" /></add>\n<standard_surface "
+                   "name=\"S\" "
+                   "type=\"surfaceshader\"><input name=\"base_color\" type=\"color3\" "
+                   "nodename=\"a\" "
+                   "/></standard_surface>\n<surfacematerial name=\"M\" type=\"material\"><input "
+                   "name=\"surfaceshader\" type=\"surfaceshader\" nodename=\"S\" "
+                   "/></surfacematerial>\n"
+                   "</materialx>")
+            << "line ";
         QTest::newRow("not a number")
             << QByteArray(
                    "<materialx version=\"1.39\">\n<standard_surface name=\"S\" "
