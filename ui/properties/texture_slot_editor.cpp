@@ -215,8 +215,11 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
                           "file.");
     setToolTip(fromView(textureSlotMeta(slot).tooltip) + viewportNote);
 
-    auto* row = new QHBoxLayout(this);
-    row->setContentsMargins(0, 0, 0, 0);
+    auto* outer = new QVBoxLayout(this);
+    outer->setContentsMargins(0, 0, 0, 0);
+    outer->setSpacing(2);
+    auto* row = new QHBoxLayout;
+    outer->addLayout(row);
     m_thumbLabel = new QLabel(this);
     m_thumbLabel->setObjectName(name + QStringLiteral("/thumbnail"));
     m_thumbLabel->setFixedSize(kThumbnailSide + 2, kThumbnailSide + 2);
@@ -252,9 +255,11 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
     connect(m_colorSpace, &QComboBox::activated, this, &TextureSlotEditor::onColorSpaceActivated);
     buttons->addWidget(m_colorSpace, 1);
     column->addLayout(buttons);
-    m_uv = new UvTransformEditor(controller, slot, name, this);
-    column->addWidget(m_uv);
     row->addLayout(column, 1);
+    // The UV transform under the row, full width (a column beside the thumbnail would widen
+    // the whole panel).
+    m_uv = new UvTransformEditor(controller, slot, name, this);
+    outer->addWidget(m_uv);
 
     refresh();
 }

@@ -20,9 +20,10 @@ QString fromView(std::string_view s) {
 UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot slot,
                                      const QString& namePrefix, QWidget* parent)
     : QWidget(parent), m_controller(controller), m_slot(slot) {
-    // Two rows, so every value stays readable in a narrow Properties dock:
-    //   Tiling [u] [v]  Rotation [deg]
-    //   Offset [u] [v]  [1:1]
+    // Three short rows under the slot's thumbnail, so the panel needs no extra width:
+    //   Tiling   [u] [v]
+    //   Offset   [u] [v]
+    //   Rotation [deg] [1:1]
     auto* grid = new QGridLayout(this);
     grid->setContentsMargins(0, 0, 0, 0);
     grid->setHorizontalSpacing(4);
@@ -43,7 +44,7 @@ UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot
          tr("Offset in V, after tiling and rotation (UV units; V runs down the image)"),
          -kUvOffsetLimit, kUvOffsetLimit, 0.05, 1, 2},
         {"uvRotation", tr("Rotation in degrees, counter-clockwise, after tiling"),
-         -kUvRotationLimit, kUvRotationLimit, 5.0, 0, 4},
+         -kUvRotationLimit, kUvRotationLimit, 5.0, 2, 1},
     }};
     const QString transformTip =
         tr("Tiling, offset and rotation of the texture coordinates (glTF's KHR_texture_transform)");
@@ -54,7 +55,7 @@ UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot
     };
     addLabel(tr("Tiling"), 0, 0);
     addLabel(tr("Offset"), 1, 0);
-    addLabel(tr("Rotation"), 0, 3);
+    addLabel(tr("Rotation"), 2, 0);
     for (size_t i = 0; i < specs.size(); ++i) {
         auto* box = new QDoubleSpinBox(this);
         box->setObjectName(namePrefix + QLatin1Char('/') + QLatin1String(specs[i].name));
@@ -66,6 +67,10 @@ UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot
         box->setFocusPolicy(Qt::StrongFocus);
         if (i == 4)
             box->setSuffix(QStringLiteral("°"));
+        // The range's widest text ("-1000.000") must not set the panel's width: the boxes share
+        // what the dock gives them (Properties must not scroll sideways).
+        box->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+        box->setMinimumWidth(48);
         connect(box, &QDoubleSpinBox::valueChanged, this, [this] {
             if (!m_refreshing)
                 commit();
@@ -75,7 +80,6 @@ UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot
     }
     grid->setColumnStretch(1, 1);
     grid->setColumnStretch(2, 1);
-    grid->setColumnStretch(4, 1);
     m_reset = new QToolButton(this);
     m_reset->setObjectName(namePrefix + QStringLiteral("/uvReset"));
     m_reset->setText(tr("1:1"));
@@ -88,7 +92,7 @@ UvTransformEditor::UvTransformEditor(DocumentController* controller, TextureSlot
         m_controller->editTexture(
             m_slot, ref, tr("Reset %1 UV transform").arg(fromView(textureSlotMeta(m_slot).label)));
     });
-    grid->addWidget(m_reset, 1, 4, Qt::AlignLeft);
+    grid->addWidget(m_reset, 2, 2, Qt::AlignLeft);
     refresh();
 }
 
