@@ -90,7 +90,7 @@ struct Subcommand {
     std::string_view summary;
     int (*run)(const std::vector<std::string>&);
 };
-const std::array<Subcommand, 9> kSubcommands{{
+const std::array<Subcommand, 10> kSubcommands{{
     {"render", "render a scene or material preset to an image, headless", runRender},
     {"validate", "check presets and scenes, printing every problem", runValidate},
     {"info", "version, headless OpenGL and dependency versions", runInfo},
@@ -99,6 +99,7 @@ const std::array<Subcommand, 9> kSubcommands{{
     {"pack", "pack grey material maps into one texture (glTF, Unreal ORM, HDRP mask)", runPack},
     {"unpack", "split a packed texture back into one grey image per map", runUnpack},
     {"export", "export materials as glTF 2.0 (.glb/.gltf) or standalone presets", runExport},
+    {"import", "import a glTF 2.0 or MaterialX material as a preset", runImport},
     {"reference", "path trace the same frame on the CPU (ground truth, .exr)", runReference},
 }};
 /// Left out of --help: `import-mesh IN OUT` is the child process of the crash-isolated mesh

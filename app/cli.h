@@ -55,6 +55,7 @@ int runTextureBench(bool json, bool quick);
 int runPack(const std::vector<std::string>& args);
 int runUnpack(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
+int runImport(const std::vector<std::string>& args);
 int runReference(const std::vector<std::string>& args);
 /// Hidden: the child process of the crash-isolated mesh import (command_import_mesh.cpp).
 int runImportMesh(const std::vector<std::string>& args);

@@ -139,9 +139,11 @@ public:
         // because the transform lives on the textureInfo.
         Json info{{"index", textureFor(use->image)}};
         if (use->transformed) {
-            info["extensions"]["KHR_texture_transform"] = {
-                {"offset", {num(use->offset.x), num(use->offset.y)}},
-                {"scale", {num(use->scale.x), num(use->scale.y)}}};
+            Json t{{"offset", {num(use->offset.x), num(use->offset.y)}}};
+            if (use->rotation != 0.0f)
+                t["rotation"] = num(use->rotation);
+            t["scale"] = {num(use->scale.x), num(use->scale.y)};
+            info["extensions"]["KHR_texture_transform"] = t;
             usesTransform = true;
         }
         return info;

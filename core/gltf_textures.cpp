@@ -94,10 +94,24 @@ Image encodeSrgb(const Image& linear, long& clamped) {
     return out;
 }
 
-GltfTextureUse useOf(int image, const TextureRef& ref, const Image& pixels) {
+/// The slot's own UV transform as KHR_texture_transform: the same scale and offset, and
+/// rotation = -radians(degrees), glTF's rotation matrix being the transpose of Velvet's
+/// (texture_ref.h).
+GltfTextureUse uvUse(int image, const TextureRef& ref) {
     GltfTextureUse u;
     u.image = image;
-    if (ref.useRegion) {
+    if (!ref.uv.isIdentity()) {
+        u.transformed = true;
+        u.scale = ref.uv.scale;
+        u.offset = ref.uv.offset;
+        u.rotation = -ref.uv.rotation * 3.14159265358979323846f / 180.0f;
+    }
+    return u;
+}
+
+GltfTextureUse useOf(int image, const TextureRef& ref, const Image& pixels) {
+    GltfTextureUse u = uvUse(image, ref);
+    if (ref.useRegion && ref.uv.isIdentity()) {
         // KHR_texture_transform: uv' = offset + scale * uv (no rotation). glTF's UV origin is
         // the image's top-left corner, as Velvet's regions count rows from the top.
         u.transformed = true;
@@ -115,8 +129,12 @@ bool planGltfTextures(const Material& m, TextureCache& cache, GltfTexturePlan& p
                       std::string* error, bool cutOutRegions) {
     plan = {};
     const bool srm = isSet(m, TextureSlot::SpecRoughMetal);
+    // Occlusion and metallic-roughness with different UV transforms stay two images (glTF
+    // reads them through separate textureInfos); packing needs one mapping for both.
     const bool packOrm =
-        srm || (isSet(m, TextureSlot::Occlusion) && isSet(m, TextureSlot::MetallicRoughness));
+        srm ||
+        (isSet(m, TextureSlot::Occlusion) && isSet(m, TextureSlot::MetallicRoughness) &&
+         m.texture(TextureSlot::Occlusion).uv == m.texture(TextureSlot::MetallicRoughness).uv);
 
     // Slots written as they are, one image per (file, colour space, colour or data[, region]).
     std::map<std::tuple<std::string, std::string, bool, int, int, int, int>, int> imageOf;
@@ -134,7 +152,7 @@ bool planGltfTextures(const Material& m, TextureCache& cache, GltfTexturePlan& p
         if (!loadSlot(m, slot, cache, image, error))
             return false;
         const bool colour = textureSlotMeta(slot).isColor;
-        const bool cut = cutOutRegions && ref.useRegion;
+        const bool cut = ref.useRegion && (cutOutRegions || !ref.uv.isIdentity());
         const AtlasRegion r = cut ? ref.region : AtlasRegion{};
         const auto key =
             std::make_tuple(ref.file, ref.colorSpace, colour, r.x, r.y, r.width, r.height);
@@ -147,8 +165,7 @@ bool planGltfTextures(const Material& m, TextureCache& cache, GltfTexturePlan& p
             plan.images.push_back(std::move(out));
             found = imageOf.emplace(key, int(plan.images.size()) - 1).first;
         }
-        plan.uses[size_t(i)] =
-            cut ? GltfTextureUse{found->second} : useOf(found->second, ref, *image);
+        plan.uses[size_t(i)] = cut ? uvUse(found->second, ref) : useOf(found->second, ref, *image);
         if (slot == TextureSlot::BaseColor && (image->channels == 2 || image->channels == 4)) {
             const Image region = cutOut(*image, ref);
             for (size_t p = 3; p < region.pixels.size(); p += 4)
@@ -229,8 +246,17 @@ bool planGltfTextures(const Material& m, TextureCache& cache, GltfTexturePlan& p
                                 std::to_string(w) + "x" + std::to_string(h) +
                                 " to pack them into one image");
     plan.images.push_back({"orm", std::move(packed)});
-    GltfTextureUse packedUse;
-    packedUse.image = int(plan.images.size()) - 1;
+    // The packed image is read through one UV transform: the seed atlas's (or the
+    // metallic-roughness slot's); a packed slot with another one is said.
+    const TextureSlot mapping = srm ? TextureSlot::SpecRoughMetal : TextureSlot::MetallicRoughness;
+    for (const Source& s : sources)
+        if (!(m.texture(s.slot).uv == m.texture(mapping).uv))
+            plan.warnings.push_back("textures." + std::string(textureSlotMeta(s.slot).id) +
+                                    ": its UV transform differs from textures." +
+                                    std::string(textureSlotMeta(mapping).id) +
+                                    "'s, with which it is packed into one image; the packed "
+                                    "image uses the latter's");
+    const GltfTextureUse packedUse = uvUse(int(plan.images.size()) - 1, m.texture(mapping));
     plan.uses[size_t(TextureSlot::MetallicRoughness)] = packedUse;
     if (isSet(m, TextureSlot::Occlusion))
         plan.uses[size_t(TextureSlot::Occlusion)] = packedUse;

@@ -25,13 +25,16 @@ struct GltfImage {
     Image pixels;      ///< values in [0, 1] as they go into the 8-bit PNG
 };
 
-/// How one glTF texture slot reads an image: which image, and for an atlas region the
-/// KHR_texture_transform that maps the mesh's [0, 1] UVs onto the region.
+/// How one glTF texture slot reads an image: which image, and the KHR_texture_transform that
+/// maps the mesh's UVs: the slot's UV transform (texture_ref.h) or, for an atlas region with no
+/// UV transform, the one that maps [0, 1] onto the region (a region with a UV transform is cut
+/// out: glTF's sampler would tile the whole atlas where Velvet tiles the region).
 struct GltfTextureUse {
     int image = -1;
     bool transformed = false;
     glm::vec2 offset{0.0f}; ///< region origin / atlas size (UV space: v = 0 at the top row)
     glm::vec2 scale{1.0f};  ///< region size / atlas size
+    float rotation = 0.0f;  ///< radians, KHR_texture_transform's sense (the slot's UV transform)
 };
 
 /// The textures of an export, indexed by TextureSlot. SpecRoughMetal never has a use of its

@@ -142,6 +142,30 @@ JsonValue textureSchema() {
     cs.add("type", str("string"));
     cs.add("minLength", JsonValue::makeNumber(1));
     cs.add("description", str("Input colour space; omitted: the slot's default."));
+    JsonValue& uv = p.add("uv", closedObject());
+    uv.add("description", str("UV transform before sampling: uv' = R(rotation) (scale * uv) + "
+                              "offset (KHR_texture_transform)."));
+    JsonValue& uvp = uv.add("properties", object());
+    const auto pairSchema = [&](std::string_view description, double limit) {
+        JsonValue a = object();
+        a.add("description", str(description));
+        a.add("type", str("array"));
+        JsonValue n = object();
+        n.add("type", str("number"));
+        n.add("minimum", JsonValue::makeNumber(-limit));
+        n.add("maximum", JsonValue::makeNumber(limit));
+        a.add("items", std::move(n));
+        a.add("minItems", JsonValue::makeNumber(2));
+        a.add("maxItems", JsonValue::makeNumber(2));
+        return a;
+    };
+    uvp.add("scale", pairSchema("Tiling in u and v (not 0).", kUvScaleLimit));
+    uvp.add("offset", pairSchema("Offset in UV units, after scale and rotation.", kUvOffsetLimit));
+    JsonValue& rot = uvp.add("rotation", object());
+    rot.add("description", str("Degrees, counter-clockwise in UV space, after scale."));
+    rot.add("type", str("number"));
+    rot.add("minimum", JsonValue::makeNumber(-kUvRotationLimit));
+    rot.add("maximum", JsonValue::makeNumber(kUvRotationLimit));
     return o;
 }
 

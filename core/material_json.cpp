@@ -12,7 +12,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::array<std::string_view, 4> kHeaderKeys{"format", "version", "name", "tags"};
-constexpr std::array<std::string_view, 3> kTextureKeys{"file", "region", "colorSpace"};
+constexpr std::array<std::string_view, 4> kTextureKeys{"file", "region", "colorSpace", "uv"};
+constexpr std::array<std::string_view, 3> kUvKeys{"scale", "offset", "rotation"};
 constexpr std::array<std::string_view, 7> kVersion1Keys{
     "format", "version", "name", "albedo", "specular", "roughness", "metallic"};
 /// Atlas rectangles beyond this are certainly mistakes (and keep the cast to int safe).
@@ -84,6 +85,30 @@ void readParamObject(JsonReader& r, const JsonValue& v, const std::string& path,
     }
 }
 
+/// "uv": {"scale": [u, v], "offset": [u, v], "rotation": degrees}, each optional (texture_ref.h).
+void readUvTransform(JsonReader& r, const JsonValue& v, const std::string& path, UvTransform& uv) {
+    if (!r.expectObject(v, path, kUvKeys))
+        return;
+    if (const JsonValue* s = v.find("scale")) {
+        const std::string scalePath = jsonPathKey(path, "scale");
+        if (auto x = r.vec2(*s, scalePath, closedRange(-kUvScaleLimit, kUvScaleLimit))) {
+            if (x->x == 0.0f || x->y == 0.0f)
+                r.error(scalePath, "a scale of 0 collapses the texture to one texel; expected a "
+                                   "non-zero number in each component");
+            else
+                uv.scale = *x;
+        }
+    }
+    if (const JsonValue* o = v.find("offset"))
+        if (auto x = r.vec2(*o, jsonPathKey(path, "offset"),
+                            closedRange(-kUvOffsetLimit, kUvOffsetLimit)))
+            uv.offset = *x;
+    if (const JsonValue* a = v.find("rotation"))
+        if (auto x = r.number(*a, jsonPathKey(path, "rotation"),
+                              closedRange(-kUvRotationLimit, kUvRotationLimit)))
+            uv.rotation = static_cast<float>(*x);
+}
+
 void readTextureRef(JsonReader& r, const JsonValue& v, const std::string& path,
                     const fs::path& baseDir, TextureRef& ref) {
     if (!r.expectObject(v, path, kTextureKeys))
@@ -122,6 +147,8 @@ void readTextureRef(JsonReader& r, const JsonValue& v, const std::string& path,
     if (const JsonValue* cs = v.find("colorSpace"))
         if (auto s = r.string(*cs, jsonPathKey(path, "colorSpace"), false))
             ref.colorSpace = *s;
+    if (const JsonValue* uv = v.find("uv"))
+        readUvTransform(r, *uv, jsonPathKey(path, "uv"), ref.uv);
 }
 
 void readTextures(JsonReader& r, const JsonValue& v, const std::string& path,
@@ -269,6 +296,18 @@ JsonValue textureToJson(const TextureRef& t, const fs::path& baseDir) {
     }
     if (!t.colorSpace.empty())
         o.add("colorSpace", JsonValue::makeString(t.colorSpace));
+    if (!t.uv.isIdentity()) { // written only when set, so untouched presets stay as they were
+        JsonValue& uv = o.add("uv", JsonValue::makeObject());
+        const auto pair = [](glm::vec2 p) {
+            JsonValue a = JsonValue::makeArray();
+            a.push(JsonValue::makeFloat(p.x));
+            a.push(JsonValue::makeFloat(p.y));
+            return a;
+        };
+        uv.add("scale", pair(t.uv.scale));
+        uv.add("offset", pair(t.uv.offset));
+        uv.add("rotation", JsonValue::makeFloat(t.uv.rotation));
+    }
     return o;
 }
 

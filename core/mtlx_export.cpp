@@ -147,17 +147,48 @@ private:
     /// srgb_texture (the PNG holds sRGB-encoded values), vector types are data and are not
     /// colour-transformed (MaterialX Specification, "Color Spaces").
     std::string image(TextureSlot slot, const std::string& type) {
-        const int index = m_plan.uses[size_t(slot)]->image;
-        const std::string key = std::to_string(index) + "/" + type;
+        const GltfTextureUse& use = *m_plan.uses[size_t(slot)];
+        const int index = use.image;
+        const std::string uvKey = use.transformed ? mxUvKey(use) : std::string();
+        const std::string key = std::to_string(index) + "/" + type + uvKey;
         if (auto it = m_images.find(key); it != m_images.end())
             return it->second;
         m_used.insert(index);
-        MxNode n{"image", "image_" + m_plan.images[size_t(index)].label + "_" + type, type, {}};
+        std::string name = "image_" + m_plan.images[size_t(index)].label + "_" + type;
+        if (use.transformed) // one image node per UV mapping of the same file
+            name += "_" + std::string(textureSlotMeta(slot).id);
+        MxNode n{"image", name, type, {}};
         const bool colour = type.rfind("color", 0) == 0;
         n.inputs.push_back(
             {"file", "filename", imageFile(index), {}, colour ? "srgb_texture" : ""});
+        if (use.transformed) {
+            // The image node's own placement, uv * uvtiling + uvoffset in MaterialX's UV space
+            // (v up from the bottom row, MaterialX Specification "Texture nodes"); Velvet's v
+            // runs down from the top, so v_mx = 1 - v and the offset becomes
+            // (offset.u, 1 - scale.v - offset.v). A rotation has no image input (place2d's
+            // sense differs between MaterialX versions): said, not written.
+            n.inputs.push_back(
+                {"uvtiling", "vector2", num(use.scale.x) + ", " + num(use.scale.y), {}, {}});
+            n.inputs.push_back({"uvoffset",
+                                "vector2",
+                                num(use.offset.x) + ", " + num(1.0f - use.scale.y - use.offset.y),
+                                {},
+                                {}});
+            if (use.rotation != 0.0f)
+                m_rotated.insert(std::string(textureSlotMeta(slot).id));
+        }
         m_nodes.push_back(n);
         return m_images[key] = n.name;
+    }
+
+public:
+    /// Slots whose UV rotation was not written (one warning each).
+    const std::set<std::string>& rotatedSlots() const { return m_rotated; }
+
+private:
+    static std::string mxUvKey(const GltfTextureUse& u) {
+        return "/" + num(u.scale.x) + "," + num(u.scale.y) + "," + num(u.offset.x) + "," +
+               num(u.offset.y) + "," + num(u.rotation);
     }
     std::string extract(TextureSlot slot, int channel) {
         const std::string source = image(slot, "vector4");
@@ -185,6 +216,7 @@ private:
     std::vector<MxNode> m_nodes;
     std::map<std::string, std::string> m_images;
     std::set<int> m_used;
+    std::set<std::string> m_rotated;
 };
 
 /// A MaterialX name ([A-Za-z_][A-Za-z0-9_]*, MaterialX Specification "Names") from a stem.
@@ -330,6 +362,10 @@ bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader s
         }
     }
 
+    for (const std::string& slot : b.rotatedSlots())
+        out.warnings.push_back("textures." + slot +
+                               ": the UV rotation is not exported to MaterialX (the image node "
+                               "has tiling and offset only); tiling and offset are");
     std::string xml = "<?xml version=\"1.0\"?>\n"
                       "<materialx version=\"1.39\" colorspace=\"lin_rec709\">\n";
     xml += "  <!-- Exported by Velvet; every mapping: docs/interchange.md -->\n";

@@ -4,6 +4,7 @@
 /// atlas image (the seed documents store each element's offset in a shared atlas; their material
 /// atlas packs RGB = specular, roughness, metallic).
 
+#include <glm/vec2.hpp>
 #include <span>
 #include <string>
 #include <string_view>
@@ -44,12 +45,33 @@ struct AtlasRegion {
     bool operator==(const AtlasRegion&) const = default;
 };
 
+/// How a slot's texture coordinates are transformed before sampling: uv' = R(rotation) (scale *
+/// uv) + offset, R rotating counter-clockwise in UV space (u right, v down the image), the order
+/// and sense of the Image texture node (Blender's Mapping node, type Point). It maps exactly to
+/// KHR_texture_transform (same scale and offset; rotation = -radians(rotation), since glTF's
+/// rotation matrix is the transpose): docs/interchange.md.
+struct UvTransform {
+    glm::vec2 scale{1.0f};  ///< tiling: 2 repeats the texture twice across the UV square
+    glm::vec2 offset{0.0f}; ///< added after scale and rotation, in UV units
+    float rotation = 0.0f;  ///< degrees
+    bool isIdentity() const {
+        return scale == glm::vec2(1.0f) && offset == glm::vec2(0.0f) && rotation == 0.0f;
+    }
+    bool operator==(const UvTransform&) const = default;
+};
+
+/// The UV transform's limits (hard ranges of the JSON reader and the Properties editors).
+inline constexpr float kUvScaleLimit = 1000.0f;  ///< |scale| at most this, and not 0
+inline constexpr float kUvOffsetLimit = 1000.0f; ///< |offset| at most this
+inline constexpr float kUvRotationLimit = 360.0f;
+
 /// What fills a texture slot. Empty file: the slot is unused and the parameter value applies.
 struct TextureRef {
     std::string file;       ///< image path (absolute, or relative to the document that names it)
     bool useRegion = false; ///< true: only `region` of `file` (an atlas) is used
     AtlasRegion region;
     std::string colorSpace; ///< input colour space name; empty: the slot's default
+    UvTransform uv;         ///< applied to the mesh's UVs before the region (if any) is looked up
     bool empty() const { return file.empty(); }
     bool operator==(const TextureRef&) const = default;
 };

@@ -443,6 +443,9 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
             return nullptr;
         if (ref.useRegion && problems)
             problems->warning(ref.file, "textures", "atlas regions are read as the whole image");
+        if (!ref.uv.isIdentity() && problems) // the viewport's sampleSlot applies it
+            problems->warning(ref.file, "textures." + std::string(textureSlotMeta(slot).id) + ".uv",
+                              "the UV transform is not applied by the reference renderer yet");
         return t.image;
     };
     ctx.tex.baseColor = load(TextureSlot::BaseColor);

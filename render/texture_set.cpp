@@ -13,6 +13,7 @@
 #include <cmath>
 #include <epoxy/gl.h>
 #include <glm/common.hpp>
+#include <glm/trigonometric.hpp>
 #include <utility>
 
 namespace velvet::render {
@@ -78,6 +79,11 @@ void uploadMipChain(unsigned texture, const Image& image) {
 }
 
 namespace {
+
+// Uniform locations of common_material_textures.glsl: uTexRegion takes 1 .. kTextureSlotCount.
+constexpr int kUvLinearLocation = 1 + kTextureSlotCount;
+constexpr int kUvOffsetLocation = kUvLinearLocation + kTextureSlotCount;
+static_assert(kUvLinearLocation == 14 && kUvOffsetLocation == 27, "the GLSL's literal locations");
 
 bool bit(std::uint32_t mask, TextureSlot s) {
     return (mask >> int(s)) & 1u;
@@ -199,10 +205,15 @@ void TextureSet::setMaterial(const Material& material, Problems* problems) {
         const std::string space =
             resolveTextureColorSpace(colorManagement(), file, usage, ref.colorSpace);
         const std::string key = keyOf(file, space, usage);
-        if (!(ref == s.ref) || key != s.key) {
+        // A new UV transform is a uniform (bind()), not a new image: the slot keeps its texture.
+        TextureRef withoutUv = ref, oldWithoutUv = s.ref;
+        withoutUv.uv = oldWithoutUv.uv = UvTransform{};
+        if (!(withoutUv == oldWithoutUv) || key != s.key) {
             s = Slot{};
             s.ref = ref;
             s.key = key;
+        } else {
+            s.ref = ref;
         }
         auto [it, fresh] = m_entries->try_emplace(key);
         if (fresh) {
@@ -515,6 +526,14 @@ void TextureSet::applyTo(GpuMaterial& g) const {
         g.specularColorWeight.a *= mean(TextureSlot::SpecRoughMetal).r;
 }
 
+UvTransformMatrix uvTransformMatrix(const UvTransform& uv) {
+    // uv' = R (S uv) + o, R = [c -s; s c] (the Image node's velvetGraphUvTransform): columns of
+    // R S are (c sx, s sx) and (-s sy, c sy).
+    const float r = glm::radians(uv.rotation);
+    const float c = std::cos(r), s = std::sin(r);
+    return {glm::vec4(c * uv.scale.x, s * uv.scale.x, -s * uv.scale.y, c * uv.scale.y), uv.offset};
+}
+
 bool slotIsPerPixel(TextureSlot slot) {
     switch (slot) {
     case TextureSlot::BaseColor:
@@ -531,13 +550,20 @@ bool slotIsPerPixel(TextureSlot slot) {
 
 void TextureSet::bind(unsigned program) const {
     glm::vec4 regions[kTextureSlotCount];
+    glm::vec4 uvLinear[kTextureSlotCount];
+    glm::vec2 uvOffset[kTextureSlotCount];
     for (int i = 0; i < kTextureSlotCount; ++i) {
         const Slot& s = (*m_slots)[size_t(i)];
         regions[i] = s.region;
+        const UvTransformMatrix m = uvTransformMatrix(s.ref.uv);
+        uvLinear[i] = m.linear;
+        uvOffset[i] = m.offset;
         if (s.valid)
             glBindTextureUnit(GLuint(binding::kMaterialTexFirst + i), m_entries->at(s.key).texture);
     }
     glProgramUniform4fv(program, 1, kTextureSlotCount, &regions[0].x);
+    glProgramUniform4fv(program, kUvLinearLocation, kTextureSlotCount, &uvLinear[0].x);
+    glProgramUniform2fv(program, kUvOffsetLocation, kTextureSlotCount, &uvOffset[0].x);
 }
 
 void TextureSet::unbind() const {

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 #include <map>
 #include <memory>
@@ -53,6 +54,15 @@ void uploadMipChain(unsigned texture, const Image& image);
 /// the 16-byte G-buffer: their image's mean, times the parameter, goes to the material table
 /// (docs/architecture.md, "G-buffer").
 bool slotIsPerPixel(TextureSlot slot);
+
+/// A slot's UV transform (core/texture_ref.h) as the shader applies it: uv' = mat2(linear.xy,
+/// linear.zw) * uv + offset (columns), uniforms uTexUvLinear and uTexUvOffset of
+/// common_material_textures.glsl.
+struct UvTransformMatrix {
+    glm::vec4 linear{1.0f, 0.0f, 0.0f, 1.0f};
+    glm::vec2 offset{0.0f};
+};
+UvTransformMatrix uvTransformMatrix(const UvTransform& uv);
 
 class TextureSet {
 public:
@@ -105,7 +115,8 @@ public:
 
     /// Writes presence and region bits and the texture means into @p g (packMaterial's output).
     void applyTo(GpuMaterial& g) const;
-    /// Binds the slot textures and sets @p program's region uniforms (location 1 onwards).
+    /// Binds the slot textures and sets @p program's region and UV-transform uniforms (location 1
+    /// onwards: uTexRegion, uTexUvLinear, uTexUvOffset, kTextureSlotCount each).
     void bind(unsigned program) const;
     /// Unbinds the slot units.
     void unbind() const;

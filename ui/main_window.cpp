@@ -7,6 +7,7 @@
 #include "ui/autosave.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_panel.h"
+#include "ui/import_action.h"
 #include "ui/library/library_panel.h"
 #include "ui/log_panel.h"
 #include "ui/post_chain/post_chain_panel.h"
@@ -51,14 +52,18 @@ QString fileFilter() {
 }
 
 /// What a file dropped on the window does: a scene opens, a preset is applied to the current
-/// scene (undoable), an HDR image becomes the environment, a mesh the preview mesh, another image
+/// scene (undoable), a glTF or MaterialX file's material is imported (a glTF's mesh becomes the
+/// preview mesh), an HDR image becomes the environment, a mesh the preview mesh, another image
 /// the base colour texture.
-enum class DropKind { None, Document, Hdri, Mesh, Image };
+enum class DropKind { None, Document, Hdri, Mesh, Image, Interchange };
 
 DropKind dropKindOf(const QString& path) {
     const QString suffix = QFileInfo(path).suffix().toLower();
     if (suffix == QLatin1String("json"))
         return DropKind::Document;
+    // glTF and MaterialX bring a material in (a glTF's mesh too): ui/import_action.h.
+    if (isImportableFile(path))
+        return DropKind::Interchange;
     if (suffix == QLatin1String("exr") || suffix == QLatin1String("hdr"))
         return DropKind::Hdri;
     static const QStringList images = {QStringLiteral("png"),  QStringLiteral("jpg"),
@@ -67,9 +72,9 @@ DropKind dropKindOf(const QString& path) {
                                        QStringLiteral("bmp")};
     if (images.contains(suffix))
         return DropKind::Image;
-    static const QStringList meshes = {
-        QStringLiteral("obj"), QStringLiteral("fbx"), QStringLiteral("gltf"), QStringLiteral("glb"),
-        QStringLiteral("ply"), QStringLiteral("stl"), QStringLiteral("dae")};
+    static const QStringList meshes = {QStringLiteral("obj"), QStringLiteral("fbx"),
+                                       QStringLiteral("ply"), QStringLiteral("stl"),
+                                       QStringLiteral("dae")};
     if (meshes.contains(suffix))
         return DropKind::Mesh;
     return DropKind::None;
@@ -454,6 +459,15 @@ bool MainWindow::openDroppedFile(const QString& path) {
         m_controller->editMesh(mesh);
         m_log->info(tr("Preview mesh: %1").arg(path));
         return true;
+    }
+    case DropKind::Interchange: {
+        // The material, and a glTF's mesh as the preview mesh, as one undo step.
+        QString error;
+        if (importFile(this, *m_controller, path, m_log, /*withMesh=*/true, &error))
+            return true;
+        m_log->error(tr("Import failed: %1").arg(error));
+        statusBar()->showMessage(tr("Could not import %1 (see the Log)").arg(path), 10000);
+        return false;
     }
     case DropKind::None:
         break;

@@ -2,6 +2,7 @@
 // docks, toolbars and document actions (main_window.cpp).
 #include "ui/document_controller.h"
 #include "ui/export_action.h"
+#include "ui/import_action.h"
 #include "ui/main_window.h"
 #include "ui/undo_shortcuts.h"
 #include "ui/viewport_widget.h"
@@ -40,6 +41,10 @@ void MainWindow::createMenus() {
                           [this] { exportDocumentInteractively(this, *m_controller, m_log); });
     act->setObjectName(QStringLiteral("exportAction"));
     act->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_E));
+    act = file->addAction(tr("&Import…"), this,
+                          [this] { importFileInteractively(this, *m_controller, m_log); });
+    act->setObjectName(QStringLiteral("importAction"));
+    act->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_I));
     file->addSeparator();
     act = file->addAction(tr("&Quit"), this, &QWidget::close);
     act->setShortcut(QKeySequence::Quit);

@@ -15,6 +15,11 @@
 
 layout(binding = BINDING_MATERIAL_TEX_FIRST) uniform sampler2D uMaterialTex[TEX_SLOT_COUNT];
 layout(location = 1) uniform vec4 uTexRegion[TEX_SLOT_COUNT];
+// Each slot's UV transform (core/texture_ref.h UvTransform: scale, rotate, offset) as a 2x2
+// matrix (columns xy, zw) and an offset; identity when unset (render/texture_set.cpp). Locations
+// 14 = 1 + TEX_SLOT_COUNT and 27 = 1 + 2 * TEX_SLOT_COUNT follow uTexRegion.
+layout(location = 14) uniform vec4 uTexUvLinear[TEX_SLOT_COUNT];
+layout(location = 27) uniform vec2 uTexUvOffset[TEX_SLOT_COUNT];
 
 bool hasTexture(GpuMaterial m, int slot) { return (m.terms2.y & (1 << slot)) != 0; }
 
@@ -22,7 +27,11 @@ bool hasTexture(GpuMaterial m, int slot) { return (m.terms2.y & (1 << slot)) != 
 // shader; here it happens per fragment so that tiling UVs wrap inside the region (fract) and the
 // lookup stays half a texel inside it (no bleeding from neighbours under bilinear filtering). The
 // gradients are those of the unwrapped uv, so the wrap does not pick a coarse mip at the seam.
+// The slot's UV transform comes first (KHR_texture_transform's place: on the mesh's UVs, before
+// the lookup), so a tiled region repeats the region.
 vec4 sampleSlot(GpuMaterial m, int slot, vec2 uv) {
+    vec4 l = uTexUvLinear[slot];
+    uv = mat2(l.xy, l.zw) * uv + uTexUvOffset[slot];
     if ((m.terms2.z & (1 << slot)) == 0)
         return texture(uMaterialTex[slot], uv);
     vec4 r = uTexRegion[slot];

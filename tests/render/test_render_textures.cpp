@@ -140,6 +140,38 @@ private slots:
         QVERIFY(std::abs(centre(render(&raw)).x - 0.251f) < 0.005f);
     }
 
+    // A slot's UV transform (issue 17 item 6) moves the lookup: three vertical stripes (red,
+    // green, blue, a third of the width each); an offset of a third in u moves the centre
+    // pixel to the next stripe, two thirds to the one after; an offset in v or of a whole
+    // period changes nothing.
+    void uvOffsetShiftsAKnownPixel() {
+        Image stripes(24, 8, 4);
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 24; ++x) {
+                glm::vec4 c(0.1f, 0.1f, 0.1f, 1.0f);
+                c[x / 8] = 0.8f;
+                std::copy(&c.x, &c.x + 4, stripes.at(x, y));
+            }
+        write(path("stripes.png"), stripes);
+        Scene scene = textured(TextureSlot::BaseColor, path("stripes.png"), "Raw");
+        const auto stripeAtCentre = [&](glm::vec2 offset) {
+            TextureRef ref = scene.material.texture(TextureSlot::BaseColor);
+            ref.uv.offset = offset;
+            scene.material.setTexture(TextureSlot::BaseColor, ref);
+            const glm::vec4 p = render(&scene).rgba(kSize / 2, kSize / 2);
+            const int k = p.r > p.g && p.r > p.b ? 0 : (p.g > p.b ? 1 : 2);
+            qInfo("offset (%.3f, %.3f): centre %.3f %.3f %.3f -> stripe %d", offset.x, offset.y,
+                  p.r, p.g, p.b, k);
+            return std::max({p.r, p.g, p.b}) > 0.6f ? k : -1; // -1: on a seam, not in a stripe
+        };
+        const int k0 = stripeAtCentre({0.0f, 0.0f});
+        QVERIFY(k0 >= 0);
+        QCOMPARE(stripeAtCentre({1.0f / 3.0f, 0.0f}), (k0 + 1) % 3);
+        QCOMPARE(stripeAtCentre({2.0f / 3.0f, 0.0f}), (k0 + 2) % 3);
+        QCOMPARE(stripeAtCentre({0.0f, 0.37f}), k0); // v does not cross vertical stripes
+        QCOMPARE(stripeAtCentre({1.0f, 0.0f}), k0);  // a whole period: the same texel
+    }
+
     // An atlas of two flat halves: each region picks its own colour, with no bleeding from the
     // other half at the centre of the sphere.
     void atlasRegionPicksSubImage() {

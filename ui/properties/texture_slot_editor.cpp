@@ -4,6 +4,7 @@
 #include "core/image.h"
 #include "render/texture_set.h"
 #include "ui/document_controller.h"
+#include "ui/properties/uv_transform_editor.h"
 
 #include <QComboBox>
 #include <QCoreApplication>
@@ -214,8 +215,11 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
                           "file.");
     setToolTip(fromView(textureSlotMeta(slot).tooltip) + viewportNote);
 
-    auto* row = new QHBoxLayout(this);
-    row->setContentsMargins(0, 0, 0, 0);
+    auto* outer = new QVBoxLayout(this);
+    outer->setContentsMargins(0, 0, 0, 0);
+    outer->setSpacing(2);
+    auto* row = new QHBoxLayout;
+    outer->addLayout(row);
     m_thumbLabel = new QLabel(this);
     m_thumbLabel->setObjectName(name + QStringLiteral("/thumbnail"));
     m_thumbLabel->setFixedSize(kThumbnailSide + 2, kThumbnailSide + 2);
@@ -252,6 +256,10 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
     buttons->addWidget(m_colorSpace, 1);
     column->addLayout(buttons);
     row->addLayout(column, 1);
+    // The UV transform under the row, full width (a column beside the thumbnail would widen
+    // the whole panel).
+    m_uv = new UvTransformEditor(controller, slot, name, this);
+    outer->addWidget(m_uv);
 
     refresh();
 }
@@ -316,6 +324,7 @@ void TextureSlotEditor::fillColorSpaces() {
 
 void TextureSlotEditor::refresh() {
     const TextureRef& ref = m_controller->material().texture(m_slot);
+    m_uv->refresh();
     if (m_shownValid && ref == m_shown)
         return;
     colorManagement();

@@ -12,7 +12,8 @@
 /// input colour space, then encoded); data slots show the stored values.
 ///
 /// Widget names: the row "textureSlot:<id>" (id as in textureSlotMetas(), e.g. "baseColor"), and
-/// its children "textureSlot:<id>/thumbnail", "/file", "/browse", "/clear", "/colorSpace".
+/// its children "textureSlot:<id>/thumbnail", "/file", "/browse", "/clear", "/colorSpace", and
+/// the UV transform's (uv_transform_editor.h).
 
 #include "core/texture_ref.h"
 
@@ -33,6 +34,7 @@ class ColorManagement;
 namespace velvet::ui {
 
 class DocumentController;
+class UvTransformEditor;
 
 class TextureSlotEditor : public QWidget {
     Q_OBJECT
@@ -94,6 +96,7 @@ private:
     QToolButton* m_browse;
     QToolButton* m_clear;
     QComboBox* m_colorSpace;
+    UvTransformEditor* m_uv;
     TextureRef m_shown;        ///< the value the row shows
     bool m_shownValid = false; ///< false until the first refresh
     QImage m_thumbnail;

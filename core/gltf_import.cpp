@@ -1,0 +1,790 @@
+// glTF 2.0 import. References: the glTF 2.0 specification (Khronos, 2021; section numbers
+// below), KHR_materials_clearcoat, _sheen, _specular, _ior, _emissive_strength,
+// KHR_texture_transform and the archived KHR_materials_pbrSpecularGlossiness
+// (github.com/KhronosGroup/glTF, extensions/2.0/). Every mapping, and what is not mapped, is
+// tabled in docs/interchange.md ("Import").
+#include "core/gltf_import.h"
+
+#include "core/atomic_file.h"
+#include "core/gltf_spec_gloss.h"
+#include "core/image.h"
+#include "core/import_text.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <unistd.h>
+
+namespace velvet {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(2) << 30; // 2 GiB: a .glb, a .bin
+constexpr double kPi = 3.14159265358979323846;
+
+/// Thrown inside this file only; importGltfMaterial turns it into an ImportProblem.
+struct Failure {
+    ImportProblem problem;
+};
+[[noreturn]] void fail(std::string place, std::string message,
+                       ImportProblem::Kind kind = ImportProblem::Kind::Malformed) {
+    throw Failure{{kind, std::move(place), std::move(message)}};
+}
+
+std::string at(const std::string& place, std::string_view key) {
+    return place.empty() ? std::string(key) : place + "." + std::string(key);
+}
+std::string at(const std::string& place, size_t index) {
+    return place + "[" + std::to_string(index) + "]";
+}
+
+std::string extensionForMime(std::string_view mime) {
+    if (mime == "image/png")
+        return ".png";
+    if (mime == "image/jpeg")
+        return ".jpg";
+    return {};
+}
+
+const char* wrapName(int mode) {
+    switch (mode) {
+    case 33071:
+        return "CLAMP_TO_EDGE";
+    case 33648:
+        return "MIRRORED_REPEAT";
+    default:
+        return "REPEAT";
+    }
+}
+
+class Reader {
+public:
+    Reader(fs::path file, fs::path imageFolder, std::string imageStem)
+        : m_file(std::move(file)), m_imageFolder(std::move(imageFolder)),
+          m_stem(std::move(imageStem)) {}
+
+    /// Reads the container (glTF 2.0 section 4.4 for GLB) and the JSON, checks the asset.
+    void load() {
+        std::string reason;
+        auto bytes = readFileWithLimit(m_file, kMaxFileBytes, &reason);
+        if (!bytes)
+            fail("", reason);
+        std::string text;
+        if (isGlb(*bytes)) {
+            GlbChunks chunks;
+            std::string place, message;
+            if (!splitGlb(*bytes, chunks, place, message))
+                fail(place, message);
+            text = std::move(chunks.json);
+            m_bin = std::move(chunks.bin);
+            m_hasBin = chunks.hasBin;
+        } else {
+            text = std::move(*bytes);
+        }
+        // A hostile file nested a million deep must not exhaust the stack: glTF needs a few
+        // levels (extensions inside textureInfos inside materials), 64 is plenty.
+        struct TooDeep {};
+        const Json::parser_callback_t depthLimit = [](int depth, Json::parse_event_t, Json&) {
+            if (depth > 64)
+                throw TooDeep{};
+            return true;
+        };
+        try {
+            m_doc = Json::parse(text, depthLimit);
+        } catch (const TooDeep&) {
+            fail("", "JSON nested deeper than 64 levels");
+        } catch (const Json::parse_error& e) {
+            std::string what = e.what();
+            if (const size_t p = what.find("parse error"); p != std::string::npos)
+                what = what.substr(p);
+            fail(lineColumn(text, e.byte == 0 ? 0 : e.byte - 1), "broken JSON: " + what);
+        }
+        if (!m_doc.is_object())
+            fail("", "the top level is not a JSON object");
+        const Json* asset = find(m_doc, "asset");
+        if (!asset || !asset->is_object())
+            fail("asset", "required object is missing (glTF 2.0 section 5.2)");
+        const Json* version = find(*asset, "version");
+        if (!version || !version->is_string())
+            fail("asset.version", "required string is missing");
+        const std::string v = version->get<std::string>();
+        if (v.rfind("2.", 0) != 0)
+            fail("asset.version", "\"" + v + "\": Velvet reads glTF 2.x");
+        for (const Json& e : arrayOf(m_doc, "extensionsRequired", "extensionsRequired")) {
+            const std::string name = e.is_string() ? e.get<std::string>() : std::string("?");
+            if (name != "KHR_texture_transform" && name != "KHR_materials_pbrSpecularGlossiness")
+                warn("extensionsRequired: " + name +
+                     " is not read by Velvet; the material is imported without it");
+        }
+        checkBuffers();
+    }
+
+    std::vector<std::string> materialNames() const {
+        std::vector<std::string> names;
+        for (const Json& m : arrayOf(m_doc, "materials", "materials"))
+            names.push_back(m.is_object() && m.contains("name") && m["name"].is_string()
+                                ? m["name"].get<std::string>()
+                                : std::string());
+        return names;
+    }
+
+    void read(size_t index, ImportedMaterial& out) {
+        m_out = &out;
+        const std::string place = at("materials", index);
+        const Json& m = m_doc["materials"][index];
+        if (!m.is_object())
+            fail(place, "expected a material object");
+        Material& mat = out.material;
+        mat = Material();
+        mat.name = m.contains("name") && m["name"].is_string()
+                       ? m["name"].get<std::string>()
+                       : "Material " + std::to_string(index);
+        out.hasMesh = !arrayOf(m_doc, "meshes", "meshes").empty();
+        checkKeys(m, place,
+                  {"name", "pbrMetallicRoughness", "normalTexture", "occlusionTexture",
+                   "emissiveTexture", "emissiveFactor", "alphaMode", "alphaCutoff", "doubleSided",
+                   "extensions", "extras"});
+        const Json* ext = find(m, "extensions");
+        const Json* sg = ext ? find(*ext, "KHR_materials_pbrSpecularGlossiness") : nullptr;
+        if (sg)
+            readSpecGloss(*sg, at(at(place, "extensions"), "KHR_materials_pbrSpecularGlossiness"),
+                          find(m, "pbrMetallicRoughness") != nullptr);
+        else // absent: glTF's defaults (white, metallic 1, roughness 1), not Velvet's
+            readPbr(find(m, "pbrMetallicRoughness") ? m["pbrMetallicRoughness"] : Json::object(),
+                    at(place, "pbrMetallicRoughness"));
+        if (const Json* n = find(m, "normalTexture")) {
+            const std::string p = at(place, "normalTexture");
+            texture(*n, p, TextureSlot::Normal, {"scale"});
+            setScalar(ParamId::NormalScale, number(*n, "scale", p, -1e9, 1e9, 1.0), p + ".scale");
+        }
+        if (const Json* o = find(m, "occlusionTexture")) {
+            const std::string p = at(place, "occlusionTexture");
+            texture(*o, p, TextureSlot::Occlusion, {"strength"});
+            setScalar(ParamId::OcclusionStrength, number(*o, "strength", p, 0, 1, 1.0),
+                      p + ".strength");
+        }
+        if (const Json* e = find(m, "emissiveTexture"))
+            texture(*e, at(place, "emissiveTexture"), TextureSlot::Emissive, {});
+        if (find(m, "emissiveFactor"))
+            setColor(ParamId::EmissiveColor,
+                     vec3(m, "emissiveFactor", place, 0, 1, glm::vec3(0.0f)),
+                     at(place, "emissiveFactor"));
+        readAlpha(m, place);
+        if (const Json* e = find(m, "extras"); e && !e->empty())
+            warn(at(place, "extras") + ": application data, not read");
+        if (ext) {
+            if (!ext->is_object())
+                fail(at(place, "extensions"), "expected an object");
+            for (auto it = ext->begin(); it != ext->end(); ++it)
+                readExtension(it.key(), it.value(), at(at(place, "extensions"), it.key()));
+        }
+    }
+
+private:
+    // ---- JSON access with places --------------------------------------------------------------
+    static const Json* find(const Json& o, std::string_view key) {
+        if (!o.is_object())
+            return nullptr;
+        const auto it = o.find(std::string(key));
+        return it == o.end() ? nullptr : &*it;
+    }
+    /// The array @p key of @p o (empty when absent); not an array is malformed.
+    const Json& arrayOf(const Json& o, std::string_view key, const std::string& place) const {
+        static const Json empty = Json::array();
+        const Json* a = find(o, key);
+        if (!a)
+            return empty;
+        if (!a->is_array())
+            fail(place, "expected an array");
+        return *a;
+    }
+    double number(const Json& o, std::string_view key, const std::string& place, double lo,
+                  double hi, double fallback) const {
+        const Json* v = find(o, key);
+        if (!v)
+            return fallback;
+        const std::string p = at(place, key);
+        if (!v->is_number())
+            fail(p, "expected a number, got " + v->dump());
+        const double d = v->get<double>();
+        if (!std::isfinite(d) || d < lo || d > hi)
+            fail(p, v->dump() + " is outside the glTF range [" + std::to_string(lo) + ", " +
+                        (hi > 1e8 ? std::string("inf") : std::to_string(hi)) + "]");
+        return d;
+    }
+    glm::vec3 vec3(const Json& o, std::string_view key, const std::string& place, double lo,
+                   double hi, glm::vec3 fallback) const {
+        const Json* v = find(o, key);
+        if (!v)
+            return fallback;
+        const std::string p = at(place, key);
+        if (!v->is_array() || v->size() != 3)
+            fail(p, "expected an array of 3 numbers, got " + v->dump());
+        glm::vec3 out;
+        for (size_t i = 0; i < 3; ++i) {
+            const Json& c = (*v)[i];
+            if (!c.is_number() || c.get<double>() < lo || c.get<double>() > hi)
+                fail(at(p, i), c.dump() + " is outside the glTF range [" + std::to_string(lo) +
+                                   ", " + (hi > 1e8 ? std::string("inf") : std::to_string(hi)) +
+                                   "]");
+            out[int(i)] = c.get<float>();
+        }
+        return out;
+    }
+    /// An index into the top-level array @p array: a dangling one is malformed.
+    size_t index(const Json& o, std::string_view key, const std::string& place,
+                 std::string_view array) const {
+        const Json* v = find(o, key);
+        const std::string p = at(place, key);
+        if (!v)
+            fail(p, "required index is missing");
+        if (!v->is_number_integer() || v->get<long long>() < 0)
+            fail(p, "expected an index, got " + v->dump());
+        const size_t i = v->get<size_t>();
+        const size_t count = find(m_doc, array) ? m_doc[std::string(array)].size() : 0;
+        if (i >= count)
+            fail(p, "refers to " + std::string(array) + "[" + std::to_string(i) + "], but there " +
+                        (count == 1 ? "is 1" : "are " + std::to_string(count)));
+        return i;
+    }
+    void checkKeys(const Json& o, const std::string& place,
+                   std::initializer_list<std::string_view> known) {
+        if (!o.is_object())
+            fail(place, "expected an object");
+        for (auto it = o.begin(); it != o.end(); ++it)
+            if (std::find(known.begin(), known.end(), it.key()) == known.end())
+                warn(at(place, it.key()) + ": not a property Velvet maps; ignored");
+    }
+    void warn(std::string line) { m_warnings.push_back(std::move(line)); }
+
+    // ---- Values into the material (clamped to Velvet's ranges, said when clamped) -------------
+    void setScalar(ParamId id, double v, const std::string& place) {
+        const ParamMeta& meta = paramMeta(id);
+        const float f = float(v);
+        if (f < meta.min || f > meta.max)
+            warn(place + ": " + formatValue(f) + " is outside Velvet's range of " +
+                 std::string(meta.id) + " [" + formatValue(meta.min) + ", " +
+                 formatValue(meta.max) + "]; clamped");
+        m_out->material.setScalar(id, f);
+    }
+    void setColor(ParamId id, glm::vec3 c, const std::string& place) {
+        const ParamMeta& meta = paramMeta(id);
+        for (int i = 0; i < 3; ++i)
+            if (c[i] < meta.min || c[i] > meta.max) {
+                warn(place + ": a component outside Velvet's range of " + std::string(meta.id) +
+                     " [" + formatValue(meta.min) + ", " + formatValue(meta.max) + "]; clamped");
+                break;
+            }
+        m_out->material.setColor(id, c);
+    }
+    static std::string formatValue(float v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", double(v));
+        return text;
+    }
+
+    // ---- Buffers and images -------------------------------------------------------------------
+    /// Every buffer is there and as long as it says (glTF 2.0 section 3.6.1), every buffer view
+    /// lies inside its buffer: a missing .bin is malformed, not a quiet empty mesh.
+    void checkBuffers() {
+        const Json& buffers = arrayOf(m_doc, "buffers", "buffers");
+        m_bufferSizes.assign(buffers.size(), 0);
+        for (size_t i = 0; i < buffers.size(); ++i) {
+            const std::string p = at("buffers", i);
+            const Json& b = buffers[i];
+            const double length = number(b, "byteLength", p, 1, 1e15, -1);
+            if (length < 0)
+                fail(at(p, "byteLength"), "required number is missing");
+            const Json* uri = find(b, "uri");
+            std::uintmax_t have = 0;
+            if (!uri) {
+                if (i != 0 || !m_hasBin)
+                    fail(p, "has no uri and is not the GLB's binary chunk");
+                have = m_bin.size();
+            } else if (!uri->is_string()) {
+                fail(at(p, "uri"), "expected a string");
+            } else if (uri->get<std::string>().rfind("data:", 0) == 0) {
+                have = dataUri(uri->get<std::string>(), at(p, "uri")).size();
+            } else {
+                const fs::path f = resolve(uri->get<std::string>());
+                std::error_code ec;
+                if (!fs::is_regular_file(f, ec))
+                    fail(at(p, "uri"), "missing buffer file " + f.string());
+                have = fs::file_size(f, ec);
+            }
+            if (have < std::uintmax_t(length))
+                fail(p, "holds " + std::to_string(have) + " bytes, byteLength says " +
+                            std::to_string(std::uintmax_t(length)));
+            m_bufferSizes[i] = std::uintmax_t(length);
+        }
+        const Json& views = arrayOf(m_doc, "bufferViews", "bufferViews");
+        for (size_t i = 0; i < views.size(); ++i) {
+            const std::string p = at("bufferViews", i);
+            const size_t buffer = index(views[i], "buffer", p, "buffers");
+            const double offset = number(views[i], "byteOffset", p, 0, 1e15, 0);
+            const double length = number(views[i], "byteLength", p, 1, 1e15, -1);
+            if (length < 0)
+                fail(at(p, "byteLength"), "required number is missing");
+            if (offset + length > double(m_bufferSizes[buffer]))
+                fail(p, "bytes " + std::to_string(std::uintmax_t(offset)) + " to " +
+                            std::to_string(std::uintmax_t(offset + length)) +
+                            " lie outside buffers[" + std::to_string(buffer) + "] (" +
+                            std::to_string(m_bufferSizes[buffer]) + " bytes)");
+        }
+    }
+    std::string dataUri(const std::string& uri, const std::string& place) const {
+        const size_t comma = uri.find(',');
+        if (comma == std::string::npos || uri.find(";base64") > comma)
+            fail(place, "a data: URI must be base64 (glTF 2.0 section 3.6.1.2)");
+        auto bytes = decodeBase64(std::string_view(uri).substr(comma + 1));
+        if (!bytes)
+            fail(place, "broken base64 in the data: URI");
+        return *bytes;
+    }
+    fs::path resolve(const std::string& uri) const {
+        return (m_file.parent_path() / percentDecode(uri)).lexically_normal();
+    }
+    std::string bufferBytes(size_t buffer) {
+        if (auto it = m_loaded.find(buffer); it != m_loaded.end())
+            return it->second;
+        const Json& b = m_doc["buffers"][buffer];
+        std::string bytes;
+        if (!b.contains("uri")) {
+            bytes = m_bin;
+        } else if (b["uri"].get<std::string>().rfind("data:", 0) == 0) {
+            bytes = dataUri(b["uri"].get<std::string>(), at(at("buffers", buffer), "uri"));
+        } else {
+            std::string reason;
+            auto read =
+                readFileWithLimit(resolve(b["uri"].get<std::string>()), kMaxFileBytes, &reason);
+            if (!read)
+                fail(at(at("buffers", buffer), "uri"), reason);
+            bytes = std::move(*read);
+        }
+        return m_loaded[buffer] = std::move(bytes);
+    }
+    /// The file a slot reads for images[@p i]: an external file as it is, an embedded image as
+    /// a file planned in the image folder (written once, whatever the number of slots).
+    std::string imageFile(size_t i) {
+        if (auto it = m_imageFiles.find(i); it != m_imageFiles.end())
+            return it->second;
+        const std::string p = at("images", i);
+        const Json& image = m_doc["images"][i];
+        const Json* uri = find(image, "uri");
+        std::string bytes, ext;
+        if (uri && uri->is_string() && uri->get<std::string>().rfind("data:", 0) != 0) {
+            const fs::path f = resolve(uri->get<std::string>());
+            std::error_code ec;
+            if (!fs::is_regular_file(f, ec))
+                fail(at(p, "uri"), "missing image file " + f.string());
+            return m_imageFiles[i] = f.string();
+        }
+        if (uri && uri->is_string()) {
+            const std::string u = uri->get<std::string>();
+            bytes = dataUri(u, at(p, "uri"));
+            ext = extensionForMime(u.substr(5, u.find(';') - 5));
+        } else if (find(image, "bufferView")) {
+            const size_t view = index(image, "bufferView", p, "bufferViews");
+            const Json& v = m_doc["bufferViews"][view];
+            const std::string buffer = bufferBytes(v["buffer"].get<size_t>());
+            bytes = buffer.substr(v.value("byteOffset", size_t(0)), v["byteLength"].get<size_t>());
+            const Json* mime = find(image, "mimeType");
+            if (!mime || !mime->is_string())
+                fail(at(p, "mimeType"), "required with a bufferView (glTF 2.0 section 5.18)");
+            ext = extensionForMime(mime->get<std::string>());
+        } else {
+            fail(p, "has neither uri nor bufferView");
+        }
+        if (ext.empty())
+            fail(p, "an image type glTF 2.0 does not define (image/png and image/jpeg only)");
+        // STEM_<image name or index>.<ext>: a sanitised stem, never a path from the file.
+        const std::string label =
+            image.contains("name") && image["name"].is_string()
+                ? sanitizeFileStem(image["name"].get<std::string>(), "image" + std::to_string(i))
+                : "image" + std::to_string(i);
+        std::string name = m_stem + "_" + label + ext;
+        for (int n = 2; m_usedNames.count(name); ++n)
+            name = m_stem + "_" + label + "_" + std::to_string(n) + ext;
+        m_usedNames.insert(name);
+        m_out->images.push_back({name, std::move(bytes)});
+        return m_imageFiles[i] = (m_imageFolder / name).lexically_normal().string();
+    }
+
+    /// A textureInfo (section 5.22) into @p slot: texture, image, sampler, texCoord and
+    /// KHR_texture_transform. @p extra: the keys the caller reads (scale, strength).
+    void texture(const Json& info, const std::string& place, TextureSlot slot,
+                 std::initializer_list<std::string_view> extra) {
+        std::vector<std::string_view> known{"index", "texCoord", "extensions", "extras"};
+        known.insert(known.end(), extra.begin(), extra.end());
+        if (!info.is_object())
+            fail(place, "expected a textureInfo object");
+        for (auto it = info.begin(); it != info.end(); ++it)
+            if (std::find(known.begin(), known.end(), it.key()) == known.end())
+                warn(at(place, it.key()) + ": not a property Velvet maps; ignored");
+        const size_t t = index(info, "index", place, "textures");
+        const std::string tp = at("textures", t);
+        const Json& tex = m_doc["textures"][t];
+        TextureRef ref;
+        if (!find(tex, "source")) {
+            std::string exts;
+            if (const Json* e = find(tex, "extensions"))
+                for (auto it = e->begin(); it != e->end(); ++it)
+                    exts += (exts.empty() ? "" : ", ") + it.key();
+            warn(place + ": " + tp + " has no PNG or JPEG source" +
+                 (exts.empty() ? std::string()
+                               : " (only " + exts + ", which Velvet does not read)") +
+                 "; textures." + std::string(textureSlotMeta(slot).id) + " left empty");
+            return;
+        }
+        ref.file = imageFile(index(tex, "source", tp, "images"));
+        if (const Json* e = find(tex, "extensions"))
+            for (auto it = e->begin(); it != e->end(); ++it)
+                warn(at(at(tp, "extensions"), it.key()) + ": not read (the PNG/JPEG source is)");
+        if (find(tex, "sampler")) {
+            const size_t s = index(tex, "sampler", tp, "samplers");
+            const Json& sampler = m_doc["samplers"][s];
+            const std::string sp = at("samplers", s);
+            for (const char* key : {"wrapS", "wrapT"}) {
+                const int mode = int(number(sampler, key, sp, 0, 1e6, 10497));
+                if (mode != 10497)
+                    warn(at(sp, key) + ": " + wrapName(mode) +
+                         " is not mapped; Velvet's texture slots repeat");
+            }
+            if (number(sampler, "magFilter", sp, 0, 1e6, 9729) == 9728)
+                warn(at(sp, "magFilter") + ": NEAREST is not mapped; Velvet filters linearly");
+        }
+        if (number(info, "texCoord", place, 0, 1e6, 0) != 0)
+            warn(at(place, "texCoord") + ": Velvet reads TEXCOORD_0 only; TEXCOORD_" +
+                 std::to_string(int(number(info, "texCoord", place, 0, 1e6, 0))) + " is not used");
+        if (const Json* e = find(info, "extensions")) {
+            for (auto it = e->begin(); it != e->end(); ++it) {
+                const std::string ep = at(at(place, "extensions"), it.key());
+                if (it.key() != "KHR_texture_transform") {
+                    warn(ep + ": not mapped");
+                    continue;
+                }
+                const Json& x = it.value();
+                checkKeys(x, ep, {"offset", "rotation", "scale", "texCoord"});
+                const auto pair = [&](std::string_view key, glm::vec2 fallback) {
+                    const Json* v = find(x, key);
+                    if (!v)
+                        return fallback;
+                    if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() ||
+                        !(*v)[1].is_number())
+                        fail(at(ep, key), "expected an array of 2 numbers, got " + v->dump());
+                    return glm::vec2((*v)[0].get<float>(), (*v)[1].get<float>());
+                };
+                ref.uv.offset = pair("offset", glm::vec2(0.0f));
+                ref.uv.scale = pair("scale", glm::vec2(1.0f));
+                // glTF's rotation matrix is the transpose of Velvet's (texture_ref.h).
+                ref.uv.rotation = float(-number(x, "rotation", ep, -1e6, 1e6, 0) * 180.0 / kPi);
+                if (std::abs(ref.uv.rotation) > kUvRotationLimit)
+                    ref.uv.rotation = std::fmod(ref.uv.rotation, 360.0f);
+                if (ref.uv.scale.x == 0.0f || ref.uv.scale.y == 0.0f)
+                    fail(at(ep, "scale"), "a scale of 0 collapses the texture to one texel");
+                if (find(x, "texCoord") && number(x, "texCoord", ep, 0, 1e6, 0) != 0)
+                    warn(at(ep, "texCoord") + ": Velvet reads TEXCOORD_0 only");
+            }
+        }
+        m_out->material.setTexture(slot, std::move(ref));
+    }
+
+    // ---- The material's parts -------------------------------------------------------------------
+    void readPbr(const Json& pbr, const std::string& p) {
+        checkKeys(pbr, p,
+                  {"baseColorFactor", "baseColorTexture", "metallicFactor", "roughnessFactor",
+                   "metallicRoughnessTexture", "extensions", "extras"});
+        setColor(ParamId::BaseColor, glm::vec3(1.0f), at(p, "baseColorFactor"));
+        if (const Json* f = find(pbr, "baseColorFactor")) {
+            if (!f->is_array() || f->size() != 4)
+                fail(at(p, "baseColorFactor"), "expected an array of 4 numbers, got " + f->dump());
+            glm::vec4 c;
+            for (size_t i = 0; i < 4; ++i) {
+                const Json& x = (*f)[i];
+                if (!x.is_number() || x.get<double>() < 0 || x.get<double>() > 1)
+                    fail(at(at(p, "baseColorFactor"), i),
+                         x.dump() + " is outside the glTF range [0, 1]");
+                c[int(i)] = x.get<float>();
+            }
+            setColor(ParamId::BaseColor, glm::vec3(c), at(p, "baseColorFactor"));
+            m_baseAlpha = c.a;
+        }
+        if (const Json* t = find(pbr, "baseColorTexture"))
+            texture(*t, at(p, "baseColorTexture"), TextureSlot::BaseColor, {});
+        setScalar(ParamId::Metallic, number(pbr, "metallicFactor", p, 0, 1, 1.0),
+                  at(p, "metallicFactor"));
+        setScalar(ParamId::Roughness, number(pbr, "roughnessFactor", p, 0, 1, 1.0),
+                  at(p, "roughnessFactor"));
+        if (const Json* t = find(pbr, "metallicRoughnessTexture"))
+            texture(*t, at(p, "metallicRoughnessTexture"), TextureSlot::MetallicRoughness, {});
+    }
+
+    void readAlpha(const Json& m, const std::string& place) {
+        const std::string mode = m.value("alphaMode", std::string("OPAQUE"));
+        if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND")
+            fail(at(place, "alphaMode"), "\"" + mode + "\": expected OPAQUE, MASK or BLEND");
+        const double cutoff = number(m, "alphaCutoff", place, 0, 1e9, 0.5);
+        if (mode == "BLEND")
+            warn(at(place, "alphaMode") + ": BLEND is not mapped; Velvet cuts the base colour "
+                                          "alpha out below 0.5 (no transparency)");
+        if (mode == "MASK" && cutoff != 0.5)
+            warn(at(place, "alphaCutoff") + ": " + formatValue(float(cutoff)) +
+                 " is not mapped; Velvet's cut-out threshold is 0.5");
+        if (mode == "OPAQUE" && baseTextureHasAlpha())
+            warn(at(place, "alphaMode") + ": OPAQUE ignores the base colour texture's alpha; "
+                                          "Velvet cuts out where it is below 0.5");
+        if (m_baseAlpha < 1.0f)
+            warn(at(place, "pbrMetallicRoughness.baseColorFactor") + "[3]: alpha " +
+                 formatValue(m_baseAlpha) + " is not mapped (Velvet has no opacity factor)");
+    }
+
+    /// Whether the base colour image has an alpha channel: an embedded PNG's colour type (grey
+    /// or RGB with alpha, PNG specification 11.2.2), else the file's header.
+    bool baseTextureHasAlpha() const {
+        const std::string& file = m_out->material.texture(TextureSlot::BaseColor).file;
+        if (file.empty())
+            return false;
+        for (const ExportFile& f : m_out->images)
+            if ((m_imageFolder / f.name).lexically_normal().string() == file)
+                return f.bytes.size() > 25 && f.bytes.compare(1, 3, "PNG") == 0 &&
+                       (f.bytes[25] == 4 || f.bytes[25] == 6);
+        ImageInfo info;
+        std::string error;
+        return readImageInfo(file, info, &error) && (info.channels == 2 || info.channels == 4);
+    }
+
+    void readSpecGloss(const Json& sg, const std::string& p, bool hasPbr) {
+        checkKeys(sg, p,
+                  {"diffuseFactor", "diffuseTexture", "specularFactor", "glossinessFactor",
+                   "specularGlossinessTexture", "extras"});
+        if (hasPbr)
+            warn(p + ": converted; the material's pbrMetallicRoughness fallback is not read");
+        SpecGloss f;
+        float alpha = 1.0f;
+        if (const Json* d = find(sg, "diffuseFactor")) {
+            if (!d->is_array() || d->size() != 4)
+                fail(at(p, "diffuseFactor"), "expected an array of 4 numbers");
+            for (size_t i = 0; i < 4; ++i) {
+                const Json& x = (*d)[i];
+                if (!x.is_number() || x.get<double>() < 0 || x.get<double>() > 1)
+                    fail(at(at(p, "diffuseFactor"), i), x.dump() + " is outside [0, 1]");
+                if (i < 3)
+                    f.diffuse[int(i)] = x.get<float>();
+                else
+                    alpha = x.get<float>();
+            }
+        }
+        f.specular = vec3(sg, "specularFactor", p, 0, 1, glm::vec3(1.0f));
+        f.glossiness = float(number(sg, "glossinessFactor", p, 0, 1, 1.0));
+        m_baseAlpha = alpha;
+        Material& mat = m_out->material;
+        const Json* dt = find(sg, "diffuseTexture");
+        const Json* st = find(sg, "specularGlossinessTexture");
+        if (!dt && !st) {
+            const MetalRough mr = specGlossToMetalRough(f);
+            mat.setColor(ParamId::BaseColor, mr.baseColor);
+            mat.setScalar(ParamId::Metallic, mr.metallic);
+            mat.setScalar(ParamId::Roughness, mr.roughness);
+            return;
+        }
+        // Textures: converted texel by texel into a base colour and a metallic-roughness image
+        // (the conversion is not linear, so factors cannot stay apart), factors 1.
+        Image diffuse, specGloss;
+        if (dt)
+            loadImage(*dt, at(p, "diffuseTexture"), diffuse);
+        if (st)
+            loadImage(*st, at(p, "specularGlossinessTexture"), specGloss);
+        Image base, mr;
+        specGlossImages(diffuse, specGloss, f, alpha, base, mr);
+        std::string png, error;
+        struct Converted {
+            const Image* image;
+            const char* label;
+            TextureSlot slot;
+        };
+        const Converted converted[] = {{&base, "baseColor", TextureSlot::BaseColor},
+                                       {&mr, "metallicRoughness", TextureSlot::MetallicRoughness}};
+        for (const auto& [image, label, slot] : converted) {
+            if (!encodeImage(*image, ".png", PixelFormat::UInt8, png, &error))
+                fail(p, "cannot encode the converted " + std::string(label) + " image: " + error);
+            const std::string name = m_stem + "_" + label + "_converted.png";
+            m_out->images.push_back({name, png});
+            TextureRef ref;
+            ref.file = (m_imageFolder / name).lexically_normal().string();
+            mat.setTexture(slot, ref);
+        }
+        mat.setColor(ParamId::BaseColor, glm::vec3(1.0f));
+        mat.setScalar(ParamId::Metallic, 1.0f);
+        mat.setScalar(ParamId::Roughness, 1.0f);
+    }
+
+    /// Decodes the image a spec-gloss textureInfo names (through a temporary file for embedded
+    /// ones: core's image reader takes files).
+    void loadImage(const Json& info, const std::string& place, Image& out) {
+        const size_t t = index(info, "index", place, "textures");
+        const Json& tex = m_doc["textures"][t];
+        const size_t i = index(tex, "source", at("textures", t), "images");
+        const size_t before = m_out->images.size();
+        const std::string file = imageFile(i);
+        std::string error;
+        if (m_out->images.size() > before) { // embedded: decode from a private temporary
+            const ExportFile embedded = m_out->images.back();
+            m_out->images.pop_back();
+            m_imageFiles.erase(i);
+            m_usedNames.erase(embedded.name);
+            const fs::path tmp = fs::temp_directory_path() /
+                                 ("velvet-import-" + std::to_string(::getpid()) + "-" +
+                                  std::to_string(i) + fs::path(embedded.name).extension().string());
+            if (!writeFileAtomically(tmp, embedded.bytes, &error))
+                fail(place, error);
+            const bool ok = readImage(tmp, out, &error);
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            if (!ok)
+                fail(at("images", i), "cannot be decoded: " + error);
+        } else if (!readImage(file, out, &error)) {
+            fail(at("images", i), "cannot be decoded: " + error);
+        }
+        if (number(info, "texCoord", place, 0, 1e6, 0) != 0 || find(info, "extensions"))
+            warn(place + ": texCoord and extensions are not read for converted textures");
+    }
+
+    void readExtension(const std::string& name, const Json& e, const std::string& p) {
+        Material& m = m_out->material;
+        if (name == "KHR_materials_pbrSpecularGlossiness")
+            return; // read first
+        if (name == "KHR_materials_emissive_strength") {
+            checkKeys(e, p, {"emissiveStrength"});
+            setScalar(ParamId::EmissiveStrength, number(e, "emissiveStrength", p, 0, 1e12, 1.0),
+                      at(p, "emissiveStrength"));
+        } else if (name == "KHR_materials_ior") {
+            checkKeys(e, p, {"ior"});
+            const double ior = number(e, "ior", p, 0, 1e12, 1.5);
+            if (ior != 0 && ior < 1)
+                fail(at(p, "ior"), std::to_string(ior) + ": glTF allows 0 or at least 1");
+            if (ior == 0)
+                warn(at(p, "ior") + ": 0 (an infinite IOR, full reflection) is not mapped; "
+                                    "Velvet's IOR is at most 3");
+            setScalar(ParamId::Ior, ior == 0 ? 3.0 : ior, at(p, "ior"));
+        } else if (name == "KHR_materials_specular") {
+            checkKeys(e, p,
+                      {"specularFactor", "specularTexture", "specularColorFactor",
+                       "specularColorTexture"});
+            setScalar(ParamId::SpecularWeight, number(e, "specularFactor", p, 0, 1, 1.0),
+                      at(p, "specularFactor"));
+            setColor(ParamId::SpecularColor,
+                     vec3(e, "specularColorFactor", p, 0, 1e12, glm::vec3(1.0f)),
+                     at(p, "specularColorFactor"));
+            if (const Json* t = find(e, "specularTexture"))
+                texture(*t, at(p, "specularTexture"), TextureSlot::Specular, {});
+            if (const Json* t = find(e, "specularColorTexture"))
+                texture(*t, at(p, "specularColorTexture"), TextureSlot::SpecularColor, {});
+        } else if (name == "KHR_materials_clearcoat") {
+            checkKeys(e, p,
+                      {"clearcoatFactor", "clearcoatTexture", "clearcoatRoughnessFactor",
+                       "clearcoatRoughnessTexture", "clearcoatNormalTexture"});
+            setScalar(ParamId::ClearcoatWeight, number(e, "clearcoatFactor", p, 0, 1, 0.0),
+                      at(p, "clearcoatFactor"));
+            setScalar(ParamId::ClearcoatRoughness,
+                      number(e, "clearcoatRoughnessFactor", p, 0, 1, 0.0),
+                      at(p, "clearcoatRoughnessFactor"));
+            if (const Json* t = find(e, "clearcoatTexture"))
+                texture(*t, at(p, "clearcoatTexture"), TextureSlot::Clearcoat, {});
+            if (const Json* t = find(e, "clearcoatRoughnessTexture"))
+                texture(*t, at(p, "clearcoatRoughnessTexture"), TextureSlot::ClearcoatRoughness,
+                        {});
+            if (const Json* t = find(e, "clearcoatNormalTexture")) {
+                const std::string tp = at(p, "clearcoatNormalTexture");
+                texture(*t, tp, TextureSlot::ClearcoatNormal, {"scale"});
+                setScalar(ParamId::ClearcoatNormalScale, number(*t, "scale", tp, -1e9, 1e9, 1.0),
+                          at(tp, "scale"));
+            }
+        } else if (name == "KHR_materials_sheen") {
+            checkKeys(e, p,
+                      {"sheenColorFactor", "sheenColorTexture", "sheenRoughnessFactor",
+                       "sheenRoughnessTexture"});
+            // glTF's sheen has no weight: Velvet's weight is the colour's largest channel and
+            // its colour the factor over it, so weight x colour is the file's factor exactly.
+            const glm::vec3 c = vec3(e, "sheenColorFactor", p, 0, 1, glm::vec3(0.0f));
+            const float w = std::max({c.r, c.g, c.b});
+            m.setScalar(ParamId::SheenWeight, w);
+            if (w > 0.0f)
+                m.setColor(ParamId::SheenColor, c / w);
+            setScalar(ParamId::SheenRoughness, number(e, "sheenRoughnessFactor", p, 0, 1, 0.0),
+                      at(p, "sheenRoughnessFactor"));
+            if (const Json* t = find(e, "sheenColorTexture"))
+                texture(*t, at(p, "sheenColorTexture"), TextureSlot::SheenColor, {});
+            if (const Json* t = find(e, "sheenRoughnessTexture"))
+                texture(*t, at(p, "sheenRoughnessTexture"), TextureSlot::SheenRoughness, {});
+        } else {
+            // KHR_materials_anisotropy, _transmission, _volume, _iridescence, _unlit, …: Velvet
+            // has no counterpart (yet); the material is imported without it.
+            warn(p + ": " + name +
+                 " is not mapped (Velvet has no counterpart); imported without "
+                 "it");
+        }
+    }
+
+    fs::path m_file, m_imageFolder;
+    std::string m_stem;
+    Json m_doc;
+    std::string m_bin;
+    bool m_hasBin = false;
+    std::vector<std::uintmax_t> m_bufferSizes;
+    std::map<size_t, std::string> m_loaded;
+    std::map<size_t, std::string> m_imageFiles;
+    std::set<std::string> m_usedNames;
+    ImportedMaterial* m_out = nullptr;
+    float m_baseAlpha = 1.0f;
+
+public:
+    std::vector<std::string> m_warnings;
+};
+
+} // namespace
+
+bool readGltfMaterialNames(const fs::path& file, std::vector<std::string>& names,
+                           ImportProblem& problem) {
+    try {
+        Reader r(file, {}, "x");
+        r.load();
+        names = r.materialNames();
+        return true;
+    } catch (const Failure& f) {
+        problem = f.problem;
+        return false;
+    }
+}
+
+bool importGltfMaterial(const fs::path& file, std::string_view select, const fs::path& imageFolder,
+                        std::string_view imageStem, ImportedMaterial& out, ImportProblem& problem) {
+    out = {};
+    try {
+        Reader r(file, imageFolder, std::string(imageStem));
+        r.load();
+        size_t index = 0;
+        if (!selectMaterial(r.materialNames(), select, index, problem))
+            return false;
+        r.read(index, out);
+        // Warnings in the order found: the container's first, then the material's.
+        out.warnings.insert(out.warnings.begin(), r.m_warnings.begin(), r.m_warnings.end());
+        return true;
+    } catch (const Failure& f) {
+        problem = f.problem;
+        return false;
+    } catch (const Json::exception& e) { // a type the checks above did not foresee
+        problem = {ImportProblem::Kind::Malformed, "", std::string("unexpected JSON: ") + e.what()};
+        return false;
+    }
+}
+
+} // namespace velvet
