@@ -90,7 +90,7 @@ struct Subcommand {
     std::string_view summary;
     int (*run)(const std::vector<std::string>&);
 };
-const std::array<Subcommand, 9> kSubcommands{{
+const std::array<Subcommand, 11> kSubcommands{{
     {"render", "render a scene or material preset to an image, headless", runRender},
     {"validate", "check presets and scenes, printing every problem", runValidate},
     {"info", "version, headless OpenGL and dependency versions", runInfo},
@@ -100,6 +100,8 @@ const std::array<Subcommand, 9> kSubcommands{{
     {"unpack", "split a packed texture back into one grey image per map", runUnpack},
     {"export", "export materials as glTF 2.0 (.glb/.gltf) or standalone presets", runExport},
     {"reference", "path trace the same frame on the CPU (ground truth, .exr)", runReference},
+    {"compare", "per-pixel CIEDE2000 between two images, with a heat map", runCompare},
+    {"thumbnails", "render a thumbnail of every preset and scene in a folder", runThumbnails},
 }};
 /// Left out of --help: `import-mesh IN OUT` is the child process of the crash-isolated mesh
 /// import (core/mesh_import.h); `post-catalogue` prints the effect table of
