@@ -46,8 +46,7 @@ int parseBatchSettings(const Arguments& args, const char* command, BatchSettings
     return Ok;
 }
 
-std::vector<std::string> forwardOptions(const Arguments& args,
-                                        const std::vector<OptionSpec>& specs,
+std::vector<std::string> forwardOptions(const Arguments& args, const std::vector<OptionSpec>& specs,
                                         const std::vector<std::string_view>& skip) {
     std::vector<std::string> words;
     for (const auto& [name, value] : args.options) {
@@ -214,8 +213,7 @@ int runBatch(const std::vector<BatchJob>& jobs, int parallel, const char* comman
                 why = std::string("killed by signal ") + std::to_string(WTERMSIG(status)) + " (" +
                       strsignal(WTERMSIG(status)) + ")";
             else if (!ok)
-                why = "exit " + std::to_string(WEXITSTATUS(status)) + ": " +
-                      lastLine(r.stderrText);
+                why = "exit " + std::to_string(WEXITSTATUS(status)) + ": " + lastLine(r.stderrText);
             finish(r, ok, why);
             it = running.erase(it);
         }

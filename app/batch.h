@@ -28,8 +28,8 @@ inline constexpr OptionSpec kShardOption{
 
 /// --jobs and --shard of a command line.
 struct BatchSettings {
-    int jobs = 1;  ///< parallel workers: --jobs, else the core count
-    Shard shard;   ///< --shard, else 0/1 (everything)
+    int jobs = 1;       ///< parallel workers: --jobs, else the core count
+    Shard shard;        ///< --shard, else 0/1 (everything)
     bool asked = false; ///< --jobs or --shard was given
 };
 
@@ -45,8 +45,7 @@ struct BatchJob {
 
 /// The options of @p args as command-line words again (`--name=value`, `--name`), leaving out
 /// those named in @p skip: what a child gets besides its input and output.
-std::vector<std::string> forwardOptions(const Arguments& args,
-                                        const std::vector<OptionSpec>& specs,
+std::vector<std::string> forwardOptions(const Arguments& args, const std::vector<OptionSpec>& specs,
                                         const std::vector<std::string_view>& skip);
 
 /// Runs @p jobs, at most @p parallel at a time, as children of this executable. Each child's

@@ -56,7 +56,8 @@ int renderEach(const std::vector<std::string>& inputs, const fs::path& folder,
     std::vector<BatchJob> batch;
     for (const std::string& file : inputs) {
         BatchJob job{file, {"render", file, "-o"}};
-        job.args.push_back((folder / (sanitizeFileStem(fs::path(file).stem().string()) + ext)).string());
+        job.args.push_back(
+            (folder / (sanitizeFileStem(fs::path(file).stem().string()) + ext)).string());
         job.args.insert(job.args.end(), extra.begin(), extra.end());
         batch.push_back(std::move(job));
     }
@@ -82,7 +83,8 @@ int runRenderBatch(const Arguments& args, const std::vector<OptionSpec>& specs) 
     const fs::path out = args.value("output");
     if (out.extension() == ".png" || out.extension() == ".exr")
         return usage("render", "with several FILEs (or --jobs, --shard, --format) -o names a "
-                               "folder, got '" + out.string() + "'");
+                               "folder, got '" +
+                                   out.string() + "'");
     if (const int code = checkDistinctStems(args.positional, "render"); code != Ok)
         return code;
     const auto extra = forwardOptions(args, specs, {"output", "jobs", "shard", "format"});

@@ -135,9 +135,8 @@ int runTextureSetExport(const Arguments& args) {
             anyFailed = true;
             continue;
         }
-        const ExportOutcome outcome =
-            render::exportTextureSet(scene->material, folder, fs::path(file).stem().string(),
-                                     options, args.has("force"));
+        const ExportOutcome outcome = render::exportTextureSet(
+            scene->material, folder, fs::path(file).stem().string(), options, args.has("force"));
         for (const std::string& w : outcome.warnings)
             std::cerr << "warning: " << file << ": " << w << "\n";
         if (!outcome.ok()) {

@@ -5,10 +5,10 @@
 #include "core/tone_curves.h"
 
 #include <algorithm>
-#include <glm/common.hpp>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <glm/common.hpp>
 #include <string_view>
 
 namespace velvet {
@@ -20,14 +20,13 @@ struct Glyph {
     std::array<unsigned char, 5> rows;
 };
 constexpr Glyph kGlyphs[] = {
-    {'0', {7, 5, 5, 5, 7}}, {'1', {2, 6, 2, 2, 7}}, {'2', {7, 1, 7, 4, 7}},
-    {'3', {7, 1, 7, 1, 7}}, {'4', {5, 5, 7, 1, 1}}, {'5', {7, 4, 7, 1, 7}},
-    {'6', {7, 4, 7, 5, 7}}, {'7', {7, 1, 1, 1, 1}}, {'8', {7, 5, 7, 5, 7}},
-    {'9', {7, 5, 7, 1, 7}}, {'.', {0, 0, 0, 0, 2}}, {'>', {4, 2, 1, 2, 4}},
+    {'0', {7, 5, 5, 5, 7}}, {'1', {2, 6, 2, 2, 7}}, {'2', {7, 1, 7, 4, 7}}, {'3', {7, 1, 7, 1, 7}},
+    {'4', {5, 5, 7, 1, 1}}, {'5', {7, 4, 7, 1, 7}}, {'6', {7, 4, 7, 5, 7}}, {'7', {7, 1, 1, 1, 1}},
+    {'8', {7, 5, 7, 5, 7}}, {'9', {7, 5, 7, 1, 7}}, {'.', {0, 0, 0, 0, 2}}, {'>', {4, 2, 1, 2, 4}},
     {'=', {0, 7, 0, 7, 0}}, {'E', {7, 4, 6, 4, 7}}, {'d', {1, 1, 7, 5, 7}},
 };
-constexpr int kGlyphScale = 2;                         ///< pixels per glyph pixel
-constexpr int kGlyphAdvance = 4 * kGlyphScale;         ///< 3 columns + 1 of spacing
+constexpr int kGlyphScale = 2;                 ///< pixels per glyph pixel
+constexpr int kGlyphAdvance = 4 * kGlyphScale; ///< 3 columns + 1 of spacing
 constexpr int kMargin = 6, kBarHeight = 12, kTickHeight = 4;
 constexpr int kLegendHeight = kMargin + kBarHeight + kTickHeight + 2 + 5 * kGlyphScale + kMargin;
 constexpr int kLegendMinWidth = 220;
@@ -101,8 +100,7 @@ bool compareImages(const Image& a, const Image& b, Image& deltaE, DeltaEStats& s
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
             const glm::vec4 pa = a.rgba(x, y), pb = b.rgba(x, y);
-            *deltaE.at(x, y) =
-                float(ciede2000(srgbToLab(glm::vec3(pa)), srgbToLab(glm::vec3(pb))));
+            *deltaE.at(x, y) = float(ciede2000(srgbToLab(glm::vec3(pa)), srgbToLab(glm::vec3(pb))));
         }
     stats = deltaEStats(deltaE);
     return true;

@@ -6,7 +6,6 @@
 #include "core/image.h"
 
 #include <glm/vec3.hpp>
-
 #include <string>
 
 namespace velvet {

@@ -28,13 +28,25 @@ struct TargetInfo {
 // Normal maps: Unreal expects DirectX (+Y down, its importer's "Flip Green Channel" for OpenGL
 // maps); Unity, Godot and glTF expect OpenGL (+Y up; Unity's manual: "Unity uses Y+ normal maps").
 constexpr TargetInfo kTargets[] = {
-    {"unreal", "Unreal Engine (ORM, DirectX normals)", NormalConvention::DirectX, "T_",
+    {"unreal",
+     "Unreal Engine (ORM, DirectX normals)",
+     NormalConvention::DirectX,
+     "T_",
      {"_D", "_N", "_ORM", "_E"}},
-    {"unity-hdrp", "Unity HDRP (mask map MODS, OpenGL normals)", NormalConvention::OpenGl, "",
+    {"unity-hdrp",
+     "Unity HDRP (mask map MODS, OpenGL normals)",
+     NormalConvention::OpenGl,
+     "",
      {"_BaseMap", "_Normal", "_MaskMap", "_Emission"}},
-    {"godot", "Godot (ORMMaterial3D, OpenGL normals)", NormalConvention::OpenGl, "",
+    {"godot",
+     "Godot (ORMMaterial3D, OpenGL normals)",
+     NormalConvention::OpenGl,
+     "",
      {"_albedo", "_normal", "_orm", "_emission"}},
-    {"gltf", "glTF 2.0 (ORM, OpenGL normals)", NormalConvention::OpenGl, "",
+    {"gltf",
+     "glTF 2.0 (ORM, OpenGL normals)",
+     NormalConvention::OpenGl,
+     "",
      {"_baseColor", "_normal", "_orm", "_emissive"}},
 };
 constexpr std::string_view kFileTypes[] = {"png", "tga", "exr"};
@@ -133,19 +145,19 @@ std::vector<TextureSetFile> planTextureSet(const TextureSetOptions& o, std::stri
         return std::string(t.prefix) + std::string(base) + std::string(t.suffix[size_t(i)]) + ext;
     };
     std::vector<TextureSetFile> files;
-    files.push_back({name(0), "baseColor", colour,
+    files.push_back({name(0),
+                     "baseColor",
+                     colour,
                      {"baseColor.r", "baseColor.g", "baseColor.b", hasAlpha ? "alpha" : ""}});
     const NormalConvention nc = o.normal.value_or(t.normal);
-    files.push_back({name(1),
-                     "normal",
-                     "linear",
-                     {"normal.x", nc == NormalConvention::DirectX ? "-normal.y" : "normal.y",
-                      "normal.z", ""}});
+    files.push_back(
+        {name(1),
+         "normal",
+         "linear",
+         {"normal.x", nc == NormalConvention::DirectX ? "-normal.y" : "normal.y", "normal.z", ""}});
     if (o.target == TextureSetTarget::UnityHdrp)
-        files.push_back({name(2),
-                         "maskMap",
-                         "linear",
-                         {"metallic", "occlusion", "detailMask", "smoothness"}});
+        files.push_back(
+            {name(2), "maskMap", "linear", {"metallic", "occlusion", "detailMask", "smoothness"}});
     else
         files.push_back({name(2),
                          "occlusionRoughnessMetallic",
@@ -157,9 +169,8 @@ std::vector<TextureSetFile> planTextureSet(const TextureSetOptions& o, std::stri
     return files;
 }
 
-bool buildTextureSet(const MaterialMaps& maps, std::string_view base,
-                     std::string_view materialName, const TextureSetOptions& o, BuiltExport& out,
-                     std::string* error) {
+bool buildTextureSet(const MaterialMaps& maps, std::string_view base, std::string_view materialName,
+                     const TextureSetOptions& o, BuiltExport& out, std::string* error) {
     auto fail = [&](const std::string& why) {
         if (error)
             *error = why;
@@ -221,8 +232,9 @@ bool buildTextureSet(const MaterialMaps& maps, std::string_view base,
     // HDRP's detail mask: 1 (detail maps apply everywhere, HDRP's white default; a material
     // without detail maps ignores it).
     const PackLayout layout = o.target == TextureSetTarget::UnityHdrp ? PackLayout::HdrpMaskMap
-                              : o.target == TextureSetTarget::Unreal  ? PackLayout::UnrealOrm
-                                                                      : PackLayout::GltfMetallicRoughness;
+                              : o.target == TextureSetTarget::Unreal
+                                  ? PackLayout::UnrealOrm
+                                  : PackLayout::GltfMetallicRoughness;
     Image packed;
     std::string why;
     if (!packChannels(layout, channels, packed, &why))

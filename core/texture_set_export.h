@@ -56,9 +56,10 @@ std::string checkTextureSetOptions(const TextureSetOptions& options);
 
 /// One file of a set: its name, what it holds and how, as the manifest lists it.
 struct TextureSetFile {
-    std::string name;       ///< "T_Silk_ORM.png"
-    std::string role;       ///< "baseColor", "normal", "occlusionRoughnessMetallic", "maskMap", "emissive"
-    std::string colorSpace; ///< "srgb" (colour, sRGB-encoded) or "linear" (data, or colour in EXR)
+    std::string name; ///< "T_Silk_ORM.png"
+    std::string
+        role; ///< "baseColor", "normal", "occlusionRoughnessMetallic", "maskMap", "emissive"
+    std::string colorSpace;  ///< "srgb" (colour, sRGB-encoded) or "linear" (data, or colour in EXR)
     std::string channels[4]; ///< what R, G, B, A hold ("" for a channel the file does not have)
 };
 

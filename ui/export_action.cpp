@@ -79,10 +79,10 @@ ExportOutcome exportTextureSetWithProgress(const Material& material, const QFile
     TextureSetOptions options;
     options.target = target;
     const std::string folder = info.absolutePath().toStdString();
-    auto job = std::async(std::launch::async, [material, folder, base = base.toStdString(),
-                                               options] {
-        return render::exportTextureSet(material, folder, base, options, /*force=*/true);
-    });
+    auto job =
+        std::async(std::launch::async, [material, folder, base = base.toStdString(), options] {
+            return render::exportTextureSet(material, folder, base, options, /*force=*/true);
+        });
     QProgressDialog progress(tr("Baking the %1 texture set…").arg(base), QString(), 0, 0,
                              QApplication::activeWindow());
     progress.setWindowModality(Qt::ApplicationModal);

@@ -84,8 +84,8 @@ private slots:
         atlas.write("{}");
         atlas.close();
         const QString a = m_tmp.filePath("thumbs0"), b = m_tmp.filePath("thumbs1");
-        const Result r0 = runVelvet({"thumbnails", lib, "-o", a, "--size", "16", "--shard",
-                                     "0/2", "--jobs", "2"});
+        const Result r0 = runVelvet(
+            {"thumbnails", lib, "-o", a, "--size", "16", "--shard", "0/2", "--jobs", "2"});
         QVERIFY2(r0.exitCode == 0, qPrintable(r0.err));
         const Result r1 = runVelvet({"thumbnails", lib, "-o", b, "--size", "16", "--shard", "1/2"});
         QVERIFY2(r1.exitCode == 0, qPrintable(r1.err));
@@ -113,9 +113,9 @@ private slots:
         QCOMPARE(runVelvet({"render", preset("gold.json"), "-o", "x", "--shard", "2/2"}).exitCode,
                  1);
         QCOMPARE(runVelvet({"thumbnails", m_tmp.path(), "-o", "x", "--shard", "x"}).exitCode, 1);
-        QCOMPARE(runVelvet({"render", preset("gold.json"), preset("silk.json"), "-o", "x.png"})
-                     .exitCode,
-                 1);
+        QCOMPARE(
+            runVelvet({"render", preset("gold.json"), preset("silk.json"), "-o", "x.png"}).exitCode,
+            1);
         QCOMPARE(runVelvet({"thumbnails", m_tmp.filePath("nowhere"), "-o", "x"}).exitCode, 2);
     }
 };

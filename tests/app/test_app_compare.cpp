@@ -30,8 +30,9 @@ void write(const QString& file, const velvet::Image& img, velvet::PixelFormat f)
 }
 
 double statistic(const QString& out, const QString& name) {
-    const auto m = QRegularExpression("^" + name + R"( ([0-9.]+)$)", QRegularExpression::MultilineOption)
-                       .match(out);
+    const auto m =
+        QRegularExpression("^" + name + R"( ([0-9.]+)$)", QRegularExpression::MultilineOption)
+            .match(out);
     return m.hasMatch() ? m.captured(1).toDouble() : -1.0;
 }
 
@@ -51,9 +52,9 @@ private slots:
             std::copy(&c2.x, &c2.x + 3, b.at(x, 0)); // one row of 10 differs: 10 % of pixels
         write(m_tmp.filePath("b.png"), b, velvet::PixelFormat::UInt8);
 
-        Result r = velvet::test::runVelvet({"compare", m_tmp.filePath("a.png"),
-                                            m_tmp.filePath("a.png"), "-o",
-                                            m_tmp.filePath("same.png")});
+        Result r =
+            velvet::test::runVelvet({"compare", m_tmp.filePath("a.png"), m_tmp.filePath("a.png"),
+                                     "-o", m_tmp.filePath("same.png")});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         QCOMPARE(statistic(r.out, "mean"), 0.0);
         QCOMPARE(statistic(r.out, "max"), 0.0);
@@ -100,7 +101,8 @@ private slots:
             {"compare", m_tmp.filePath("small.png"), m_tmp.filePath("big.png")});
         QCOMPARE(r.exitCode, 2);
         QVERIFY2(r.err.contains("3x3") && r.err.contains("4x3"), qPrintable(r.err));
-        r = velvet::test::runVelvet({"compare", m_tmp.filePath("small.png"), m_tmp.filePath("no.png")});
+        r = velvet::test::runVelvet(
+            {"compare", m_tmp.filePath("small.png"), m_tmp.filePath("no.png")});
         QCOMPARE(r.exitCode, 2);
         QVERIFY(r.err.contains("no.png"));
         QCOMPARE(velvet::test::runVelvet({"compare", m_tmp.filePath("small.png")}).exitCode, 1);

@@ -152,8 +152,8 @@ private slots:
 
     void existingSetIsRefusedUnlessForce() {
         const QString out = m_tmp.filePath("again");
-        const QStringList args{"export", m_preset, "-f", "texture-set", "--target", "godot",
-                               "--size", "4", "-o", out};
+        const QStringList args{"export", m_preset, "-f", "texture-set", "--target",
+                               "godot",  "--size", "4",  "-o",          out};
         QCOMPARE(runVelvet(args).exitCode, 0);
         const QByteArray before = [&] {
             QFile f(out + "/set_test_orm.png");
@@ -175,8 +175,8 @@ private slots:
         const QString evil = m_tmp.filePath("..%2F..%2Fevil.json");
         QVERIFY(QFile::copy(m_preset, evil));
         const QString out = m_tmp.filePath("safe");
-        const Result r = runVelvet({"export", evil, "-f", "texture-set", "--target", "gltf",
-                                    "--size", "2", "-o", out});
+        const Result r = runVelvet(
+            {"export", evil, "-f", "texture-set", "--target", "gltf", "--size", "2", "-o", out});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         for (const QString& f : QDir(out).entryList(QDir::Files))
             QVERIFY2(!f.contains('/') && !f.startsWith('.'), qPrintable(f));
@@ -185,18 +185,20 @@ private slots:
 
     void usageErrors() {
         const QString out = m_tmp.filePath("u");
-        for (const QStringList& extra :
-             {QStringList{}, {"--target", "cryengine"}, {"--target", "unreal", "--bits", "12"},
-              {"--target", "unreal", "--image", "tga", "--bits", "16"},
-              {"--target", "unreal", "--size", "0"}, {"--target", "unreal", "--normal", "up"},
-              {"--target", "unreal", "--mesh", "cube"}}) {
+        for (const QStringList& extra : {QStringList{},
+                                         {"--target", "cryengine"},
+                                         {"--target", "unreal", "--bits", "12"},
+                                         {"--target", "unreal", "--image", "tga", "--bits", "16"},
+                                         {"--target", "unreal", "--size", "0"},
+                                         {"--target", "unreal", "--normal", "up"},
+                                         {"--target", "unreal", "--mesh", "cube"}}) {
             const Result r =
                 runVelvet(QStringList{"export", m_preset, "-f", "texture-set", "-o", out} + extra);
             QVERIFY2(r.exitCode == 1, qPrintable(extra.join(' ') + ": " + r.err));
         }
-        QCOMPARE(runVelvet({"export", m_preset, "-f", "glb", "--target", "unreal", "-o", out})
-                     .exitCode,
-                 1);
+        QCOMPARE(
+            runVelvet({"export", m_preset, "-f", "glb", "--target", "unreal", "-o", out}).exitCode,
+            1);
     }
 };
 

@@ -36,7 +36,8 @@ MaterialMaps knownMaps(bool alpha = true, bool emission = true) {
         for (int x = 0; x < kW; ++x) {
             const float t = float(y * kW + x) / float(kW * kH - 1);
             float* b = m.baseColor.at(x, y);
-            b[0] = t, b[1] = 1.0f - t, b[2] = 0.5f * t, b[3] = alpha && x == 1 && y == 2 ? 0.25f : 1;
+            b[0] = t, b[1] = 1.0f - t, b[2] = 0.5f * t,
+            b[3] = alpha && x == 1 && y == 2 ? 0.25f : 1;
             const glm::vec3 n = glm::normalize(glm::vec3(0.3f * t, 0.6f - t, 1.0f));
             std::copy(&n.x, &n.x + 3, m.normal.at(x, y));
             float* orm = m.orm.at(x, y);
@@ -50,7 +51,7 @@ MaterialMaps knownMaps(bool alpha = true, bool emission = true) {
 struct Written {
     QMap<QString, Image> images; ///< by file name
     QJsonObject manifest;
-    QStringList names;           ///< in the order written
+    QStringList names; ///< in the order written
 };
 
 Written build(const MaterialMaps& maps, const TextureSetOptions& o, const QString& dir) {
@@ -136,8 +137,10 @@ private slots:
             QCOMPARE(w.manifest["alphaMode"].toString(), QStringLiteral("mask"));
             QCOMPARE(w.manifest["files"].toArray().size(), 4);
             QCOMPARE(entry(w.manifest, c.packedRole)["file"].toString(), c.files[2]);
-            QCOMPARE(entry(w.manifest, "baseColor")["colorSpace"].toString(), QStringLiteral("srgb"));
-            QCOMPARE(entry(w.manifest, "normal")["colorSpace"].toString(), QStringLiteral("linear"));
+            QCOMPARE(entry(w.manifest, "baseColor")["colorSpace"].toString(),
+                     QStringLiteral("srgb"));
+            QCOMPARE(entry(w.manifest, "normal")["colorSpace"].toString(),
+                     QStringLiteral("linear"));
         }
         // No emission and no alpha: no emissive file, an RGB base colour, alphaMode opaque.
         QTemporaryDir dir;

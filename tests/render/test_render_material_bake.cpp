@@ -124,7 +124,8 @@ private slots:
         for (int y = 0; y < kSide; ++y)
             for (int x = 0; x < kSide; ++x) {
                 const float* orm = maps.orm.at(x, y);
-                QVERIFY(near(orm[0], 1.0f + 0.5f * (texel(x, y, 0) - 1.0f), kHalf, "occlusion", x, y));
+                QVERIFY(
+                    near(orm[0], 1.0f + 0.5f * (texel(x, y, 0) - 1.0f), kHalf, "occlusion", x, y));
                 QVERIFY(near(orm[1], 0.9f * texel(x, y, 1), kHalf, "roughness", x, y));
                 QVERIFY(near(orm[2], 0.7f * texel(x, y, 2), kHalf, "metallic", x, y));
                 const float* bc = maps.baseColor.at(x, y);
@@ -163,8 +164,8 @@ private slots:
         QVERIFY2(render::bakeMaterialMaps(m, kSize, 8, maps, nullptr, &error), error.c_str());
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < kSize; ++x) {
-                QVERIFY(near(maps.orm.at(x, y)[1], (float(x) + 0.5f) / kSize, 1e-5f, "roughness",
-                             x, y));
+                QVERIFY(near(maps.orm.at(x, y)[1], (float(x) + 0.5f) / kSize, 1e-5f, "roughness", x,
+                             y));
                 QVERIFY(near(maps.orm.at(x, y)[2], 1.0f, 0.0f, "metallic", x, y));
                 QVERIFY(near(maps.orm.at(x, y)[0], 1.0f, 0.0f, "occlusion", x, y));
                 QVERIFY(near(maps.baseColor.at(x, y)[1], 0.5f, 1e-6f, "base colour", x, y));
