@@ -98,7 +98,7 @@ const std::array<Subcommand, 11> kSubcommands{{
     {"bench", "measure renderer variants side by side (medians, ratios; --json)", runBench},
     {"pack", "pack grey material maps into one texture (glTF, Unreal ORM, HDRP mask)", runPack},
     {"unpack", "split a packed texture back into one grey image per map", runUnpack},
-    {"export", "export materials as glTF 2.0 (.glb/.gltf) or standalone presets", runExport},
+    {"export", "export materials: glTF 2.0, MaterialX, engine texture sets, presets", runExport},
     {"reference", "path trace the same frame on the CPU (ground truth, .exr)", runReference},
     {"compare", "per-pixel CIEDE2000 between two images, with a heat map", runCompare},
     {"thumbnails", "render a thumbnail of every preset and scene in a folder", runThumbnails},
@@ -130,7 +130,7 @@ std::string topLevelHelp() {
          "Commands:\n";
     for (const auto& c : kSubcommands) {
         std::string name(c.name);
-        name.resize(10, ' ');
+        name.resize(12, ' '); // the longest name ("thumbnails") and two spaces
         s << "  " << name << c.summary << "\n";
     }
     s << "\nEditor options:\n"
