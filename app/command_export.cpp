@@ -55,11 +55,13 @@ const char* kHelp =
     "OUT/NAME.glb (or .gltf with NAME.bin and NAME_<map>.png, .mtlx with NAME_<map>.png, or\n"
     "NAME.json), NAME being FILE's name reduced to letters,\n"
     "digits, '-' and '_', so nothing is written outside OUT. What glTF cannot carry (BRDF term\n"
-    "choices, the node graph: baking it on the GPU is not implemented yet) is printed as a\n"
+    "choices; the node graph, which only texture sets bake so far) is printed as a\n"
     "warning. Files are written atomically; an existing file is refused unless --force.\n"
     "-f texture-set bakes the material on the GPU (its texture slots, atlas regions and node\n"
     "graph; constants give flat maps) into the maps ENGINE reads, with its names, channel\n"
     "packing and normal-map convention, and OUT/NAME_texture_set.json naming each file's role.\n"
+    "Several FILEs (or --jobs, --shard) are exported in parallel child processes, --jobs at a\n"
+    "time, with progress on stderr (docs/batch.md).\n"
     "Exit codes: 0 success, 1 usage error, 2 bad input or existing output (for any FILE; the\n"
     "others are still exported).\n\n";
 
