@@ -13,6 +13,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 #include <cmath>
+#include <glm/geometric.hpp>
 
 using namespace velvet;
 
