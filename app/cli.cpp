@@ -90,7 +90,7 @@ struct Subcommand {
     std::string_view summary;
     int (*run)(const std::vector<std::string>&);
 };
-const std::array<Subcommand, 10> kSubcommands{{
+const std::array<Subcommand, 12> kSubcommands{{
     {"render", "render a scene or material preset to an image, headless", runRender},
     {"validate", "check presets and scenes, printing every problem", runValidate},
     {"info", "version, headless OpenGL and dependency versions", runInfo},
@@ -98,9 +98,11 @@ const std::array<Subcommand, 10> kSubcommands{{
     {"bench", "measure renderer variants side by side (medians, ratios; --json)", runBench},
     {"pack", "pack grey material maps into one texture (glTF, Unreal ORM, HDRP mask)", runPack},
     {"unpack", "split a packed texture back into one grey image per map", runUnpack},
-    {"export", "export materials as glTF 2.0 (.glb/.gltf) or standalone presets", runExport},
+    {"export", "export materials: glTF 2.0, MaterialX, engine texture sets, presets", runExport},
     {"import", "import a glTF 2.0 or MaterialX material as a preset", runImport},
     {"reference", "path trace the same frame on the CPU (ground truth, .exr)", runReference},
+    {"compare", "per-pixel CIEDE2000 between two images, with a heat map", runCompare},
+    {"thumbnails", "render a thumbnail of every preset and scene in a folder", runThumbnails},
 }};
 /// Left out of --help: `import-mesh IN OUT` is the child process of the crash-isolated mesh
 /// import (core/mesh_import.h); `post-catalogue` prints the effect table of
@@ -129,7 +131,7 @@ std::string topLevelHelp() {
          "Commands:\n";
     for (const auto& c : kSubcommands) {
         std::string name(c.name);
-        name.resize(10, ' ');
+        name.resize(12, ' '); // the longest name ("thumbnails") and two spaces
         s << "  " << name << c.summary << "\n";
     }
     s << "\nEditor options:\n"

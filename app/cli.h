@@ -57,6 +57,8 @@ int runUnpack(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
 int runImport(const std::vector<std::string>& args);
 int runReference(const std::vector<std::string>& args);
+int runCompare(const std::vector<std::string>& args);
+int runThumbnails(const std::vector<std::string>& args);
 /// Hidden: the child process of the crash-isolated mesh import (command_import_mesh.cpp).
 int runImportMesh(const std::vector<std::string>& args);
 /// Hidden: prints the post-effect catalogue as Markdown for docs/post-effects.md

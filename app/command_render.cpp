@@ -1,4 +1,6 @@
 // velvet render [FILE] -o OUT [--size WxH] …: headless rendering through the real deferred path.
+#include "app/batch.h"
+#include "app/batch_commands.h"
 #include "app/cli.h"
 #include "app/load_document.h"
 #include "core/color_management.h"
@@ -45,6 +47,10 @@ const std::vector<OptionSpec> kOptions{
      "image"},
     {"chain", 0, true, "CHAIN.json",
      "post-effect chain preset (resources/post-chains/) replacing the scene's chain"},
+    // Batches (app/batch_commands.h, docs/batch.md): several FILEs, -o a folder.
+    {"format", 0, true, "png|exr", "batch: the images' type in the -o folder (default png)"},
+    kJobsOption,
+    kShardOption,
     {"help", 'h', false, "", "this text"},
 };
 
@@ -57,7 +63,10 @@ const char* kHelp =
     "the config's default display) from the config named by $OCIO or the shipped one. A\n"
     "tone-mapping --view (ACES, AgX, Raw) or a --look instead applies OCIO's whole display\n"
     "transform (exposure, look, display/view); a missing --view is the display's default view.\n"
-    "EXR output is scene-linear either way.\n\n";
+    "EXR output is scene-linear either way.\n\n"
+    "Batch: with several FILEs (or --jobs, --shard), -o names a folder and each FILE is rendered\n"
+    "as OUT/STEM.png (--format exr: .exr) in its own process, --jobs at a time; progress on\n"
+    "stderr; a failed FILE is reported and the others go on (exit 2). docs/batch.md.\n\n";
 
 template <typename Enum, size_t N>
 bool parseName(const std::string& text, const std::pair<const char*, Enum> (&table)[N], Enum& out) {
@@ -239,6 +248,8 @@ int runRender(const std::vector<std::string>& argv) {
     }
     if (!args->has("output"))
         return usage("missing -o OUT");
+    if (isRenderBatch(*args)) // several FILEs, --jobs or --shard: one child process per FILE
+        return runRenderBatch(*args, kOptions);
     if (args->positional.size() > 1)
         return usage("one FILE at most, got " + std::to_string(args->positional.size()));
 

@@ -2,6 +2,8 @@
 
 #include "core/material_export.h"
 #include "core/mtlx_export.h"
+#include "core/texture_set_export.h"
+#include "render/material_bake.h"
 #include "ui/document_controller.h"
 #include "ui/log_panel.h"
 
@@ -11,13 +13,21 @@
 #include <QFileInfo>
 #include <QGuiApplication>
 #include <QMessageBox>
+#include <QProgressDialog>
 #include <QSettings>
 #include <array>
+#include <chrono>
+#include <cstring>
+#include <future>
+#include <optional>
 
 namespace velvet::ui {
 namespace {
 
 constexpr const char* kLastExportDirKey = "export/lastDir";
+constexpr const char* kLastExportFilterKey = "export/lastFilter";
+/// The main file of a texture set, the manifest: NAME_texture_set.json.
+constexpr const char* kTextureSetSuffix = "_texture_set.json";
 
 QString tr(const char* text) {
     return QCoreApplication::translate("velvet::ui::ExportAction", text);
@@ -27,6 +37,8 @@ struct WayOut {
     const char* label;
     ExportFormat format;
     MtlxShader shader;
+    /// An engine texture set (render::exportTextureSet) instead of format.
+    std::optional<TextureSetTarget> textureSet = std::nullopt;
 };
 
 // glTF first (what engines read), then MaterialX per shader node, then the native preset.
@@ -37,12 +49,47 @@ constexpr std::array kWaysOut{
     WayOut{"MaterialX, open_pbr_surface", ExportFormat::Mtlx, MtlxShader::OpenPbrSurface},
     WayOut{"MaterialX, gltf_pbr", ExportFormat::Mtlx, MtlxShader::GltfPbr},
     WayOut{"Velvet preset", ExportFormat::Preset, MtlxShader::StandardSurface},
+    // Engine texture sets: the maps baked on the GPU, named and packed per engine, and the
+    // manifest (the file the dialog names) beside them.
+    WayOut{"Texture set for Unreal Engine", ExportFormat::Preset, MtlxShader::StandardSurface,
+           TextureSetTarget::Unreal},
+    WayOut{"Texture set for Unity HDRP", ExportFormat::Preset, MtlxShader::StandardSurface,
+           TextureSetTarget::UnityHdrp},
+    WayOut{"Texture set for Godot", ExportFormat::Preset, MtlxShader::StandardSurface,
+           TextureSetTarget::Godot},
+    WayOut{"Texture set for glTF", ExportFormat::Preset, MtlxShader::StandardSurface,
+           TextureSetTarget::Gltf},
 };
 
 QString filterOf(const WayOut& way) {
+    if (way.textureSet)
+        return QStringLiteral("%1 (*%2)").arg(tr(way.label), QLatin1String(kTextureSetSuffix));
     const std::string_view ext = exportFormatExtension(way.format);
     return QStringLiteral("%1 (*%2)")
         .arg(tr(way.label), QString::fromUtf8(ext.data(), qsizetype(ext.size())));
+}
+
+/// Bakes and writes a texture set on a worker thread (the bake makes its own headless EGL
+/// context there, leaving the viewport's context alone) while a busy dialog shows progress.
+ExportOutcome exportTextureSetWithProgress(const Material& material, const QFileInfo& info,
+                                           TextureSetTarget target) {
+    QString base = info.fileName();
+    if (base.endsWith(QLatin1String(kTextureSetSuffix), Qt::CaseInsensitive))
+        base.chop(int(std::strlen(kTextureSetSuffix)));
+    TextureSetOptions options;
+    options.target = target;
+    const std::string folder = info.absolutePath().toStdString();
+    auto job =
+        std::async(std::launch::async, [material, folder, base = base.toStdString(), options] {
+            return render::exportTextureSet(material, folder, base, options, /*force=*/true);
+        });
+    QProgressDialog progress(tr("Baking the %1 texture set…").arg(base), QString(), 0, 0,
+                             QApplication::activeWindow());
+    progress.setWindowModality(Qt::ApplicationModal);
+    progress.setMinimumDuration(300);
+    while (job.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    return job.get();
 }
 
 /// The way out @p filter names, else the first whose extension @p path has.
@@ -73,6 +120,31 @@ bool exportDocument(const DocumentController& controller, const QString& path,
         if (error)
             *error = tr("%1: not a format Velvet exports (.glb, .gltf, .mtlx, .json)").arg(path);
         return false;
+    }
+    if (way->textureSet) {
+        QString target = path;
+        if (!target.endsWith(QLatin1String(kTextureSetSuffix), Qt::CaseInsensitive)) {
+            if (target.endsWith(QLatin1String(".json"), Qt::CaseInsensitive))
+                target.chop(5);
+            target += QLatin1String(kTextureSetSuffix);
+        }
+        const QFileInfo info(target);
+        const ExportOutcome outcome =
+            exportTextureSetWithProgress(controller.material(), info, *way->textureSet);
+        for (const std::string& warning : outcome.warnings)
+            if (log)
+                log->warning(
+                    tr("Export %1: %2").arg(info.fileName(), QString::fromStdString(warning)));
+        if (!outcome.ok()) {
+            if (error)
+                *error = QString::fromStdString(outcome.error);
+            return false;
+        }
+        if (log)
+            log->info(tr("Exported %1 (%2 files)")
+                          .arg(QString::fromStdString(outcome.written.back().string()))
+                          .arg(outcome.written.size()));
+        return true;
     }
     QString target = path;
     const QString ext = QString::fromUtf8(exportFormatExtension(way->format).data());
@@ -109,13 +181,17 @@ bool exportDocumentInteractively(QWidget* parent, const DocumentController& cont
                              ? QStringLiteral("material")
                              : QString::fromStdString(controller.material().name);
     const QString start = settings.value(kLastExportDirKey).toString();
-    QString filter = exportFilters().front();
+    // The way out chosen last time is offered first again.
+    QString filter = settings.value(kLastExportFilterKey).toString();
+    if (!exportFilters().contains(filter))
+        filter = exportFilters().front();
     const QString path = QFileDialog::getSaveFileName(
         parent, tr("Export material"), start.isEmpty() ? stem : start + QLatin1Char('/') + stem,
         exportFilters().join(";;"), &filter);
     if (path.isEmpty())
         return false;
     settings.setValue(kLastExportDirKey, QFileInfo(path).absolutePath());
+    settings.setValue(kLastExportFilterKey, filter);
     QString error;
     if (exportDocument(controller, path, filter, log, &error))
         return true;

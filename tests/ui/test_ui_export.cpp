@@ -3,6 +3,7 @@
 // the extension is added when the name has none, warnings and the result reach the Log, and a
 // target that cannot be written is refused with a message naming it, leaving the document as it
 // was (still dirty, its history intact).
+#include "core/image.h"
 #include "core/material.h"
 #include "ui/document_controller.h"
 #include "ui/export_action.h"
@@ -32,6 +33,7 @@ private slots:
     void initTestCase() {
         QVERIFY(m_dir.isValid());
         QSettings().remove(QStringLiteral("export/lastDir"));
+        QSettings().remove(QStringLiteral("export/lastFilter"));
         m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
         m_doc = m_window->controller();
         const QString error = test::showWithFirstFrame(m_window.get(), QSize(1280, 800));
@@ -72,6 +74,41 @@ private slots:
         const QByteArray xml = mtlx.readAll();
         QVERIFY(xml.contains("<open_pbr_surface"));
         QVERIFY(!xml.contains("<standard_surface"));
+    }
+
+    // A texture set for Unreal from the dialog: the maps are baked (on a worker thread, with a
+    // busy dialog) into T_NAME_D / _N / _ORM beside the manifest the dialog named; the dialog
+    // offers the same way out first next time.
+    void filterChoosesTextureSet() {
+        const QString unreal = exportFilters().filter(QStringLiteral("Unreal")).value(0);
+        QVERIFY(!unreal.isEmpty());
+        QCOMPARE(exportFilters().filter(QStringLiteral("Texture set")).size(), 4);
+        m_doc->editParam(ParamId::Metallic, glm::vec3(1.0f));
+        const QString path = m_dir.filePath(QStringLiteral("engine"));
+        test::answerFileDialog(path, unreal);
+        pressCtrlE();
+        const QString manifest = path + QStringLiteral("_texture_set.json");
+        QVERIFY2(QTest::qWaitFor([&] { return QFile::exists(manifest); }, 60000),
+                 qPrintable(QDir(m_dir.path()).entryList(QDir::Files).join(' ') + " | " +
+                            m_window->logPanel()->text()));
+        for (const char* file : {"T_engine_D.png", "T_engine_N.png", "T_engine_ORM.png"})
+            QVERIFY2(QFile::exists(m_dir.filePath(QString::fromLatin1(file))), file);
+        QFile f(manifest);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QByteArray json = f.readAll();
+        QVERIFY(json.contains("\"target\": \"unreal\""));
+        QVERIFY(json.contains("\"normalConvention\": \"directx\""));
+        // The flat maps hold the document's values: metallic 1 in the ORM's blue channel.
+        Image orm;
+        std::string error;
+        QVERIFY2(readImage(m_dir.filePath(QStringLiteral("T_engine_ORM.png")).toStdString(), orm,
+                           &error),
+                 error.c_str());
+        QCOMPARE(orm.at(orm.width / 2, orm.height / 2)[2], 1.0f);
+        QVERIFY(m_window->logPanel()->text().contains(QStringLiteral("T_engine")) ||
+                m_window->logPanel()->text().contains(QStringLiteral("engine_texture_set")));
+        QCOMPARE(QSettings().value(QStringLiteral("export/lastFilter")).toString(), unreal);
+        QSettings().remove(QStringLiteral("export/lastFilter"));
     }
 
     void unwritableTargetIsRefusedWithItsName() {
