@@ -8,6 +8,7 @@
 #include "render/offscreen.h"
 #include "render_test_util.h"
 
+#include <QElapsedTimer>
 #include <QtTest>
 #include <filesystem>
 
@@ -115,8 +116,12 @@ private slots:
                 continue;
             ++count;
             std::string error;
+            QElapsedTimer clock;
+            clock.start();
             const auto rotation = hdriDefaultRotationDeg(entry.path(), &error);
+            const qint64 firstMs = clock.elapsed(); // read and scored (studio: cached already)
             QVERIFY2(rotation, error.c_str());
+            qInfo("%s: rotation computed in %lld ms", entry.path().filename().c_str(), firstMs);
             Scene scene = stage;
             scene.environment.hdri = entry.path().string();
             float luminances[4];

@@ -3,6 +3,7 @@
 // `velvet render`'s code (render::runRenderJob) gives for the same scene and view; a turntable
 // reports its frames in a progress dialog whose Cancel stops it, keeping the frames written; a
 // bad pattern is refused in the dialog, which stays open.
+#include "core/default_stage.h"
 #include "core/image.h"
 #include "render/render_job.h"
 #include "ui/document_controller.h"
@@ -15,6 +16,7 @@
 
 #include <QComboBox>
 #include <QDir>
+#include <QDockWidget>
 #include <QLineEdit>
 #include <QMessageBox>
 #include <QProgressDialog>
@@ -25,6 +27,7 @@
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QUndoStack>
 #include <glm/common.hpp>
 #include <thread>
 
@@ -157,6 +160,28 @@ private slots:
         QVERIFY(QFile::exists(m_dir.filePath(QStringLiteral("spin_000.png"))));
         QVERIFY2(m_window->logPanel()->text().contains(QStringLiteral("cancelled")),
                  qPrintable(m_window->logPanel()->text()));
+    }
+
+    // A new document is the look-dev stage; choosing another HDRI in the Scene panel gives it
+    // its own default rotation (core/default_stage.h), one undo step with the HDRI.
+    void choosingAnHdriAppliesItsDefaultRotation() {
+        m_doc->newDocument();
+        QCOMPARE(m_doc->scene().environment.background, BackgroundMode::Blurred);
+        auto* combo = m_window->findChild<QComboBox*>(QStringLiteral("sceneHdri"));
+        QVERIFY(combo);
+        m_window->findChild<QDockWidget*>(QStringLiteral("sceneDock"))->raise();
+        const int city = combo->findText(QStringLiteral("city"));
+        QVERIFY(city >= 0);
+        const auto expected =
+            hdriDefaultRotationDeg(combo->itemData(city).toString().toStdString());
+        QVERIFY(expected);
+        QVERIFY(*expected != m_doc->scene().environment.rotationDeg);
+        const int steps = m_doc->undoStack()->count();
+        combo->setCurrentIndex(city);
+        emit combo->activated(city); // what a click on the item does (as test_ui_scene)
+        QVERIFY(m_doc->scene().environment.hdri.find("city") != std::string::npos);
+        QCOMPARE(m_doc->scene().environment.rotationDeg, *expected);
+        QCOMPARE(m_doc->undoStack()->count(), steps + 1);
     }
 
 private:
