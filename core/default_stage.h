@@ -36,11 +36,14 @@ Scene stageScene(Problems* problems = nullptr);
 /// one (the sun) that would leave the rest of the frame dark.
 float backdropRotationDeg(const Image& equirect);
 
-/// backdropRotationDeg of the HDRI file @p hdri, read once per file and modification time (a
-/// shipped 1024 x 512 map reads in a few tens of milliseconds). nullopt + @p error when the file
-/// cannot be read.
+/// backdropRotationDeg of the HDRI file @p hdri: for the shipped HDRIs (resources/hdri) a table
+/// of their answers (reading and scoring one takes 50-120 ms), for any other file
+/// computeHdriDefaultRotationDeg. nullopt + @p error when the file cannot be read.
 std::optional<float> hdriDefaultRotationDeg(const std::filesystem::path& hdri,
                                             std::string* error = nullptr);
+/// backdropRotationDeg of the file @p hdri, read once per file and modification time.
+std::optional<float> computeHdriDefaultRotationDeg(const std::filesystem::path& hdri,
+                                                   std::string* error = nullptr);
 
 /// @p camera aimed at the centre of a mesh whose bounding sphere has @p radius (every preview
 /// mesh fits the unit sphere at the origin, core/mesh.h) from the distance at which that sphere
