@@ -3,6 +3,9 @@
 #include "core/mesh.h"
 #include "core/mesh_import.h"
 
+#include <algorithm>
+#include <glm/geometric.hpp>
+
 namespace velvet::render {
 
 const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems) {
@@ -24,6 +27,10 @@ const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems
         if (entry->failure.empty()) {
             entry->gpu.upload(data);
             entry->doubleSided = data.doubleSided;
+            float radius = 0.0f;
+            for (const Vertex& v : data.vertices)
+                radius = std::max(radius, glm::length(v.position));
+            entry->radius = radius > 0.0f ? radius : 1.0f;
         }
     }
     if (!entry->failure.empty()) {

@@ -19,6 +19,8 @@ public:
     struct Entry {
         GpuMesh gpu;
         bool doubleSided = false;
+        /// The largest distance of a vertex from the origin (frames the view: View > Frame Mesh).
+        float radius = 1.0f;
         std::string failure; ///< why the import failed ("" when the mesh is uploaded)
     };
 
