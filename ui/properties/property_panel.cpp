@@ -133,6 +133,20 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
         connect(editor, &ParamEditor::resetRequested, this,
                 [this, id] { m_controller->resetParam(id); });
     }
+    // The emissive colour's picker offers the emission's strength as its intensity (beyond 1).
+    if (auto* emissive = qobject_cast<ColorParamEditor*>(editor(ParamId::EmissiveColor))) {
+        emissive->setIntensity(paramMeta(ParamId::EmissiveStrength),
+                               m_controller->param(ParamId::EmissiveStrength).x);
+        connect(emissive, &ColorParamEditor::intensityEdited, this, [this](float v, int key) {
+            if (!m_refreshing)
+                m_controller->editParam(ParamId::EmissiveStrength, glm::vec3(v), key);
+        });
+        connect(m_controller, &DocumentController::paramChanged, emissive,
+                [this, emissive](ParamId id) {
+                    if (id == ParamId::EmissiveStrength)
+                        emissive->setIntensityValue(m_controller->param(id).x);
+                });
+    }
 
     // Textures: one row per slot (thumbnail, file, Browse…, Clear, colour space; drops).
     {
