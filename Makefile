@@ -12,7 +12,7 @@ export CCACHE_BASEDIR ?= $(CURDIR)
 LAUNCHER := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
 endif
 
-.PHONY: all deps configure build run test format clean goldens install package
+.PHONY: all deps configure build run test test-asan fuzz format clean goldens install package
 
 all: build
 
@@ -38,6 +38,27 @@ run: build
 # Builds and runs the whole suite headless (widget tests under xvfb-run, render tests on EGL).
 test: build
 	cd $(BUILD_DIR) && QT_QPA_PLATFORM= ctest --output-on-failure -j $(JOBS)
+
+# The libFuzzer targets (tests/fuzz, clang): replays every committed input, then fuzzes each
+# parser for FUZZ_SECONDS (default 15). docs/reliability.md.
+fuzz: deps
+	scripts/fuzz.sh
+
+# The whole suite built with AddressSanitizer and UndefinedBehaviorSanitizer in build-asan/.
+# Left out, each for a reason that is the sanitizer's and not Velvet's (docs/reliability.md):
+# the tests that run a child under setrlimit RLIMIT_AS (ASan reserves terabytes of shadow
+# address space, so any address-space limit kills the child at start).
+ASAN_BUILD_DIR ?= build-asan
+ASAN_EXCLUDE ?= test_app_hostile_meshes
+test-asan: deps
+	@[ -f $(ASAN_BUILD_DIR)/CMakeCache.txt ] || cmake -S . -B $(ASAN_BUILD_DIR) -G "$(GENERATOR)" \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVELVET_SANITIZE=ON $(LAUNCHER)
+	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS)
+	cd $(ASAN_BUILD_DIR) && QT_QPA_PLATFORM= \
+	  ASAN_OPTIONS=detect_leaks=1:suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j $(JOBS) -E '$(ASAN_EXCLUDE)'
 
 # Installs the editor, its resources, .desktop entry and icon under PREFIX (DESTDIR for staging).
 PREFIX ?= /usr/local

@@ -1,9 +1,11 @@
 #include "core/mesh_import.h"
 
 #include "core/atomic_file.h"
+#include "core/mesh_nesting.h"
 #include "core/mesh_tangents.h"
 
 #include <algorithm>
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/mesh.h>
@@ -20,11 +22,13 @@
 #include <glm/geometric.hpp>
 #include <mutex>
 #include <poll.h>
+#include <set>
 #include <spawn.h>
 #include <sstream>
 #include <string_view>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 extern char** environ;
 
@@ -163,6 +167,24 @@ bool magicMatches(const std::filesystem::path& file, const std::string& ext) {
     return true; // .stl
 }
 
+// Assimp picks an importer by extension and, when none claims the file, tries every importer's
+// signature check: a file named .obj holding an MD5 mesh could reach the MD5 reader. Keeping only
+// the importers registered for the file's (listed) extension tells Assimp which to use.
+// Unregistered importers are no longer the Importer's to delete, so they are deleted here.
+void keepOnlyImportersFor(Assimp::Importer& importer, const std::string& ext) {
+    std::vector<Assimp::BaseImporter*> others;
+    for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+        Assimp::BaseImporter* candidate = importer.GetImporter(i);
+        std::set<std::string> extensions;
+        candidate->GetExtensionList(extensions);
+        if (!extensions.contains(ext.substr(1)))
+            others.push_back(candidate);
+    }
+    for (Assimp::BaseImporter* other : others)
+        if (importer.UnregisterLoader(other) == aiReturn_SUCCESS)
+            delete other;
+}
+
 } // namespace
 
 bool checkMeshFile(const std::filesystem::path& file, std::string* error,
@@ -189,6 +211,8 @@ bool checkMeshFile(const std::filesystem::path& file, std::string* error,
     if (!magicMatches(file, ext))
         return fail(error, file.string() + ": its contents are not " + ext.substr(1) +
                                " (the file's first bytes do not match the format); refused");
+    if (!checkMeshNesting(file, ext, error))
+        return false;
     if (ext == ".stl")
         return checkStl(file, size, error, limits);
     if (ext == ".ply")
@@ -204,6 +228,7 @@ bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::
     if (!checkMeshFile(file, error, limits))
         return false;
     Assimp::Importer importer;
+    keepOnlyImportersFor(importer, lower(file.extension().string()));
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     // Normals made for a file without them keep hard edges hard: faces meeting at more than
@@ -337,6 +362,10 @@ bool readMeshCache(const std::filesystem::path& file, MeshData& out, std::string
         return fail(error, tooMany(file, indexCount / 3, limits));
     if (s.size() != kHeaderBytes + vertexCount * sizeof(Vertex) + indexCount * 4)
         return fail(error, file.string() + ": mesh cache size does not match its header");
+    // Found by tests/fuzz (fuzz_mesh_cache): a header of zero counts reached memcpy with the
+    // null data() of empty vectors. A mesh without a triangle has nothing to preview anyway.
+    if (indexCount == 0 || vertexCount == 0)
+        return fail(error, file.string() + ": mesh cache holds no triangles");
     MeshData mesh;
     mesh.doubleSided = (get<std::uint32_t>(s, 32) & 1u) != 0;
     mesh.vertices.resize(size_t(vertexCount));
@@ -347,6 +376,11 @@ bool readMeshCache(const std::filesystem::path& file, MeshData& out, std::string
     for (std::uint32_t i : mesh.indices)
         if (i >= vertexCount)
             return fail(error, file.string() + ": mesh cache index out of range");
+    // Non-finite positions would poison the mesh's bounds, its framing and every pixel it covers.
+    for (const Vertex& v : mesh.vertices)
+        if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) ||
+            !std::isfinite(v.position.z))
+            return fail(error, file.string() + ": mesh cache has a non-finite vertex position");
     out = std::move(mesh);
     return true;
 }

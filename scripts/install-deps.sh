@@ -10,6 +10,7 @@ packages=(
   libglm-dev libepoxy-dev libegl-dev libgl1-mesa-dri libegl-mesa0
   libassimp-dev libopenimageio-dev libopencolorio-dev nlohmann-json3-dev
   libembree-dev libtbb-dev
+  clang libclang-rt-14-dev
   xvfb xauth
   nodejs
 )

@@ -8,6 +8,7 @@
 #include <QElapsedTimer>
 #include <QTemporaryDir>
 #include <QtTest>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 
@@ -65,11 +66,23 @@ private slots:
             "<?xml version=\"1.0\"?><COLLADA><library_visual_scenes><visual_scene>" +
                 repeat("<node>", 200000) + repeat("</node>", 200000) +
                 "</visual_scene></library_visual_scenes></COLLADA>",
-            "");
+            "nested more than 256 levels deep");
         row("deeply nested gltf", "deep.gltf",
             "{\"asset\":{\"version\":\"2.0\"},\"extras\":" + repeat("[", 200000) +
                 repeat("]", 200000) + "}",
-            "");
+            "nested more than 256 levels deep");
+        {
+            const std::string json =
+                "{\"asset\":{\"version\":\"2.0\"},\"extras\":" + repeat("{\"a\":", 100000) + "0" +
+                repeat("}", 100000) + "}";
+            std::string glb("glTF\x02\0\0\0\0\0\0\0", 12);
+            const auto le32 = [](std::uint32_t v) {
+                return std::string{char(v & 255), char((v >> 8) & 255), char((v >> 16) & 255),
+                                   char(v >> 24)};
+            };
+            glb += le32(std::uint32_t(json.size())) + "JSON" + json;
+            row("deeply nested glb", "deep.glb", glb, "nested more than 256 levels deep");
+        }
         for (const char* ext : {"md5mesh", "csm", "mdc", "iqm"}) {
             const std::string name = std::string("model.") + ext;
             QTest::newRow(ext)

@@ -3,6 +3,7 @@
 // trips of files written here, refusals before allocation, and the child-process importer.
 #include "core/mesh.h"
 #include "core/mesh_import.h"
+#include "core/mesh_nesting.h"
 #include "core/mesh_tangents.h"
 #include "core/scene.h"
 
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <map>
 #include <unordered_map>
 
@@ -456,6 +458,38 @@ private slots:
         writeText(path("foreign.vmesh"), std::string(64, 'x'));
         QVERIFY(!readMeshCache(path("foreign.vmesh"), back, &error));
         QVERIFY2(error.find("not a Velvet mesh cache") != std::string::npos, error.c_str());
+    }
+
+    // The nesting scans that refuse stack-overflowing files before Assimp sees them count
+    // levels exactly and are not fooled by brackets in strings or tags that do not nest.
+    void nestingDepthIsCountedWithoutRecursion() {
+        // (Unbalanced brackets are built, not written: moc reads this file too.)
+        const std::string open4 = std::string(4, '[') + std::string(4, '{');
+        QCOMPARE(jsonNestingDepth("{\"a\": [1, {\"b\": []}], \"s\": \"" + open4 + "\"}"),
+                 size_t(4));
+        QCOMPARE(jsonNestingDepth("{\"esc\": \"\\\"" + open4 + "\"}"), size_t(1));
+        QCOMPARE(jsonNestingDepth(std::string(1'000'000, '[')), kMaxMeshFileNesting + 1);
+        QCOMPARE(xmlNestingDepth("<?xml version=\"1.0\"?><!-- <a><b> --><a x=\"1>2\"><b/>"
+                                 "<c><![CDATA[<d><e>]]></c></a>"),
+                 size_t(2));
+        QCOMPARE(xmlNestingDepth("<!DOCTYPE x><a></a><b><c></c></b>"), size_t(2));
+    }
+
+    // Found by the fuzzer (tests/fuzz/corpus/fuzz_mesh_cache): a header with zero counts, and
+    // a vertex that is not finite, are refused with a reason instead of read.
+    void meshCacheRefusesEmptyAndNonFinite() {
+        std::string error;
+        MeshData empty;
+        QVERIFY2(writeMeshCache(path("empty.vmesh"), empty, &error), error.c_str());
+        MeshData back;
+        QVERIFY(!readMeshCache(path("empty.vmesh"), back, &error));
+        QVERIFY2(error.find("holds no triangles") != std::string::npos, error.c_str());
+        MeshData poisoned = makeCube();
+        poisoned.vertices[3].position.y = std::numeric_limits<float>::quiet_NaN();
+        QVERIFY2(writeMeshCache(path("nan.vmesh"), poisoned, &error), error.c_str());
+        QVERIFY(!readMeshCache(path("nan.vmesh"), back, &error));
+        QVERIFY2(error.find("non-finite vertex position") != std::string::npos, error.c_str());
+        QVERIFY(back.vertices.empty()); // nothing half-read
     }
 
     // The child-process importer (`velvet import-mesh`): gives the same mesh as in process;
