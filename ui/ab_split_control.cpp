@@ -87,8 +87,10 @@ void AbSplitControl::setSplit(bool on, std::optional<Material> b, const QString&
     if (on && !b) {
         b = m_controller->material(); // the snapshot B
         m_description = description.isEmpty() ? tr("snapshot of A") : description;
+    } else if (on) {
+        m_description = description.isEmpty() ? tr("another material") : description;
     } else {
-        m_description = on ? description : QString();
+        m_description.clear();
     }
     m_viewport->setSplitMaterial(on ? std::move(b) : std::nullopt);
     m_viewport->setSplitLabel(m_description);

@@ -9,7 +9,9 @@
 #include "ui/commands/set_param_command.h"
 #include "ui/commands/set_scene_command.h"
 
+#include <QCursor>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QUndoStack>
 
 namespace velvet::ui {
@@ -84,8 +86,10 @@ bool DocumentController::editMesh(const MeshRef& mesh, QString* error) {
     if (mesh.kind == PreviewMeshKind::Custom) {
         MeshData data;
         std::string reason;
+        QGuiApplication::setOverrideCursor(Qt::WaitCursor); // a large file takes a moment
         const bool ok = mesh.file.empty() ? (reason = "no file given", false)
                                           : importMesh(mesh.file, data, &reason);
+        QGuiApplication::restoreOverrideCursor();
         if (!ok) {
             const QString name = QFileInfo(QString::fromStdString(mesh.file)).fileName();
             const QString message =

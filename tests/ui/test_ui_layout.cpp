@@ -304,6 +304,16 @@ void TestUiLayout::nothingClipped() {
     check(dock("sceneDock"), "Scene");
     if (QTest::currentTestFailed())
         return;
+    // The other docks (each raised in its tab group), and the toolbars.
+    for (const char* name :
+         {"logDock", "postChainDock", "libraryDock", "atlasDock", "historyDock", "graphDock"}) {
+        dock(name)->raise();
+        QTRY_VERIFY(dock(name)->widget()->isVisible());
+        check(dock(name), name);
+        if (QTest::currentTestFailed())
+            return;
+    }
+    dock("logDock")->raise();
     dock("propertiesDock")->raise();
     for (QToolBar* bar : m_window->findChildren<QToolBar*>())
         check(bar, "toolbar");
