@@ -50,6 +50,8 @@ int runValidate(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runSchema(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+/// `velvet bench --textures` (app/command_bench_textures.cpp).
+int runTextureBench(bool json, bool quick);
 int runPack(const std::vector<std::string>& args);
 int runUnpack(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);

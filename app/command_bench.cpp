@@ -23,6 +23,9 @@ namespace {
 const std::vector<OptionSpec> kOptions{
     {"json", 0, false, "", "print one JSON object instead of the table"},
     {"short", 0, false, "", "quick mode: 320x180, 3 frames per variant (the ctest)"},
+    {"textures", 0, false, "",
+     "the texture path instead: a generated 4096² map (2048² with --short) loaded cold and from "
+     "the mip cache, peak memory, frames drawn while it loads"},
     {"help", 'h', false, "", "this text"},
 };
 
@@ -169,6 +172,8 @@ int runBench(const std::vector<std::string>& argv) {
         return Ok;
     }
     const bool json = args->has("json");
+    if (args->has("textures"))
+        return runTextureBench(json, args->has("short"));
     auto context = render::HeadlessContext::create(&error);
     if (!context) {
         std::cerr << "velvet bench: no headless OpenGL context: " << error << "\n";

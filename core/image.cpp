@@ -208,6 +208,38 @@ bool readImage(const std::filesystem::path& file, Image& out, std::string* error
     return true;
 }
 
+bool readImage8(const std::filesystem::path& file, std::vector<std::uint8_t>& rgba, ImageInfo& info,
+                std::string* error, const ImageReadLimits& limits) {
+    auto in = openChecked(file, limits, info, error);
+    if (!in)
+        return false;
+    if (info.bitsPerSample != 8 || info.isFloat)
+        return fail(error, file, "not 8-bit samples");
+    if (info.orientation != 1)
+        return fail(error, file, "has an EXIF orientation");
+    const int channels = std::min(info.channels, 4);
+    const size_t pixels = size_t(info.width) * size_t(info.height);
+    rgba.assign(pixels * 4, 255);
+    // The file's channels land in the first ones of each RGBA pixel (xstride 4 bytes); grey and
+    // grey + alpha are spread below.
+    const bool ok = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, rgba.data(), 4);
+    if (!ok || in->has_error()) {
+        rgba = {};
+        return fail(error, file,
+                    "the pixel data is truncated or corrupt (OpenImageIO: " +
+                        oiioMessage(in->geterror()) + ")");
+    }
+    in->close();
+    if (channels <= 2)
+        for (size_t i = 0; i < pixels; ++i) {
+            std::uint8_t* p = rgba.data() + i * 4;
+            const std::uint8_t alpha = channels == 2 ? p[1] : 255;
+            p[1] = p[2] = p[0];
+            p[3] = alpha;
+        }
+    return true;
+}
+
 namespace {
 
 /// @p image with @p channels channels, mapped the way Image::rgba() reads it (grey -> RRR,

@@ -92,6 +92,16 @@ bool readImageInfo(const std::filesystem::path& file, ImageInfo& out, std::strin
 bool readImage(const std::filesystem::path& file, Image& out, std::string* error,
                const ImageReadLimits& limits = {});
 
+/// Reads an 8-bit file straight into 8-bit RGBA (@p rgba, width * height * 4 bytes, row 0 at
+/// the top), without a float copy: grey becomes RRR, grey + alpha RRRA, a missing alpha 255 (as
+/// Image::rgba() reads them). For the GPU's 8-bit texture path (core/mip_texture.h), where a
+/// 4096² map must not pass through 256 MB of float. Refuses (false + message naming the file)
+/// what it cannot read exactly as readImage() would: a file whose samples are not 8-bit or that
+/// carries an EXIF orientation other than 1 (the caller falls back to readImage()); the same
+/// header limits are checked first. @p info receives the header.
+bool readImage8(const std::filesystem::path& file, std::vector<std::uint8_t>& rgba, ImageInfo& info,
+                std::string* error, const ImageReadLimits& limits = {});
+
 /// Options of writeImage().
 struct ImageWriteOptions {
     /// EXIF/TIFF Orientation (1 to 8) to record; the pixels are written as given. Honoured by

@@ -1,6 +1,7 @@
 #include "core/image_ops.h"
 
 #include "core/image.h"
+#include "core/mip_filter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -94,10 +95,43 @@ std::vector<Image> mipChain(const Image& image, std::string* error, ResizeFilter
     chain.push_back(image);
     for (int level = 1; level < levels; ++level) {
         const Image& above = chain.back();
-        Image next = resize(above, std::max(1, above.width / 2), std::max(1, above.height / 2),
-                            error, filter);
-        if (next.empty())
-            return {};
+        const int width = std::max(1, above.width / 2), height = std::max(1, above.height / 2);
+        if (filter != ResizeFilter::BlackmanHarris) {
+            Image next = resize(above, width, height, error, filter);
+            if (next.empty())
+                return {};
+            chain.push_back(std::move(next));
+            continue;
+        }
+        // Blackman-Harris, separable and streamed (core/mip_filter.h): the filter the GPU
+        // texture path uses too, so a slot's levels equal these.
+        const int channels = above.channels;
+        float lo[4], hi[4];
+        std::fill_n(lo, 4, std::numeric_limits<float>::max());
+        std::fill_n(hi, 4, std::numeric_limits<float>::lowest());
+        for (size_t i = 0; i < above.pixels.size(); ++i) {
+            const int c = int(i % channels);
+            lo[c] = std::min(lo[c], above.pixels[i]);
+            hi[c] = std::max(hi[c], above.pixels[i]);
+        }
+        for (int c = channels; c < 4; ++c)
+            lo[c] = std::numeric_limits<float>::lowest(), hi[c] = std::numeric_limits<float>::max();
+        Image next(width, height, channels);
+        halveLevel(
+            above.width, above.height,
+            [&](int y, float* rgba) {
+                const float* p = above.at(0, y);
+                for (int x = 0; x < above.width; ++x, p += channels, rgba += 4)
+                    for (int c = 0; c < 4; ++c)
+                        rgba[c] = c < channels ? p[c] : 1.0f;
+            },
+            [&](int y, const float* rgba) {
+                float* p = next.at(0, y);
+                for (int x = 0; x < width; ++x, p += channels, rgba += 4)
+                    for (int c = 0; c < channels; ++c)
+                        p[c] = rgba[c];
+            },
+            lo, hi);
         chain.push_back(std::move(next));
     }
     return chain;

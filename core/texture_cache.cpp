@@ -58,7 +58,11 @@ TextureCache::TextureCache(const ColorManagement& colorManagement, TextureCacheO
 TextureCache::~TextureCache() = default;
 
 TextureCache::FileStamp TextureCache::stampOf(const std::filesystem::path& file) {
-    FileStamp s;
+    return textureFileStamp(file);
+}
+
+TextureFileStamp textureFileStamp(const std::filesystem::path& file) {
+    TextureFileStamp s;
 #ifdef VELVET_HAVE_POSIX_STAT
     // One stat(2) gives all of it (std::filesystem would need one call per field).
     struct stat st {};
@@ -84,22 +88,28 @@ TextureCache::FileStamp TextureCache::stampOf(const std::filesystem::path& file)
 
 std::string TextureCache::resolveColorSpace(const std::filesystem::path& file, TextureUsage usage,
                                             const std::string& colorSpace) const {
+    return resolveTextureColorSpace(m_colorManagement, file, usage, colorSpace);
+}
+
+std::string resolveTextureColorSpace(const ColorManagement& colorManagement,
+                                     const std::filesystem::path& file, TextureUsage usage,
+                                     const std::string& colorSpace) {
     std::string name = colorSpace;
     if (name.empty()) {
         if (usage == TextureUsage::Color) {
             // The config's file rules (OCIO 2 FileRules): EXR/HDR are scene-linear, the rest
             // sRGB texture in the shipped config.
-            name = m_colorManagement.colorSpaceForFile(file);
+            name = colorManagement.colorSpaceForFile(file);
             if (name.empty())
                 name = "sRGB texture";
         } else {
-            name = m_colorManagement.roleColorSpace("data");
+            name = colorManagement.roleColorSpace("data");
             if (name.empty())
                 name = "Raw";
         }
     }
     // Aliases and roles share one entry under the canonical name.
-    const std::string canonical = m_colorManagement.canonicalColorSpace(name);
+    const std::string canonical = colorManagement.canonicalColorSpace(name);
     return canonical.empty() ? name : canonical;
 }
 

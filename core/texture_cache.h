@@ -25,6 +25,24 @@ class ColorManagement;
 /// stored, channel count kept; Image::rgba() reads grey as RRR).
 enum class TextureUsage { Color, Data };
 
+/// What poll() compares to see that a file changed: one stat(2).
+struct TextureFileStamp {
+    bool exists = false;
+    std::int64_t mtimeNs = 0;
+    std::uint64_t size = 0;
+    std::uint64_t inode = 0;
+    std::uint64_t device = 0;
+    bool operator==(const TextureFileStamp&) const = default;
+};
+/// Stats @p file (missing: exists false).
+TextureFileStamp textureFileStamp(const std::filesystem::path& file);
+
+/// The canonical input colour space of a texture: @p colorSpace, or when empty the usage's
+/// default (TextureCache::get explains it), aliases and roles resolved to the config's name.
+std::string resolveTextureColorSpace(const ColorManagement& colorManagement,
+                                     const std::filesystem::path& file, TextureUsage usage,
+                                     const std::string& colorSpace);
+
 /// One cached texture as handed out.
 struct Texture {
     /// Scene-linear float pixels, shared and immutable; null when the file is missing or broken
@@ -82,14 +100,7 @@ public:
     void clear();
 
 private:
-    struct FileStamp {
-        bool exists = false;
-        std::int64_t mtimeNs = 0;
-        std::uint64_t size = 0;
-        std::uint64_t inode = 0;
-        std::uint64_t device = 0;
-        bool operator==(const FileStamp&) const = default;
-    };
+    using FileStamp = TextureFileStamp;
     struct Entry {
         std::filesystem::path file;
         std::string colorSpace;

@@ -25,6 +25,9 @@ struct Options {
     std::uint64_t seed = 1;      ///< same seed, same image
     double timeLimitSeconds = 0; ///< > 0: stop after the pass running when this much time passed
     int threads = 0;             ///< 0: oneTBB's default
+    /// Called (on the calling thread) with the image so far after passes 1, 2, 4, 8, 16, 32 and
+    /// then every 32nd: the editor's Reference view shows the render as it converges.
+    std::function<void(const Image& soFar, int passes)> onPassImage;
 };
 
 /// Called after each pass (on the calling thread): passes done, passes asked for.

@@ -35,11 +35,13 @@ bool renderSceneOffscreen(const Scene& scene, const FrameSettings& settings, Ima
         Renderer renderer;
         if (!renderer.initialize(error))
             return false;
-        renderer.setScene(scene, problems);
+        // The config first: a new config drops the textures, which would then load twice.
         if (colorManagement)
             renderer.setColorManagement(std::move(colorManagement));
+        renderer.setScene(scene, problems);
         renderer.finishEnvironment(); // the whole IBL bake before the one frame
         renderer.finishGraph();       // and the material graph's program
+        renderer.finishTextures();    // and every texture, complete (never a proxy)
         ColorTarget target;
         if (!target.resize(settings.width, settings.height, GL_RGBA8, error))
             return false;

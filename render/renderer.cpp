@@ -434,7 +434,49 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
 }
 
 Problems Renderer::takeWarnings() {
-    return m_impl->display.takeWarnings();
+    Problems p = m_impl->display.takeWarnings();
+    for (Problem& t : m_impl->textures.takeProblems().items)
+        p.items.push_back(std::move(t));
+    return p;
+}
+
+void Renderer::setAsyncTextures(bool async) {
+    Impl& d = *m_impl;
+    if (async == d.textures.async())
+        return;
+    d.textures.setAsync(async);
+    if (d.initialized) {
+        d.refreshTextureSlots(nullptr);
+        d.uploadMaterial();
+    }
+}
+
+void Renderer::setTextureUploadBudget(std::uint64_t bytes) {
+    m_impl->textures.setUploadBudget(bytes);
+}
+
+TextureLoadProgress Renderer::textureProgress() const {
+    return m_impl->textures.progress();
+}
+
+void Renderer::finishTextures() {
+    Impl& d = *m_impl;
+    if (!d.initialized)
+        return;
+    d.textures.finish();
+    d.uploadMaterial();
+}
+
+const TextureUploadStats& Renderer::textureUploadStats() const {
+    return m_impl->textures.uploadStats();
+}
+
+std::uint64_t Renderer::textureDecodes() const {
+    return m_impl->textures.decodeCount();
+}
+
+std::uint64_t Renderer::textureCacheHits() const {
+    return m_impl->textures.cacheHits();
 }
 
 UploadStats Renderer::uploadStats() const {

@@ -8,6 +8,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/scene_parts.h"
+#include "render/texture_progress.h"
 
 #include <glm/mat4x4.hpp>
 #include <memory>
@@ -274,6 +275,25 @@ public:
     /// The post-chain runner: its render-target pool and per-step timings (tests, bench).
     PostChainRenderer& postChain();
     FrameTimings lastTimings() const;
+
+    /// @name Texture loading (render/texture_set.h)
+    /// Synchronous by default: update() returns with every texture on the GPU. Asynchronous
+    /// (the editor): files load on a worker thread and each render() uploads a bounded number of
+    /// bytes, coarsest level first; a slot draws its parameter value until its first level is
+    /// there, then a coarse proxy, then the full map. A host should keep repainting while
+    /// textureProgress().loading > 0; load problems come through takeWarnings().
+    /// @{
+    void setAsyncTextures(bool async);
+    /// Bytes one render() may upload while textures load asynchronously (default 8 MiB).
+    void setTextureUploadBudget(std::uint64_t bytes);
+    TextureLoadProgress textureProgress() const;
+    /// Loads and uploads every texture now (headless rendering: renderSceneOffscreen calls it).
+    void finishTextures();
+    const TextureUploadStats& textureUploadStats() const;
+    /// Image files decoded and on-disk mip cache hits for the material's slots.
+    std::uint64_t textureDecodes() const;
+    std::uint64_t textureCacheHits() const;
+    /// @}
 
     /// @name Environment bake (render/ibl_bake.h)
     /// A new HDRI is prefiltered in slices of a few milliseconds at the start of each render()

@@ -2,24 +2,50 @@
 
 #include "core/color_management.h"
 #include "core/image_ops.h"
+#include "core/mip_texture.h"
 #include "core/texture_cache.h"
+#include "core/texture_loader.h"
 #include "render/material_table.h"
 #include "render/shader_program.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <epoxy/gl.h>
 #include <glm/common.hpp>
+#include <utility>
 
 namespace velvet::render {
 
 struct TextureSet::Slot {
     TextureRef ref;
-    std::uint64_t generation = 0;
-    GLuint texture = 0;
-    int width = 0, height = 0;
-    bool valid = false;                       ///< a texture is uploaded and in use
+    std::string key;                          ///< the entry it samples ("" when empty)
+    std::uint64_t generation = 0;             ///< the entry's generation region and mean are of
+    bool valid = false;                       ///< some level of the texture is on the GPU
     bool useRegion = false;                   ///< an atlas region is in use
     glm::vec4 region{1.0f, 1.0f, 0.0f, 0.0f}; ///< xy: size / atlas size, zw: offset / atlas size
     glm::vec4 mean{1.0f};                     ///< mean RGBA over the image or region
+};
+
+/// One GL texture: a (file, colour space, usage), shared by every slot that names it.
+struct TextureSet::Entry {
+    std::filesystem::path file;
+    std::string colorSpace;
+    TextureUsage usage = TextureUsage::Color;
+    TextureFileStamp stamp;
+    std::shared_ptr<TextureJob> job;        ///< the load in flight
+    std::shared_ptr<MipTexture> data; ///< levels still to upload (each freed once uploaded)
+    int uploadLevel = -1;                   ///< level being uploaded (coarsest first), -1 none
+    int uploadRow = 0;                      ///< rows of it done
+    GLuint texture = 0;
+    int width = 0, height = 0, levels = 0;
+    MipFormat format = MipFormat::Rgba8;
+    int finest = -1; ///< finest level complete on the GPU; -1 none
+    glm::vec4 mean{1.0f};
+    Image meanLevel;               ///< linear level <= 256 px: atlas-region means
+    std::uint64_t generation = 0;  ///< new levels taken (slots recompute region, mean)
+    std::vector<Problem> problems; ///< of the last load
+    std::uint64_t bytesTotal = 0, bytesDone = 0;
 };
 
 void uploadMipChain(unsigned texture, const Image& image) {
@@ -57,130 +83,406 @@ bool bit(std::uint32_t mask, TextureSlot s) {
     return (mask >> int(s)) & 1u;
 }
 
+std::string keyOf(const std::filesystem::path& file, const std::string& colorSpace,
+                  TextureUsage usage) {
+    return file.string() + "\n" + colorSpace +
+           (usage == TextureUsage::Color ? "\ncolor" : "\ndata");
+}
+
+GLenum internalFormat(MipFormat f) {
+    switch (f) {
+    case MipFormat::Rgba8:
+        return GL_RGBA8;
+    case MipFormat::Srgb8Alpha8:
+        return GL_SRGB8_ALPHA8; // the GPU decodes sRGB before filtering (GL 4.5 section 8.24)
+    case MipFormat::Rgba16F:
+        return GL_RGBA16F;
+    }
+    return GL_RGBA8;
+}
+
+double msSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
 } // namespace
 
-TextureSet::TextureSet() : m_slots(std::make_unique<std::array<Slot, kTextureSlotCount>>()) {}
+TextureSet::TextureSet()
+    : m_slots(std::make_unique<std::array<Slot, kTextureSlotCount>>()),
+      m_entries(std::make_unique<std::map<std::string, Entry>>()) {}
 
 TextureSet::~TextureSet() {
+    dropEntries();
+}
+
+void TextureSet::dropEntries() {
+    for (auto& [key, e] : *m_entries)
+        if (e.texture)
+            glDeleteTextures(1, &e.texture);
+    m_entries->clear();
     for (Slot& s : *m_slots)
-        if (s.texture)
-            glDeleteTextures(1, &s.texture);
+        s = Slot{};
+    m_loader.reset();
 }
 
 void TextureSet::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
+    dropEntries(); // the loader refers to the old config: gone before it
     m_colorManagement = std::move(colorManagement);
     m_cache.reset();
-    for (Slot& s : *m_slots)
-        s.generation = 0; // reload from the new cache at the next setMaterial
+}
+
+void TextureSet::setAsync(bool async) {
+    if (async == m_async)
+        return;
+    dropEntries();
+    m_async = async;
+}
+
+void TextureSet::setCacheDir(std::filesystem::path dir) {
+    dropEntries();
+    m_cacheDir = std::move(dir);
+}
+
+const ColorManagement& TextureSet::colorManagement() {
+    if (!m_colorManagement) {
+        auto loaded = std::make_shared<ColorManagement>();
+        std::string error;
+        loaded->loadDefault(&error); // a failure shows up as each texture's problem
+        m_colorManagement = std::move(loaded);
+    }
+    if (!m_maxSide) {
+        GLint maxSide = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSide);
+        m_maxSide = maxSide;
+    }
+    return *m_colorManagement;
 }
 
 TextureCache& TextureSet::cache() {
     if (!m_cache) {
-        if (!m_colorManagement) {
-            auto loaded = std::make_shared<ColorManagement>();
-            std::string error;
-            loaded->loadDefault(&error); // a failure shows up as each texture's problem
-            m_colorManagement = std::move(loaded);
-        }
+        const ColorManagement& cm = colorManagement();
         // Larger images are downscaled by the cache with a warning (fitToLimit).
-        GLint maxSide = 0;
-        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSide);
         TextureCacheOptions options;
-        options.maxTextureSide = maxSide;
-        m_cache = std::make_unique<TextureCache>(*m_colorManagement, options);
+        options.maxTextureSide = m_maxSide;
+        m_cache = std::make_unique<TextureCache>(cm, options);
     }
     return *m_cache;
+}
+
+TextureLoader& TextureSet::loader() {
+    if (!m_loader) {
+        const ColorManagement& cm = colorManagement();
+        MipLoadOptions options;
+        options.maxTextureSide = m_maxSide;
+        options.cacheDir = m_cacheDir;
+        m_loader = std::make_unique<TextureLoader>(cm, options, m_async);
+    }
+    return *m_loader;
+}
+
+void TextureSet::startLoad(Entry& e) {
+    e.job = loader().request(e.file, e.colorSpace, e.usage);
 }
 
 void TextureSet::setMaterial(const Material& material, Problems* problems) {
     for (int i = 0; i < kTextureSlotCount; ++i) {
         Slot& s = (*m_slots)[size_t(i)];
-        const TextureRef& ref = material.texture(TextureSlot(i));
-        if (!(ref == s.ref)) {
-            s.ref = ref;
-            s.generation = 0;
+        const TextureSlot slot = TextureSlot(i);
+        const TextureRef& ref = material.texture(slot);
+        if (ref.empty()) {
+            s = Slot{};
+            continue;
         }
-        refresh(i, problems);
+        const TextureUsage usage =
+            textureSlotMeta(slot).isColor ? TextureUsage::Color : TextureUsage::Data;
+        const std::filesystem::path file = std::filesystem::path(ref.file).lexically_normal();
+        const std::string space =
+            resolveTextureColorSpace(colorManagement(), file, usage, ref.colorSpace);
+        const std::string key = keyOf(file, space, usage);
+        if (!(ref == s.ref) || key != s.key) {
+            s = Slot{};
+            s.ref = ref;
+            s.key = key;
+        }
+        auto [it, fresh] = m_entries->try_emplace(key);
+        if (fresh) {
+            Entry& e = it->second;
+            e.file = file;
+            e.colorSpace = space;
+            e.usage = usage;
+            e.stamp = textureFileStamp(file);
+            startLoad(e);
+        }
+    }
+    // Entries no slot names any more: their GL texture goes now.
+    for (auto it = m_entries->begin(); it != m_entries->end();) {
+        bool used = false;
+        for (const Slot& s : *m_slots)
+            used = used || s.key == it->first;
+        if (used) {
+            ++it;
+            continue;
+        }
+        if (it->second.texture)
+            glDeleteTextures(1, &it->second.texture);
+        it = m_entries->erase(it);
+    }
+    if (!m_async) {
+        finish();
+        // Synchronously the problems of every slot's file come with each call, as they did.
+        if (problems)
+            for (const auto& [key, e] : *m_entries)
+                reportProblems(e, *problems);
+        updateSlots(problems);
+        return;
+    }
+    updateSlots(nullptr); // a slot whose texture is already on the GPU draws it at once
+}
+
+void TextureSet::reportProblems(const Entry& e, Problems& into) const {
+    for (int i = 0; i < kTextureSlotCount; ++i) {
+        const Slot& s = (*m_slots)[size_t(i)];
+        if (s.key.empty() || s.key != keyOf(e.file, e.colorSpace, e.usage))
+            continue;
+        for (Problem p : e.problems) {
+            if (p.path.empty())
+                p.path = "textures." + std::string(textureSlotMeta(TextureSlot(i)).id);
+            into.items.push_back(std::move(p));
+        }
     }
 }
 
-bool TextureSet::poll() {
-    if (!m_cache || m_cache->poll() == 0)
+bool TextureSet::takeFinished(Entry& e, Problems* problems) {
+    if (!e.job || !e.job->ready())
         return false;
-    for (int i = 0; i < kTextureSlotCount; ++i)
-        if (!(*m_slots)[size_t(i)].ref.empty())
-            refresh(i, nullptr);
+    const MipLoadResult& r = e.job->result();
+    e.problems = r.problems;
+    if (problems)
+        reportProblems(e, *problems);
+    ++m_generation;
+    if (!r.texture || r.texture->levels.empty()) {
+        e.finest = -1; // the slot falls back to the parameter value
+        e.data.reset();
+        e.uploadLevel = -1;
+        e.generation = m_generation;
+        e.job.reset();
+        return true;
+    }
+    const MipTexture& t = *r.texture;
+    if (!e.texture || e.width != t.width() || e.height != t.height() || e.format != t.format) {
+        if (e.texture)
+            glDeleteTextures(1, &e.texture);
+        glCreateTextures(GL_TEXTURE_2D, 1, &e.texture);
+        e.levels = int(t.levels.size());
+        glTextureStorage2D(e.texture, e.levels, internalFormat(t.format), t.width(), t.height());
+        glTextureParameteri(e.texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(e.texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(e.texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTextureParameteri(e.texture, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glTextureParameteri(e.texture, GL_TEXTURE_MAX_LEVEL, e.levels - 1);
+        e.width = t.width();
+        e.height = t.height();
+        e.format = t.format;
+        e.finest = -1;
+        ++m_allocations;
+    }
+    e.data = r.texture;
+    e.uploadLevel = int(t.levels.size()) - 1;
+    e.uploadRow = 0;
+    e.bytesTotal = t.byteSize();
+    e.bytesDone = 0;
+    e.mean = t.mean;
+    e.meanLevel = t.linearLevel(256);
+    e.generation = m_generation;
+    e.job.reset(); // the result's levels live on in e.data until uploaded
     return true;
 }
 
-void TextureSet::refresh(int index, Problems* problems) {
-    Slot& s = (*m_slots)[size_t(index)];
-    const TextureSlot slot = TextureSlot(index);
-    if (s.ref.empty()) {
-        s.valid = false;
-        return;
-    }
-    const Texture t = cache().get(s.ref, slot);
-    const std::string where = "textures." + std::string(textureSlotMeta(slot).id);
-    if (problems)
-        for (Problem p : t.problems) {
-            if (p.path.empty())
-                p.path = where;
-            problems->items.push_back(std::move(p));
+std::uint64_t TextureSet::upload(Entry& e, std::uint64_t budget, bool& becameVisible) {
+    std::uint64_t spent = 0;
+    const GLenum type = e.format == MipFormat::Rgba16F ? GL_HALF_FLOAT : GL_UNSIGNED_BYTE;
+    const std::uint64_t bpp = std::uint64_t(mipBytesPerPixel(e.format));
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    while (e.data && e.uploadLevel >= 0 && spent < budget) {
+        const MipLevel& l = e.data->levels[size_t(e.uploadLevel)];
+        const std::uint64_t rowBytes = std::uint64_t(l.width) * bpp;
+        // Whole rows within the budget; one row past it only when nothing fitted yet (a row
+        // wider than the budget still makes progress).
+        std::uint64_t fit = (budget - spent) / rowBytes;
+        if (fit == 0 && spent > 0)
+            break;
+        const int rows =
+            int(std::clamp<std::uint64_t>(fit, 1, std::uint64_t(l.height - e.uploadRow)));
+        // Row 0 (the image's top) goes to t = 0, matching glTF's UV space (v = 0 at the top).
+        glTextureSubImage2D(e.texture, e.uploadLevel, 0, e.uploadRow, l.width, rows, GL_RGBA, type,
+                            l.bytes.data() + std::uint64_t(e.uploadRow) * rowBytes);
+        spent += rowBytes * std::uint64_t(rows);
+        e.bytesDone += rowBytes * std::uint64_t(rows);
+        e.uploadRow += rows;
+        if (e.uploadRow < l.height)
+            continue;
+        // A level is complete: sampling may reach down to it (levels finest..max are all there).
+        if (e.finest < 0 || e.uploadLevel < e.finest) {
+            becameVisible = becameVisible || e.finest < 0;
+            e.finest = e.uploadLevel;
+            glTextureParameteri(e.texture, GL_TEXTURE_BASE_LEVEL, e.finest);
         }
-    if (!t.image || t.image->empty()) {
-        s.valid = false;
-        s.generation = t.generation;
-        return;
+        // Its CPU copy goes now, unless someone else still reads the levels (the loader writing
+        // the cache entry): the peak stays near one copy of the chain, CPU and GPU together.
+        if (e.data.use_count() == 1)
+            std::vector<std::uint8_t>().swap(e.data->levels[size_t(e.uploadLevel)].bytes);
+        --e.uploadLevel;
+        e.uploadRow = 0;
     }
-    if (s.valid && t.generation == s.generation)
-        return;
-    const Image& image = *t.image;
-    s.generation = t.generation;
+    if (e.uploadLevel < 0)
+        e.data.reset(); // every level is on the GPU: the CPU copy goes
+    return spent;
+}
 
-    // Upload as RGBA16F (scene-linear colour needs more than 8 bits in the darks) with a full
-    // mip chain filtered on the CPU (uploadMipChain).
-    if (!s.texture || s.width != image.width || s.height != image.height) {
-        if (s.texture)
-            glDeleteTextures(1, &s.texture);
-        glCreateTextures(GL_TEXTURE_2D, 1, &s.texture);
-        glTextureStorage2D(s.texture, mipLevelCount(image.width, image.height), GL_RGBA16F,
-                           image.width, image.height);
-        glTextureParameteri(s.texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        glTextureParameteri(s.texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(s.texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glTextureParameteri(s.texture, GL_TEXTURE_WRAP_T, GL_REPEAT);
-        s.width = image.width;
-        s.height = image.height;
-        ++m_allocations;
+bool TextureSet::updateSlots(Problems* problems) {
+    bool changed = false;
+    for (Slot& s : *m_slots) {
+        if (s.key.empty())
+            continue;
+        const auto it = m_entries->find(s.key);
+        const Entry* e = it == m_entries->end() ? nullptr : &it->second;
+        const bool valid = e && e->finest >= 0;
+        if (valid != s.valid)
+            changed = true;
+        s.valid = valid;
+        if (!valid || s.generation == e->generation)
+            continue;
+        s.generation = e->generation;
+        changed = true;
+        // Atlas region (pixels, top-left origin) -> UV scale and offset; the shader keeps
+        // samples half a texel inside it so bilinear filtering never reads a neighbour.
+        const int w = e->width, h = e->height;
+        AtlasRegion r{0, 0, w, h};
+        s.useRegion = false;
+        if (s.ref.useRegion) {
+            const AtlasRegion& q = s.ref.region;
+            if (q.width > 0 && q.height > 0 && q.x >= 0 && q.y >= 0 && q.x + q.width <= w &&
+                q.y + q.height <= h) {
+                r = q;
+                s.useRegion = true;
+            } else if (problems) {
+                problems->warning(
+                    s.ref.file,
+                    "textures." +
+                        std::string(textureSlotMeta(TextureSlot(int(&s - m_slots->data()))).id) +
+                        ".region",
+                    "atlas region lies outside the " + std::to_string(w) + "x" + std::to_string(h) +
+                        " image; the whole image is used");
+            }
+        }
+        s.region = glm::vec4(float(r.width) / float(w), float(r.height) / float(h),
+                             float(r.x) / float(w), float(r.y) / float(h));
+        if (!s.useRegion || e->meanLevel.empty()) {
+            s.mean = e->mean;
+            continue;
+        }
+        // The region's mean from a level of at most 256 px (exact for maps that small; for a
+        // larger atlas, the mean of the filtered level over the region's footprint in it).
+        const Image& m = e->meanLevel;
+        const double sx = double(m.width) / w, sy = double(m.height) / h;
+        const int x0 = std::clamp(int(std::floor(r.x * sx)), 0, m.width - 1);
+        const int y0 = std::clamp(int(std::floor(r.y * sy)), 0, m.height - 1);
+        const int x1 = std::clamp(int(std::ceil((r.x + r.width) * sx)), x0 + 1, m.width);
+        const int y1 = std::clamp(int(std::ceil((r.y + r.height) * sy)), y0 + 1, m.height);
+        glm::dvec4 sum(0.0);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                sum += glm::dvec4(m.rgba(x, y));
+        s.mean = glm::vec4(sum / double((x1 - x0) * (y1 - y0)));
     }
-    // Row 0 (the image's top) goes to t = 0, matching glTF's UV space (v = 0 at the top).
-    uploadMipChain(s.texture, image);
-    s.valid = true;
+    return changed;
+}
 
-    // Atlas region (pixels, top-left origin) -> UV scale and offset; the shader keeps samples
-    // half a texel inside it so bilinear filtering never reads a neighbour.
-    AtlasRegion r{0, 0, image.width, image.height};
-    s.useRegion = false;
-    if (s.ref.useRegion) {
-        const AtlasRegion& q = s.ref.region;
-        if (q.width > 0 && q.height > 0 && q.x >= 0 && q.y >= 0 && q.x + q.width <= image.width &&
-            q.y + q.height <= image.height) {
-            r = q;
-            s.useRegion = true;
-        } else if (problems) {
-            problems->warning(s.ref.file, where + ".region",
-                              "atlas region lies outside the " + std::to_string(image.width) + "x" +
-                                  std::to_string(image.height) + " image; the whole image is used");
+bool TextureSet::poll() {
+    if (m_entries->empty())
+        return false;
+    const auto start = std::chrono::steady_clock::now();
+    Problems* sink = m_async ? &m_problems : nullptr;
+    // Files changed on disk (edited in another program): load again; the old levels keep
+    // drawing until the new ones arrive.
+    for (auto& [key, e] : *m_entries) {
+        const TextureFileStamp stamp = textureFileStamp(e.file);
+        if (!(stamp == e.stamp)) {
+            e.stamp = stamp;
+            startLoad(e);
         }
     }
-    s.region = glm::vec4(float(r.width) / float(image.width), float(r.height) / float(image.height),
-                         float(r.x) / float(image.width), float(r.y) / float(image.height));
-    glm::dvec4 sum(0.0);
-    for (int y = r.y; y < r.y + r.height; ++y)
-        for (int x = r.x; x < r.x + r.width; ++x)
-            sum += glm::dvec4(image.rgba(x, y));
-    s.mean = glm::vec4(sum / double(std::max(r.width * r.height, 1)));
+    bool changed = false;
+    for (auto& [key, e] : *m_entries)
+        changed = takeFinished(e, sink) || changed;
+    std::uint64_t budget = m_async ? m_budget : ~std::uint64_t(0);
+    std::uint64_t spent = 0;
+    bool visible = false, coarse = false;
+    for (auto& [key, e] : *m_entries) {
+        if (spent < budget)
+            spent += upload(e, budget - spent, visible);
+        coarse = coarse || (e.finest > 0);
+    }
+    if (spent > 0) {
+        const double ms = msSince(start);
+        ++m_stats.frames;
+        m_stats.bytes += spent;
+        m_stats.worstFrameBytes = std::max(m_stats.worstFrameBytes, spent);
+        m_stats.worstFrameMs = std::max(m_stats.worstFrameMs, ms);
+        if (coarse)
+            ++m_stats.proxyFrames;
+    }
+    if (m_loader)
+        for (Problem& p : m_loader->takeLateProblems())
+            m_problems.items.push_back(std::move(p));
+    changed = updateSlots(sink) || changed || visible;
+    return changed;
+}
+
+void TextureSet::finish() {
+    for (auto& [key, e] : *m_entries)
+        if (e.job)
+            loader().wait(*e.job);
+    const bool async = m_async;
+    m_async = false; // one unbounded poll
+    for (auto& [key, e] : *m_entries) {
+        takeFinished(e, async ? &m_problems : nullptr);
+        bool visible = false;
+        upload(e, ~std::uint64_t(0), visible);
+    }
+    m_async = async;
+    updateSlots(async ? &m_problems : nullptr);
+}
+
+Problems TextureSet::takeProblems() {
+    return std::exchange(m_problems, Problems{});
+}
+
+TextureLoadProgress TextureSet::progress() const {
+    TextureLoadProgress p;
+    std::uint64_t total = 0, done = 0;
+    for (const auto& [key, e] : *m_entries) {
+        ++p.total;
+        const bool complete = !e.job && !e.data;
+        if (complete)
+            continue;
+        ++p.loading;
+        // A load not yet finished counts as nothing done of a size guessed from the last one.
+        total += std::max<std::uint64_t>(e.bytesTotal, 1);
+        done += e.job ? 0 : e.bytesDone;
+    }
+    p.fraction = total ? double(done) / double(total) : 1.0;
+    return p;
+}
+
+std::uint64_t TextureSet::decodeCount() const {
+    return m_loader ? m_loader->decodeCount() : 0;
+}
+
+std::uint64_t TextureSet::cacheHits() const {
+    return m_loader ? m_loader->cacheHits() : 0;
 }
 
 void TextureSet::applyTo(GpuMaterial& g) const {
@@ -233,7 +535,7 @@ void TextureSet::bind(unsigned program) const {
         const Slot& s = (*m_slots)[size_t(i)];
         regions[i] = s.region;
         if (s.valid)
-            glBindTextureUnit(GLuint(binding::kMaterialTexFirst + i), s.texture);
+            glBindTextureUnit(GLuint(binding::kMaterialTexFirst + i), m_entries->at(s.key).texture);
     }
     glProgramUniform4fv(program, 1, kTextureSlotCount, &regions[0].x);
 }
@@ -245,7 +547,12 @@ void TextureSet::unbind() const {
 
 unsigned TextureSet::texture(TextureSlot slot) const {
     const Slot& s = (*m_slots)[size_t(slot)];
-    return s.valid ? s.texture : 0u;
+    return s.valid ? m_entries->at(s.key).texture : 0u;
+}
+
+int TextureSet::finestLevel(TextureSlot slot) const {
+    const Slot& s = (*m_slots)[size_t(slot)];
+    return s.valid ? m_entries->at(s.key).finest : -1;
 }
 
 } // namespace velvet::render

@@ -357,6 +357,11 @@ bool Autosave::offerRecovery(const QString& filePath) {
     return true;
 }
 
+void Autosave::setStartupChooser(
+    std::function<std::optional<Recoverable>(const QList<Recoverable>&)> chooser) {
+    m_startupChooser = std::move(chooser);
+}
+
 void Autosave::setPrompt(std::function<bool(const QString&, const QDateTime&)> prompt) {
     m_prompt = std::move(prompt);
 }
@@ -365,13 +370,18 @@ bool Autosave::offerStartupRecovery(QWidget* parent) {
     const QList<Recoverable> found = recoverable();
     if (found.isEmpty())
         return false;
-    RecoveryDialog dialog(found, parent);
-    const bool accepted = dialog.exec() == QDialog::Accepted;
-    for (const QString& file : dialog.discarded())
-        remove(file);
-    // "Later" (or none chosen): what is left stays for the next start or the file's next open.
-    const std::optional<Recoverable> chosen =
-        accepted ? dialog.chosen() : std::optional<Recoverable>();
+    std::optional<Recoverable> chosen;
+    if (m_startupChooser) {
+        chosen = m_startupChooser(found);
+    } else {
+        RecoveryDialog dialog(found, parent);
+        const bool accepted = dialog.exec() == QDialog::Accepted;
+        for (const QString& file : dialog.discarded())
+            remove(file);
+        // "Later" (or none chosen): what is left stays for the next start or the file's next open.
+        if (accepted)
+            chosen = dialog.chosen();
+    }
     if (!chosen)
         return false;
     QString error;

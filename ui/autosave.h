@@ -24,6 +24,7 @@
 #include <QString>
 #include <QThreadPool>
 #include <functional>
+#include <optional>
 
 class QTimer;
 class QWidget;
@@ -90,6 +91,10 @@ public:
     /// Replaces the question asked before recovering (tests answer without a dialog). The
     /// function gets the autosave's path and time and returns true to recover.
     void setPrompt(std::function<bool(const QString&, const QDateTime&)> prompt);
+    /// Replaces offerStartupRecovery()'s RecoveryDialog (tests): given every recoverable
+    /// autosave, newest first, returns the one to recover or nothing.
+    void
+    setStartupChooser(std::function<std::optional<Recoverable>(const QList<Recoverable>&)> chooser);
     /// At a plain start (no FILE): lists recoverable() in a RecoveryDialog over @p parent, where
     /// the artist recovers one (it becomes the document), discards any, or keeps them for later.
     /// True when one was recovered; false at once when there is nothing to offer.
@@ -115,6 +120,7 @@ private:
     bool m_pending = false; ///< another was asked for meanwhile
     QString m_lastPath;     ///< the autosave the current document last wrote
     std::function<bool(const QString&, const QDateTime&)> m_prompt;
+    std::function<std::optional<Recoverable>(const QList<Recoverable>&)> m_startupChooser;
 };
 
 } // namespace velvet::ui

@@ -56,7 +56,8 @@ void fail(const QString& message) {
 /// VELVET_TEST_EDIT=V sets the material's roughness to V through the undo stack after the first
 /// frame (a real edit: dirty, debounced autosave) and prints "velvet-test: edited";
 /// VELVET_TEST_ACCEPT_RECOVERY=1 answers the recovery question with yes, prints
-/// "velvet-test: recovery offered", then prints the document's roughness and dirty state and quits.
+/// "velvet-test: recovery offered" (at a plain start: recovers the newest untitled autosave), then
+/// prints the document's roughness and dirty state and quits.
 void installTestHooks(MainWindow& window) {
     const QByteArray edit = qgetenv("VELVET_TEST_EDIT");
     if (!edit.isEmpty()) {
@@ -76,6 +77,18 @@ void installTestHooks(MainWindow& window) {
         window.autosave()->setPrompt([](const QString&, const QDateTime&) {
             std::fprintf(stderr, "velvet-test: recovery offered\n");
             return true;
+        });
+        // A plain start lists every autosave: the test takes the newest untitled one.
+        window.autosave()->setStartupChooser([](const QList<Autosave::Recoverable>& found) {
+            std::fprintf(stderr, "velvet-test: startup recovery offered %lld\n",
+                         static_cast<long long>(found.size()));
+            std::optional<Autosave::Recoverable> chosen;
+            for (const Autosave::Recoverable& r : found)
+                if (r.documentPath.isEmpty()) {
+                    chosen = r;
+                    break;
+                }
+            return chosen;
         });
         QTimer::singleShot(0, &window, [&window] {
             const DocumentController* doc = window.controller();

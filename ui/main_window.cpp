@@ -12,6 +12,7 @@
 #include "ui/log_panel.h"
 #include "ui/post_chain/post_chain_panel.h"
 #include "ui/properties/property_panel.h"
+#include "ui/reference/reference_panel.h"
 #include "ui/scene/scene_panel.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
@@ -113,6 +114,10 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     m_progressLabel->setMinimumWidth(
         m_progressLabel->fontMetrics().horizontalAdvance(tr("Prefiltering environment 100 %")) + 8);
     m_progressLabel->hide();
+    m_textureLabel = new QLabel(this);
+    m_textureLabel->setObjectName(QStringLiteral("textureProgress"));
+    m_textureLabel->hide();
+    statusBar()->addPermanentWidget(m_textureLabel);
     statusBar()->addPermanentWidget(m_progressLabel);
     statusBar()->addPermanentWidget(m_frameLabel);
 
@@ -235,6 +240,27 @@ void MainWindow::createDocks() {
     addDockWidget(Qt::RightDockWidgetArea, library);
     tabifyDockWidget(properties, library);
     properties->raise();
+    // Reference (issue 15): the path tracer's image against the viewport; renders only while
+    // its dock is shown (View > Reference, Ctrl+Shift+R), a tab beside the Log.
+    m_reference = new ReferencePanel(m_controller, m_viewport, this);
+    auto* referenceDock = new QDockWidget(tr("Reference"), this);
+    referenceDock->setObjectName(QStringLiteral("referenceDock"));
+    referenceDock->setWidget(m_reference);
+    tabifyDockWidget(log, referenceDock);
+    log->raise();
+    referenceDock->hide();
+    referenceDock->toggleViewAction()->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_R));
+    // Shown from the menu or the shortcut, its tab comes to the front; behind another tab it
+    // is not visible and stops rendering.
+    connect(referenceDock->toggleViewAction(), &QAction::triggered, referenceDock,
+            [referenceDock](bool shown) {
+                if (shown)
+                    referenceDock->raise();
+            });
+    connect(referenceDock, &QDockWidget::visibilityChanged, m_reference,
+            &ReferencePanel::setActive);
+    connect(m_reference, &ReferencePanel::status, this,
+            [this](const QString& text) { statusBar()->showMessage(text, 5000); });
     connect(m_postChain, &PostChainPanel::problemsReported, m_log, &LogPanel::error);
     connect(m_library, &LibraryPanel::problemsReported, m_log, &LogPanel::warning);
 
@@ -455,6 +481,18 @@ void MainWindow::showFrameTime(double cpuMs) {
             text += tr(" · GPU %1 ms").arg(gpuMs, 0, 'f', 1);
     }
     m_frameLabel->setText(text);
+
+    // Textures loading off the drawing thread (the viewport keeps frames coming meanwhile).
+    const render::TextureLoadProgress textures = m_viewport->textureProgress();
+    if (textures.loading > 0) {
+        m_textureLabel->setText(tr("Loading textures: %1 of %2 · %3 %")
+                                    .arg(textures.total - textures.loading)
+                                    .arg(textures.total)
+                                    .arg(int(textures.fraction * 100.0)));
+        m_textureLabel->show();
+    } else {
+        m_textureLabel->hide();
+    }
 
     // Environment prefiltering, where the renderer reports it (negative: it does not).
     const double progress = m_viewport->environmentProgress();

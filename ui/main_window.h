@@ -29,6 +29,7 @@ class ScenePanel;
 class Autosave;
 class DocumentController;
 class LibraryPanel;
+class ReferencePanel;
 class LogPanel;
 class PostChainPanel;
 class PropertyPanel;
@@ -55,6 +56,7 @@ public:
     LogPanel* logPanel() const { return m_log; }
     PostChainPanel* postChainPanel() const { return m_postChain; }
     LibraryPanel* libraryPanel() const { return m_library; }
+    ReferencePanel* referencePanel() const { return m_reference; }
     ViewportToolbar* viewportToolbar() const { return m_viewToolbar; }
     SceneToolbar* sceneToolbar() const { return m_sceneToolbar; }
     AtlasPanel* atlasPanel() const { return m_atlas; }
@@ -121,6 +123,7 @@ private:
     LogPanel* m_log = nullptr;
     PostChainPanel* m_postChain = nullptr;
     LibraryPanel* m_library = nullptr;
+    ReferencePanel* m_reference = nullptr;
     ViewportToolbar* m_viewToolbar = nullptr;
     SceneToolbar* m_sceneToolbar = nullptr;
     AtlasPanel* m_atlas = nullptr;
@@ -130,6 +133,7 @@ private:
     QMenu* m_recentMenu = nullptr;
     QLabel* m_frameLabel = nullptr;
     QLabel* m_progressLabel = nullptr;
+    QLabel* m_textureLabel = nullptr; // textures loading: "Loading textures: 1 of 3 · 40 %"
     bool m_saveLayout;
 };
 

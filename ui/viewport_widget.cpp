@@ -384,6 +384,10 @@ bool ViewportWidget::reloadShaders(QString* error) {
     return ok;
 }
 
+render::TextureLoadProgress ViewportWidget::textureProgress() const {
+    return m_renderer ? m_renderer->textureProgress() : render::TextureLoadProgress{};
+}
+
 double ViewportWidget::environmentProgress() const {
     return m_renderer ? environmentProgressOf(*m_renderer) : -1.0;
 }
@@ -469,6 +473,9 @@ void ViewportWidget::initializeGL() {
     }
     if (m_colorManagement)
         renderer->setColorManagement(m_colorManagement);
+    // Texture files load on a worker thread and upload a bounded slice a frame: the window
+    // keeps drawing (parameter value, then a coarse proxy) while a 4K map loads (issue 16).
+    renderer->setAsyncTextures(true);
     m_renderer = std::move(renderer);
     m_pendingParts = ScenePart::All; // a new renderer has none of the scene
 }
@@ -539,6 +546,9 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     // A structural graph edit compiles on the driver's threads; the renderer adopts the new
     // program at a later frame, so keep frames coming (a short pause each: polling, not spinning).
     if (m_renderer->graphPending())
+        QTimer::singleShot(kGraphPollMs, this, &ViewportWidget::requestFrame);
+    // Textures loading or uploading: frames keep coming until every one is complete.
+    if (m_renderer->textureProgress().loading > 0)
         QTimer::singleShot(kGraphPollMs, this, &ViewportWidget::requestFrame);
     updateOverlay();
     emit frameCompleted(static_cast<double>(timer.nsecsElapsed()) / 1.0e6);

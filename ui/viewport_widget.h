@@ -144,6 +144,8 @@ public:
     /// Environment prefiltering progress in [0, 1], or a negative value when the renderer does
     /// not report one.
     double environmentProgress() const;
+    /// The material's textures on their way to the GPU (loading == 0: all complete).
+    render::TextureLoadProgress textureProgress() const;
 
     /// The camera the viewport draws with: the scene's, or the artist's orbit of it.
     Camera viewCamera() const;

@@ -62,12 +62,17 @@ std::vector<std::string> violations(const std::vector<Rule>& rules) {
 
 // ---- The build's arrows: target_link_libraries in the layers' CMakeLists.txt ----
 
-/// The layers bottom-up: a layer may link only those before it.
-const std::vector<std::string> kLayers = {"core", "render", "ui", "app"};
+/// The layers bottom-up. The reference path tracer (reference/) stands beside render/ on core:
+/// the two share a rank, so neither may link the other (the ground truth must not borrow the
+/// real-time renderer's code, nor render the path tracer's).
+const std::vector<std::string> kLayers = {"core", "render", "reference", "ui", "app"};
 
+/// A layer may link only layers of a lower rank.
 int layerIndex(const std::string& folder) {
-    const auto it = std::find(kLayers.begin(), kLayers.end(), folder);
-    return it == kLayers.end() ? -1 : int(it - kLayers.begin());
+    static const std::map<std::string, int> rank = {
+        {"core", 0}, {"render", 1}, {"reference", 1}, {"ui", 2}, {"app", 3}};
+    const auto it = rank.find(folder);
+    return it == rank.end() ? -1 : it->second;
 }
 
 /// One call of a CMake command: its name (lower case), its arguments and where it starts.
@@ -200,6 +205,8 @@ const std::vector<ForbiddenLibrary>& forbiddenLibraries() {
         {"core", std::regex("^Qt[0-9]*::(Gui|Widgets|OpenGL|OpenGLWidgets)$|EPOXY|EGL|^OpenGL::"),
          "core/ is the model: no GL, no Qt GUI"},
         {"render", std::regex("^Qt[0-9]*::"), "render/ runs under bare EGL too: no Qt"},
+        {"reference", std::regex("^Qt[0-9]*::|EPOXY|EGL|^OpenGL::"),
+         "reference/ is the CPU ground truth: no GL, no Qt"},
     };
     return rules;
 }
@@ -295,17 +302,27 @@ private slots:
     void headersHideHeavyLibraries() {
         const std::regex heavy("^(assimp|OpenImageIO|OpenColorIO|nlohmann)/");
         const std::string why = "third-party headers stay inside .cpp files";
-        expectNone({{"core", true, heavy, why},
-                    {"render", true, heavy, why},
-                    {"ui", true, heavy, why},
-                    {"app", true, heavy, why}});
+        expectNone(
+            {{"core", true, heavy, why},
+             {"render", true, heavy, why},
+             {"ui", true, heavy, why},
+             {"app", true, heavy, why},
+             {"reference", true,
+              std::regex("^(assimp|OpenImageIO|OpenColorIO|nlohmann|embree[0-9]*|tbb|oneapi)/"),
+              why}});
     }
     // Includes follow the arrows too: no layer includes a header of a layer above it.
     void includesFollowTheArrows() {
         const std::string why = "the arrows are app -> ui -> render -> core";
-        expectNone({{"core", false, std::regex("^(render|ui|app)/"), why},
-                    {"render", false, std::regex("^(ui|app)/"), why},
+        expectNone({{"core", false, std::regex("^(render|reference|ui|app)/"), why},
+                    {"render", false, std::regex("^(reference|ui|app)/"), why},
+                    {"reference", false, std::regex("^(render|ui|app)/"), why},
                     {"ui", false, std::regex("^app/"), why}});
+    }
+    // The reference path tracer is CPU only: no GL and no Qt header.
+    void referenceHasNoGlAndNoQt() {
+        expectNone({{"reference", false, std::regex("^(GL|GLES[0-9]*|EGL|KHR|epoxy)/|^Qt|^Q[A-Z]"),
+                     "reference/ is the CPU ground truth: no GL, no Qt"}});
     }
 
     // The build's arrows: each layer's target links only the layers below it.
@@ -316,7 +333,8 @@ private slots:
         // The scan saw the real arrows (a parser that finds nothing would pass the check above).
         const auto found = arrows(files);
         for (const char* arrow :
-             {"velvet_render -> velvet_core", "velvet_ui -> velvet_render", "velvet -> velvet_ui"})
+             {"velvet_render -> velvet_core", "velvet_reference -> velvet_core",
+              "velvet_ui -> velvet_render", "velvet -> velvet_ui", "velvet -> velvet_reference"})
             QVERIFY2(std::find(found.begin(), found.end(), arrow) != found.end(), arrow);
     }
 
@@ -332,6 +350,9 @@ private slots:
              "add_library(velvet_ui STATIC c.cpp)\n"
              "target_link_libraries(velvet_ui # the widgets\n  PUBLIC velvet_render "
              "Qt6::Widgets)\n"},
+            {"reference/CMakeLists.txt", "reference",
+             "add_library(velvet_reference STATIC d.cpp)\n"
+             "target_link_libraries(velvet_reference PUBLIC velvet_core PRIVATE embree)\n"},
         };
         QVERIFY(linkViolations(base).empty());
         const auto withLine = [&](const std::string& layer, const std::string& extra) {
@@ -360,6 +381,12 @@ private slots:
              "velvet_core links PkgConfig::EPOXY"},
             {"render", "target_link_libraries(velvet_render PRIVATE Qt6::Core)",
              "velvet_render links Qt6::Core (render/ runs under bare EGL"},
+            {"render", "target_link_libraries(velvet_render PRIVATE velvet_reference)",
+             "velvet_render (render) links velvet_reference (reference)"},
+            {"reference", "target_link_libraries(velvet_reference PRIVATE velvet_render)",
+             "velvet_reference (reference) links velvet_render (render)"},
+            {"reference", "target_link_libraries(velvet_reference PRIVATE Qt6::Core)",
+             "velvet_reference links Qt6::Core (reference/ is the CPU ground truth"},
             {"core", "target_link_libraries(velvet_core PRIVATE ${MORE})",
              "a variable hides what is linked"},
         };

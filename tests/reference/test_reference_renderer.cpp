@@ -3,11 +3,13 @@
 // converges to the environment's radiance), determinism (the same seed gives the same image
 // whatever the thread count; another seed another), and Monte Carlo convergence (the error
 // against a 16x-spp image roughly halves for every 4x spp).
+#include "core/graph/graph.h"
 #include "core/image.h"
 #include "core/material.h"
 #include "core/scene.h"
 #include "reference/reference_renderer.h"
 
+#include <QTemporaryDir>
 #include <QTest>
 #include <cmath>
 
@@ -86,6 +88,112 @@ private slots:
                 mean += r.image.pixels[(size_t(y) * 24 + x) * size_t(c)];
         mean /= 24.0 * 24.0;
         QVERIFY2(std::abs(mean - 1.0) < 0.02, qPrintable(QString::number(mean)));
+    }
+
+    // The material graph is evaluated at every hit by the graph compiler's CPU twin: a graph
+    // feeding constants renders exactly what the same values as parameters render, and a
+    // checker feeding the base colour shows per-hit variation a constant cannot.
+    void graphDrivesTheMaterialPerHit() {
+        using namespace velvet::graph;
+        reference::Options o;
+        o.width = o.height = 20;
+        o.samplesPerPixel = 4;
+        Scene byParams = variedScene();
+        byParams.material.setColor(ParamId::BaseColor, glm::vec3(0.2f, 0.5f, 0.9f));
+        byParams.material.setScalar(ParamId::Roughness, 0.6f);
+        byParams.material.setScalar(ParamId::Metallic, 0.0f);
+
+        Graph g;
+        const NodeId out = g.addNode(kOutputTypeId).node;
+        const NodeId colour = g.addNode("constant.color").node;
+        const NodeId rough = g.addNode("constant.float").node;
+        const NodeId metal = g.addNode("constant.float").node;
+        QVERIFY(g.setInputValue(colour, 0, glm::vec4(0.2f, 0.5f, 0.9f, 0.0f)));
+        QVERIFY(g.setInputValue(rough, 0, glm::vec4(0.6f)));
+        QVERIFY(g.setInputValue(metal, 0, glm::vec4(0.0f)));
+        QVERIFY(g.connect({colour, 0, out, PortIndex(outputInputForParam(ParamId::BaseColor))}));
+        QVERIFY(g.connect({rough, 0, out, PortIndex(outputInputForParam(ParamId::Roughness))}));
+        QVERIFY(g.connect({metal, 0, out, PortIndex(outputInputForParam(ParamId::Metallic))}));
+        Scene byGraph = variedScene(); // gold parameters, overwritten by the graph
+        byGraph.material.graph = SharedGraph(g);
+        const reference::Result a = renderOrFail(byParams, o);
+        const reference::Result b = renderOrFail(byGraph, o);
+        QVERIFY(!a.image.pixels.empty());
+        QVERIFY(a.image.pixels == b.image.pixels);
+
+        // A black and white checker (8 squares per UV unit) into the base colour: neighbouring
+        // pixels on the sphere differ far more than under a constant grey.
+        Graph checker;
+        const NodeId out2 = checker.addNode(kOutputTypeId).node;
+        const NodeId squares = checker.addNode("noise.checker").node;
+        QVERIFY(checker.setInputValue(squares, 1, glm::vec4(8.0f)));
+        QVERIFY(checker.setInputValue(squares, 2, glm::vec4(1.0f)));
+        QVERIFY(checker.setInputValue(squares, 3, glm::vec4(0.0f)));
+        QVERIFY(checker.connect(
+            {squares, 0, out2, PortIndex(outputInputForParam(ParamId::BaseColor))}));
+        Scene checkered = byParams;
+        checkered.material.graph = SharedGraph(checker);
+        Scene grey = byParams;
+        grey.material.setColor(ParamId::BaseColor, glm::vec3(0.5f));
+        o.samplesPerPixel = 16;
+        const auto contrast = [](const Image& img) {
+            double sum = 0.0;
+            for (int y = 6; y < 14; ++y) // the middle of the sphere
+                for (int x = 6; x < 13; ++x)
+                    sum += std::abs(img.rgba(x + 1, y).g - img.rgba(x, y).g);
+            return sum;
+        };
+        const double withChecker = contrast(renderOrFail(checkered, o).image);
+        const double withGrey = contrast(renderOrFail(grey, o).image);
+        QVERIFY2(withChecker > 3.0 * withGrey,
+                 qPrintable(QStringLiteral("%1 vs %2").arg(withChecker).arg(withGrey)));
+    }
+
+    // The KHR lobes' texture slots multiply their factors at every hit, in the channel
+    // texture_ref.h names: a constant grey map (128/255 in every channel) renders as the factor
+    // times 128/255 does.
+    void lobeTextureSlotsScaleTheirFactors_data() {
+        QTest::addColumn<int>("slot");
+        QTest::addColumn<int>("param");
+        QTest::newRow("clearcoat") << int(TextureSlot::Clearcoat) << int(ParamId::ClearcoatWeight);
+        QTest::newRow("clearcoatRoughness")
+            << int(TextureSlot::ClearcoatRoughness) << int(ParamId::ClearcoatRoughness);
+        QTest::newRow("sheenRoughness")
+            << int(TextureSlot::SheenRoughness) << int(ParamId::SheenRoughness);
+        QTest::newRow("specular") << int(TextureSlot::Specular) << int(ParamId::SpecularWeight);
+    }
+    void lobeTextureSlotsScaleTheirFactors() {
+        QFETCH(int, slot);
+        QFETCH(int, param);
+        QTemporaryDir dir;
+        const std::string file = dir.filePath("grey.png").toStdString();
+        Image grey(4, 4, 4);
+        std::fill(grey.pixels.begin(), grey.pixels.end(), 128.0f / 255.0f);
+        std::string error;
+        QVERIFY2(writeImage(file, grey, PixelFormat::UInt8, &error), error.c_str());
+        Scene base = variedScene();
+        base.material.setScalar(ParamId::Metallic, 0.0f);
+        base.material.setScalar(ParamId::ClearcoatWeight, 0.8f);
+        base.material.setScalar(ParamId::ClearcoatRoughness, 0.5f);
+        base.material.setScalar(ParamId::SheenWeight, 1.0f);
+        base.material.setScalar(ParamId::SheenRoughness, 0.8f);
+        Scene textured = base;
+        TextureRef ref;
+        ref.file = file;
+        textured.material.setTexture(TextureSlot(slot), ref);
+        Scene scaled = base;
+        scaled.material.setScalar(ParamId(param),
+                                  base.material.scalar(ParamId(param)) * (128.0f / 255.0f));
+        Scene untouched = base;
+        reference::Options o;
+        o.width = o.height = 16;
+        o.samplesPerPixel = 4;
+        const Image a = renderOrFail(textured, o).image;
+        const Image b = renderOrFail(scaled, o).image;
+        const Image c = renderOrFail(untouched, o).image;
+        QVERIFY(!a.pixels.empty());
+        QVERIFY2(rmse(a, b) < 1e-4, qPrintable(QString::number(rmse(a, b))));
+        QVERIFY2(rmse(a, c) > 1e-3, "the slot changed nothing");
     }
 
     void sameSeedSameImageWhateverTheThreads() {

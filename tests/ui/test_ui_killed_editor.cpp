@@ -102,6 +102,39 @@ private slots:
                      qPrintable(err));
         }
     }
+
+    // The untitled document too: a plain start after the kill lists its autosave, and
+    // recovering it brings the edit back, dirty.
+    void untitledEditSurvivesAKill() {
+        if (qEnvironmentVariableIsEmpty("DISPLAY"))
+            QSKIP("needs a display (run through ctest: xvfb-run)");
+        QTemporaryDir home;
+        QVERIFY(home.isValid());
+        QProcess editor;
+        QProcessEnvironment env = editorEnv(home);
+        env.insert("VELVET_TEST_EDIT", "0.789");
+        editor.setProcessEnvironment(env);
+        editor.start(VELVET_BINARY, {});
+        QVERIFY(editor.waitForStarted());
+        QByteArray seen;
+        QVERIFY2(waitForText(editor, seen, "velvet-test: edited", 120000), seen.constData());
+        QThread::msleep(3000);
+        ::kill(pid_t(editor.processId()), SIGKILL);
+        QVERIFY(editor.waitForFinished());
+        QCOMPARE(editor.exitStatus(), QProcess::CrashExit);
+
+        QProcess again;
+        QProcessEnvironment againEnv = editorEnv(home);
+        againEnv.insert("VELVET_TEST_ACCEPT_RECOVERY", "1");
+        again.setProcessEnvironment(againEnv);
+        again.start(VELVET_BINARY, {});
+        QVERIFY(again.waitForFinished(120000));
+        const QString err = QString::fromUtf8(again.readAllStandardError());
+        QCOMPARE(again.exitCode(), 0);
+        QVERIFY2(err.contains("velvet-test: startup recovery offered 1"),
+                 qPrintable(err + "\nfirst run:\n" + QString::fromUtf8(seen)));
+        QVERIFY2(err.contains("roughness=0.789 dirty=1"), qPrintable(err));
+    }
 };
 
 QTEST_GUILESS_MAIN(TestUiKilledEditor)

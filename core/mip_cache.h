@@ -1,0 +1,35 @@
+#pragma once
+/// @file mip_cache.h
+/// The on-disk cache of built mip chains (core/mip_texture.h): one tiled, MIP-mapped TIFF per
+/// entry, the layout OpenImageIO's make_texture / maketx writes (64x64 tiles, every level a
+/// MIP level of subimage 0, "textureformat" = "Plain Texture"), so oiiotool, iinfo and any
+/// OpenImageIO TextureSystem read it. Named by a hash of the entry's key (the source file's
+/// content hash, colour space, usage, size limit, format version); the key is stored inside
+/// and checked on read, so a hash collision or a stale file is a miss, never a wrong image.
+/// Written to a temporary beside the entry and renamed into place (atomic).
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace velvet {
+
+struct MipTexture;
+
+/// A 64-bit hash (xxHash64, chained over 1 MiB blocks) of @p file's bytes, as 16 hex digits;
+/// "" and @p error set when the file cannot be read.
+std::string fileContentHash(const std::filesystem::path& file, std::string* error);
+
+/// The entry file for @p key in @p dir.
+std::filesystem::path mipCacheEntry(const std::filesystem::path& dir, const std::string& key);
+
+/// Reads the entry at @p entry into @p out. False when it does not exist (@p why empty) or
+/// cannot be used (@p why says why: unreadable, truncated, another key, inconsistent levels).
+bool readMipCache(const std::filesystem::path& entry, const std::string& key, MipTexture& out,
+                  std::string* why);
+/// Writes @p texture as the entry at @p entry (creating its folder). False + message naming
+/// the file on failure; no partial entry is ever left under the entry's name.
+bool writeMipCache(const std::filesystem::path& entry, const std::string& key,
+                   const MipTexture& texture, std::string* error);
+
+} // namespace velvet

@@ -1,0 +1,151 @@
+// The Reference view (issue 15) in the real MainWindow under xvfb-run: Ctrl+Shift+R shows the
+// dock and starts the path tracer in the background; images arrive while the UI keeps
+// processing events; an edit restarts the render and changes the image; dragging the divider
+// puts the viewport's pixels left of it and the reference's right; hiding the dock stops it.
+#include "ui/document_controller.h"
+#include "ui/main_window.h"
+#include "ui/reference/reference_panel.h"
+#include "ui/viewport_widget.h"
+#include "ui_test_window.h"
+
+#include <QApplication>
+#include <QDockWidget>
+#include <QElapsedTimer>
+#include <QSignalSpy>
+#include <QSlider>
+#include <QStandardPaths>
+#include <QSurfaceFormat>
+#include <QTimer>
+#include <QtTest>
+#include <memory>
+
+using namespace velvet;
+using namespace velvet::ui;
+
+class TestUiReference : public QObject {
+    Q_OBJECT
+    std::unique_ptr<MainWindow> m_window;
+
+private slots:
+    void initTestCase() {
+        m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
+        const QString up = test::showWithFirstFrame(m_window.get(), {1000, 700});
+        QVERIFY2(up.isEmpty(), qPrintable(up));
+    }
+    void cleanupTestCase() {
+        m_window->controller()->newDocument();
+        QVERIFY(m_window->close());
+        m_window.reset();
+    }
+
+    void referenceRendersInTheBackgroundAndFollowsEdits() {
+        auto* dock = m_window->findChild<QDockWidget*>(QStringLiteral("referenceDock"));
+        QVERIFY(dock);
+        ReferencePanel* panel = m_window->referencePanel();
+        QVERIFY(panel);
+        QVERIFY(!dock->isVisible());
+        QVERIFY(!panel->active());
+        // Let the viewport settle (its first frames bake the environment in slices): what is
+        // measured below is the UI thread with the reference running, not the viewport's start.
+        QSignalSpy frames(m_window->viewport(), &ViewportWidget::frameCompleted);
+        QElapsedTimer settle;
+        settle.start();
+        int seen = -1;
+        while (seen != frames.count() && settle.elapsed() < 60000) {
+            seen = frames.count();
+            QTest::qWait(1000);
+        }
+        QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
+        QVERIFY(QTest::qWaitFor([&] { return dock->isVisible(); }));
+        QVERIFY(panel->active());
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 1; }, 120000));
+        // While it converges the UI thread keeps serving events: a 10 ms timer never waits long
+        // (a render on the UI thread would hold it for whole passes).
+        QElapsedTimer clock;
+        clock.start();
+        qint64 last = 0, longest = 0;
+        int ticks = 0;
+        QTimer tick;
+        QObject::connect(&tick, &QTimer::timeout, [&] {
+            ++ticks;
+            longest = std::max(longest, clock.elapsed() - last);
+            last = clock.elapsed();
+        });
+        tick.start(10);
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 64; }, 120000));
+        tick.stop();
+        // Relative bounds (the machine may be loaded): no wait as long as a quarter of the
+        // render, and at least a tenth of the ticks served.
+        const qint64 total = clock.elapsed();
+        qInfo("64 samples per pixel in %lld ms; %d ticks of 10 ms; longest UI wait %lld ms", total,
+              ticks, longest);
+        QVERIFY2(longest * 4 < total,
+                 qPrintable(QStringLiteral("the UI waited %1 of %2 ms").arg(longest).arg(total)));
+        QVERIFY2(ticks * 100 >= total,
+                 qPrintable(QStringLiteral("%1 ticks in %2 ms").arg(ticks).arg(total)));
+        const QImage first = panel->view()->composed();
+        QVERIFY(!first.isNull());
+        QCOMPARE(first.width(), ReferencePanel::kWidth);
+
+        // An edit restarts it: a blue base colour instead of the default's.
+        m_window->controller()->editParam(ParamId::BaseColor, glm::vec3(0.05f, 0.1f, 0.9f));
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() == 0; }, 10000));
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 2; }, 120000));
+        panel->view()->setSplit(0.0); // all reference
+        const QImage blue = panel->view()->composed();
+        const QPoint centre(blue.width() / 2, blue.height() / 2);
+        const QColor c = blue.pixelColor(centre);
+        QVERIFY2(c.blue() > c.red() + 20,
+                 qPrintable(QStringLiteral("%1 %2 %3").arg(c.red()).arg(c.green()).arg(c.blue())));
+        QVERIFY(first.pixelColor(centre) != c);
+
+        // Dragging the divider (mouse on the view) moves the split; the slider follows.
+        auto* slider = panel->findChild<QSlider*>(QStringLiteral("referenceSplit"));
+        QVERIFY(slider);
+        ReferenceSplitView* view = panel->view();
+        const QRect drawn = view->imageRect();
+        const QPoint at(drawn.left() + drawn.width() * 3 / 4, drawn.center().y());
+        QTest::mousePress(view, Qt::LeftButton, {}, at);
+        QTest::mouseRelease(view, Qt::LeftButton, {}, at);
+        QVERIFY2(view->split() > 0.55 && view->split() < 0.95,
+                 qPrintable(QString::number(view->split())));
+        QCOMPARE(slider->value(), int(std::lround(view->split() * 100)));
+        // Left of the divider the viewport's snapshot, right of it the reference.
+        const QImage split = view->composed();
+        const int cut = int(std::lround(view->split() * split.width()));
+        const QImage refOnly = [&] {
+            view->setSplit(0.0);
+            return view->composed();
+        }();
+        const QImage vpOnly = [&] {
+            view->setSplit(1.0);
+            return view->composed();
+        }();
+        const int y = split.height() / 2;
+        QCOMPARE(split.pixel(cut / 2, y), vpOnly.pixel(cut / 2, y));
+        QCOMPARE(split.pixel((cut + split.width()) / 2, y),
+                 refOnly.pixel((cut + split.width()) / 2, y));
+
+        if (const QByteArray shots = qgetenv("VELVET_TEST_SCREENSHOTS"); !shots.isEmpty()) {
+            view->setSplit(0.5);
+            QApplication::processEvents();
+            panel->grab().save(QString::fromUtf8(shots) + QStringLiteral("/reference_panel.png"));
+        }
+        // Hidden, it stops.
+        QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
+        QVERIFY(QTest::qWaitFor([&] { return !panel->active(); }));
+    }
+};
+
+int main(int argc, char** argv) {
+    QStandardPaths::setTestModeEnabled(true);
+    QSurfaceFormat::setDefaultFormat(ViewportWidget::requiredFormat());
+    QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("VelvetReferenceTest"));
+    QApplication::setOrganizationName(QStringLiteral("VelvetTest"));
+    TestUiReference test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_ui_reference.moc"
