@@ -220,6 +220,9 @@ bool checkMeshFile(const std::filesystem::path& file, std::string* error,
     return true;
 }
 
+/// Faces meeting at a larger angle get separate normals where a file has none.
+constexpr float kCreaseAngleDeg = 60.0f;
+
 bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::string* error,
                          const MeshImportLimits& limits) {
     if (!checkMeshFile(file, error, limits))
@@ -228,6 +231,11 @@ bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::
     keepOnlyImportersFor(importer, lower(file.extension().string()));
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    // Normals made for a file without them keep hard edges hard: faces meeting at more than
+    // kCreaseAngleDeg are not averaged (a cube keeps its edges instead of shading like a
+    // pillow), gentler ones are (the 30-degree steps of a 12-sided cylinder still shade round).
+    // Assimp's own default, 175 degrees, smooths nearly everything.
+    importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, kCreaseAngleDeg);
     // Pre-transforming bakes the node hierarchy into the vertices, so merging is a concatenation.
     // FlipUVs turns Assimp's OpenGL-style UVs (v = 0 at the bottom) into glTF's (v = 0 at the top).
     const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |

@@ -30,9 +30,10 @@ bool checkMeshFile(const std::filesystem::path& file, std::string* error,
 
 /// Imports @p file in this process with Assimp: checkMeshFile(), then triangulate, pre-transform
 /// and merge every mesh into one, drop points and lines, generate normals where missing
-/// (smooth), generate tangents (core/mesh_tangents.h, always: importers disagree on bitangent
-/// conventions), UVs in glTF's space (v = 0 at the image's top; files without UVs get zeros),
-/// then centre and scale into [-1, 1]^3 (fitToUnitBox). False + one line naming the file.
+/// (smooth, except across edges sharper than a 60-degree crease angle: a cube stays hard-edged),
+/// generate tangents (core/mesh_tangents.h, always: importers disagree on bitangent conventions),
+/// UVs in glTF's space (v = 0 at the image's top; files without UVs get zeros), then centre and
+/// scale into [-1, 1]^3 (fitToUnitBox). False + one line naming the file.
 bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::string* error,
                          const MeshImportLimits& limits = {});
 

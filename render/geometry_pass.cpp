@@ -53,20 +53,34 @@ void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh
     if (mesh.doubleSided)
         glDisable(GL_CULL_FACE);
     mesh.gpu.draw();
+    MaterialGraphProgram* bound = &graph;
     if (in.split) {
-        // A/B split: the right part again, from a cleared G-buffer, with material B (id 1).
+        // A/B split: B's part again, from a cleared G-buffer, with material B (id 1).
         const int seam = std::clamp(
             int(std::lround(std::clamp(in.splitPosition, 0.0f, 1.0f) * in.width)), 0, in.width);
         glEnable(GL_SCISSOR_TEST);
-        glScissor(seam, 0, in.width - seam, in.height);
+        if (in.splitSwapped)
+            glScissor(0, 0, seam, in.height);
+        else
+            glScissor(seam, 0, in.width - seam, in.height);
         clearGeometry();
-        glProgramUniform1i(program, 0, 1);
+        // B with a graph of its own draws with its own program (its graph's code, values and
+        // texture nodes), not with A's graph under B's parameters.
+        if (in.splitGraph && in.splitGraph != &graph) {
+            graph.unbind();
+            bound = in.splitGraph;
+            glUseProgram(bound->program());
+            textures.bind(bound->program());
+            bound->bind();
+        }
+        const unsigned programB = bound->program();
+        glProgramUniform1i(programB, 0, 1);
         mesh.gpu.draw();
-        glProgramUniform1i(program, 0, 0);
+        glProgramUniform1i(programB, 0, 0);
         glDisable(GL_SCISSOR_TEST);
     }
     textures.unbind();
-    graph.unbind();
+    bound->unbind();
 }
 
 } // namespace velvet::render

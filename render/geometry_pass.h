@@ -22,13 +22,18 @@ struct GeometryPassInputs {
     unsigned framebuffer = 0; ///< FrameTargets::geometryFramebuffer
     int width = 0, height = 0;
     bool emission = false; ///< the HDR draw buffer is on: clear it to black, opaque
-    /// FrameSettings::splitMaterial is set: the seam at splitPosition x width.
+    /// FrameSettings::splitMaterial is set: the seam at splitPosition x width, B right of it
+    /// (left with splitSwapped).
     bool split = false;
     float splitPosition = 0.5f;
+    bool splitSwapped = false;
+    /// B's own G-buffer program when B's graph is not A's (null: B draws with A's program, its
+    /// values differing only in the material table).
+    MaterialGraphProgram* splitGraph = nullptr;
 };
 
-/// Runs the pass over @p mesh. Leaves depth testing on with writes and back-face culling as the
-/// mesh asked, for the lighting pass to reset.
+/// Runs the pass over @p mesh (@p graph: A's program). Leaves depth testing on with writes and
+/// back-face culling as the mesh asked, for the lighting pass to reset.
 void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh,
                       MaterialGraphProgram& graph, const TextureSet& textures);
 

@@ -3,6 +3,9 @@
 #include "core/mesh.h"
 #include "core/mesh_import.h"
 
+#include <algorithm>
+#include <glm/geometric.hpp>
+
 namespace velvet::render {
 
 const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems) {
@@ -25,6 +28,10 @@ const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems
             entry->gpu.upload(data);
             entry->doubleSided = data.doubleSided;
             entry->bounds = meshBounds(data);
+            float radius = 0.0f;
+            for (const Vertex& v : data.vertices)
+                radius = std::max(radius, glm::length(v.position));
+            entry->radius = radius > 0.0f ? radius : 1.0f;
         }
     }
     if (!entry->failure.empty()) {

@@ -20,6 +20,8 @@ public:
         GpuMesh gpu;
         bool doubleSided = false;
         MeshBounds bounds;   ///< of the vertices (the stage fits shadows and the ground to it)
+        /// The largest distance of a vertex from the origin (frames the view: View > Frame Mesh).
+        float radius = 1.0f;
         std::string failure; ///< why the import failed ("" when the mesh is uploaded)
     };
 

@@ -46,6 +46,10 @@ struct Renderer::Impl {
     /// @name The passes, in pipeline order
     /// @{
     MaterialGraphProgram graph; ///< geometry: the G-buffer program with the material graph
+    /// The A/B split's B when its graph is not A's: its own G-buffer program (made on first use)
+    /// and the graph it was given.
+    std::unique_ptr<MaterialGraphProgram> graphB;
+    SharedGraph graphBSource;
     LightingPass lighting;      ///< background, then directional + image-based lighting
     LightPasses lights;         ///< point, spot and area lights
     PostChainRenderer post;     ///< the scene's post chain, run after lighting
@@ -100,6 +104,11 @@ struct Renderer::Impl {
         std::string errors;
         if (!graph.build(&errors) && !keepGoing)
             return fail(error, errors);
+        if (graphB) {
+            std::string messageB;
+            if (!graphB->build(&messageB))
+                errors += (errors.empty() ? "" : "\n") + messageB;
+        }
         std::string message;
         if (!lighting.build(&message, keepGoing))
             errors += (errors.empty() ? "" : "\n") + message;
@@ -152,6 +161,30 @@ struct Renderer::Impl {
         ++uploads.environmentRequests;
         environment = &environments.get(scene.environment, problems);
         ibl.request(*environment);
+    }
+
+    /// The program B draws with: null when B's graph is A's (A's program, B's values in the
+    /// material table); otherwise B's own, started and built the first time (synchronously, like
+    /// the first build of A's), given B's graph when it changed, polled like A's.
+    MaterialGraphProgram* splitGraphFor(const Material& b, std::string* error) {
+        if (b.graph == scene.material.graph)
+            return nullptr;
+        if (!graphB) {
+            auto program = std::make_unique<MaterialGraphProgram>();
+            program->start(b);
+            if (!program->build(error))
+                return nullptr;
+            graphB = std::move(program);
+            graphBSource = b.graph;
+            graphB->uploadValues();
+            graphB->refreshTextures(textures.sharedCache(), nullptr);
+        } else if (!(graphBSource == b.graph)) {
+            graphB->setGraph(b, textures.sharedCache(), nullptr);
+            graphBSource = b.graph;
+        }
+        graphB->buildPending(textures.sharedCache());
+        graphB->refreshTextures(textures.sharedCache(), nullptr);
+        return graphB.get();
     }
 
     /// Per-frame work before drawing: texture files changed on disk, a structural graph edit
@@ -533,6 +566,13 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     geometry.emission = emission;
     geometry.split = fs.splitMaterial.has_value();
     geometry.splitPosition = fs.splitPosition;
+    geometry.splitSwapped = fs.splitSwapped;
+    if (fs.splitMaterial) {
+        std::string splitError;
+        geometry.splitGraph = d.splitGraphFor(*fs.splitMaterial, &splitError);
+        if (!splitError.empty())
+            return fail(error, "A/B split: B's material graph: " + splitError);
+    }
     drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
@@ -631,12 +671,16 @@ Image Renderer::readDisplay() const {
     return readFramebuffer(d.lastTarget, d.lastWidth, d.lastHeight);
 }
 
+float Renderer::meshRadius() const {
+    return m_impl->mesh ? m_impl->mesh->radius : 1.0f;
+}
+
 const std::string& Renderer::graphError() const {
     return m_impl->graph.error();
 }
 
 bool Renderer::graphPending() const {
-    return m_impl->graph.pending();
+    return m_impl->graph.pending() || (m_impl->graphB && m_impl->graphB->pending());
 }
 
 TextureCache& Renderer::graphTextureCache() {
@@ -644,8 +688,11 @@ TextureCache& Renderer::graphTextureCache() {
 }
 
 void Renderer::finishGraph() {
-    if (m_impl->initialized)
-        m_impl->graph.buildPending(m_impl->textures.sharedCache(), /*wait=*/true);
+    if (!m_impl->initialized)
+        return;
+    m_impl->graph.buildPending(m_impl->textures.sharedCache(), /*wait=*/true);
+    if (m_impl->graphB)
+        m_impl->graphB->buildPending(m_impl->textures.sharedCache(), /*wait=*/true);
 }
 
 bool Renderer::parallelShaderCompile() const {
@@ -654,9 +701,9 @@ bool Renderer::parallelShaderCompile() const {
 
 int Renderer::shaderCompileCount() const {
     const Impl& d = *m_impl;
-    return d.graph.compileCount() + d.lighting.compileCount() + d.lights.compileCount() +
-           d.ibl.compileCount() + d.display.compileCount() + d.post.compileCount() +
-           d.stage.compileCount();
+    return d.graph.compileCount() + (d.graphB ? d.graphB->compileCount() : 0) +
+           d.lighting.compileCount() + d.lights.compileCount() + d.ibl.compileCount() +
+           d.display.compileCount() + d.post.compileCount() + d.stage.compileCount();
 }
 
 PostChainRenderer& Renderer::postChain() {

@@ -131,10 +131,13 @@ struct FrameSettings {
     /// material right of it (B) in one frame: one G-buffer with a second, scissored draw of the
     /// mesh with material id 1, then one lighting and post pass over both halves. B shares A's
     /// texture files (its texture slots are ignored); any parameter or BRDF term may differ.
-    /// Uploading B rewrites the material table only (never a shader).
+    /// Uploading B rewrites the material table only, unless B's graph is not A's: then B draws
+    /// with a G-buffer program of its own (compiled the first time, rebuilt when B's graph
+    /// changes structure).
     /// @{
     std::optional<Material> splitMaterial;
     float splitPosition = 0.5f; ///< the seam, as a fraction of the width (0..1)
+    bool splitSwapped = false;  ///< B left of the seam, A right of it
     /// @}
     /// Interactive reduced resolution: in (0, 1) the frame is rendered at width x height scaled
     /// by this (at least 1 x 1) into an internal display-encoded target and stretched over the
@@ -250,6 +253,10 @@ public:
     /// render() builds it synchronously. A graph that fails to compile or link leaves the last
     /// good program drawing.
     /// @{
+    /// The preview mesh drawn now: the largest distance of a vertex from the origin (the
+    /// built-in meshes fit the unit sphere: about 1; an imported cube fills [-1, 1]^3: sqrt 3).
+    /// 1 before initialize().
+    float meshRadius() const;
     /// Why the last graph was not compiled, or "" when the drawn program matches the scene.
     const std::string& graphError() const;
     /// A structural graph change is waiting for its program (true until it is adopted or fails).

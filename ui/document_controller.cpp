@@ -2,6 +2,7 @@
 
 #include "core/default_stage.h"
 #include "core/document_io.h"
+#include "core/mesh_import.h"
 #include "core/post_effects.h"
 #include "core/scene_document.h"
 #include "ui/commands/atlas_commands.h"
@@ -9,7 +10,9 @@
 #include "ui/commands/set_param_command.h"
 #include "ui/commands/set_scene_command.h"
 
+#include <QCursor>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QUndoStack>
 
 namespace velvet::ui {
@@ -75,10 +78,32 @@ void DocumentController::editEnvironment(const Environment& environment, const Q
         new SetEnvironmentCommand(this, m_scene.environment, environment, text, mergeKey));
 }
 
-void DocumentController::editMesh(const MeshRef& mesh) {
+bool DocumentController::editMesh(const MeshRef& mesh, QString* error) {
     if (mesh == m_scene.mesh)
-        return;
+        return true;
+    // Import before the edit rather than let the renderer find out (it would draw the sphere
+    // while History and the saved file named the broken file, issue 17 item 13). The renderer
+    // imports once more when it draws: an import is a fraction of a second for a preview mesh.
+    if (mesh.kind == PreviewMeshKind::Custom) {
+        MeshData data;
+        std::string reason;
+        QGuiApplication::setOverrideCursor(Qt::WaitCursor); // a large file takes a moment
+        const bool ok = mesh.file.empty() ? (reason = "no file given", false)
+                                          : importMesh(mesh.file, data, &reason);
+        QGuiApplication::restoreOverrideCursor();
+        if (!ok) {
+            const QString name = QFileInfo(QString::fromStdString(mesh.file)).fileName();
+            const QString message =
+                tr("Mesh %1 refused, the mesh is unchanged: %2")
+                    .arg(name.isEmpty() ? tr("(none)") : name, QString::fromStdString(reason));
+            if (error)
+                *error = message;
+            emit meshRefused(message);
+            return false;
+        }
+    }
     m_undoStack->push(new SetMeshCommand(this, m_scene.mesh, mesh));
+    return true;
 }
 
 void DocumentController::editLights(const std::vector<Light>& lights, const QString& text,

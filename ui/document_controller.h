@@ -50,8 +50,11 @@ public:
     /// Replaces the environment (HDRI, intensity, rotation, …). Edits sharing a non-zero
     /// @p mergeKey (one drag) merge into one command named @p text. No-op edits push nothing.
     void editEnvironment(const Environment& environment, const QString& text, int mergeKey = 0);
-    /// Replaces the preview mesh (one command). No-op edits push nothing.
-    void editMesh(const MeshRef& mesh);
+    /// Replaces the preview mesh (one command). No-op edits push nothing. A custom mesh file is
+    /// imported first (core's importMesh, in a child process): one that cannot be imported is
+    /// refused — no command, the document keeps its mesh — and false comes back with the reason
+    /// in @p error (also sent as meshRefused). The document never names a mesh it cannot show.
+    bool editMesh(const MeshRef& mesh, QString* error = nullptr);
     /// Replaces the scene's lights (one command named @p text: a light added, removed or edited,
     /// a rig applied). Edits sharing a non-zero @p mergeKey (one spin-box or slider gesture)
     /// merge. No-op edits push nothing.
@@ -127,6 +130,8 @@ signals:
     void fileChanged(const QString& filePath);
     /// The undo stack left or reached its clean state.
     void dirtyChanged(bool dirty);
+    /// editMesh refused a mesh file: @p message names the file and the reason.
+    void meshRefused(const QString& message);
 
 public:
     /// @name Post chain edits, effects addressed by id (EffectInstance::id), so an edit reaches

@@ -4,6 +4,7 @@
 #include "core/default_stage.h"
 #include "core/document_io.h"
 #include "core/texture_ref.h"
+#include "ui/ab_split_control.h"
 #include "ui/atlas/atlas_panel.h"
 #include "ui/autosave.h"
 #include "ui/document_controller.h"
@@ -147,11 +148,24 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
     connect(m_viewport, &ViewportWidget::environmentRotationDragged, this,
             &MainWindow::rotateEnvironment);
     connect(m_autosave, &Autosave::failed, m_log, &LogPanel::warning);
+    connect(m_controller, &DocumentController::meshRefused, this, [this](const QString& text) {
+        m_log->error(text);
+        statusBar()->showMessage(text, 10000);
+    });
     connect(m_viewToolbar, &ViewportToolbar::viewStateChanged, this, &MainWindow::applyViewState);
     connect(m_viewToolbar, &ViewportToolbar::timingOverlayToggled, m_viewport,
             &ViewportWidget::setTimingOverlayVisible);
 
     resize(1280, 800);
+    // Under the viewport: the graph three fifths of the width, the Log (and Post chain) the rest,
+    // above its narrowest so the separator moves both ways; tall enough for a few nodes (it
+    // started at about 375x125, issue 17 item 2).
+    if (auto* log = findChild<QDockWidget*>(QStringLiteral("logDock")),
+        *graph = findChild<QDockWidget*>(QStringLiteral("graphDock"));
+        log && graph) {
+        resizeDocks({log, graph}, {2, 3}, Qt::Horizontal);
+        resizeDocks({graph}, {250}, Qt::Vertical);
+    }
     if (restoreLayout) {
         QSettings settings;
         restoreGeometry(settings.value(kGeometryKey).toByteArray());
@@ -279,6 +293,13 @@ void MainWindow::createDocks() {
             &GraphPanel::previewSourceReady);
     connect(graphPanel, &GraphPanel::previewProblems, m_log, &LogPanel::warning);
     connect(m_properties, &PropertyPanel::message, this, showMessage);
+    // "Driven by <node>" under a material parameter: that node, selected, in the graph dock.
+    connect(m_properties, &PropertyPanel::graphNodeRequested, this,
+            [graphPanel, graphDock](graph::NodeId id) {
+                graphDock->show();
+                graphDock->raise();
+                graphPanel->showNode(id);
+            });
 
     // The selected effect or node shows its parameters in Properties.
     connect(m_postChain, &PostChainPanel::effectSelected, m_properties, &PropertyPanel::showEffect);
@@ -296,45 +317,12 @@ void MainWindow::createToolbars() {
     m_viewToolbar = new ViewportToolbar(m_colorManagement, this);
     addToolBar(Qt::TopToolBarArea, m_viewToolbar);
 
-    // A/B split: view state beside the debug view and overlay toggles.
-    m_abAction = new QAction(tr("A/B"), this);
-    m_abAction->setObjectName(QStringLiteral("abSplitAction"));
-    m_abAction->setCheckable(true);
-    m_abAction->setToolTip(tr("A/B split: the current material (left) beside a snapshot taken "
-                              "now or a preset (right)"));
-    connect(m_abAction, &QAction::toggled, this, [this](bool on) { setAbSplit(on); });
-    auto* abMenu = new QMenu(this);
-    abMenu->addAction(tr("B = snapshot of the current material"), this, [this] {
-        setAbSplit(false);
-        setAbSplit(true);
-    });
-    // Comparing BRDF terms as the seed documents did: B is A with one term switched (GGX
-    // beside Beckmann, Lambert beside Burley, …); everything else stays A's.
-    QMenu* termMenu = abMenu->addMenu(tr("B = A with another BRDF term"));
-    termMenu->setObjectName(QStringLiteral("abTermMenu"));
-    for (ParamId id : {ParamId::Distribution, ParamId::Visibility, ParamId::Fresnel,
-                       ParamId::Diffuse, ParamId::SheenModel}) {
-        const ParamMeta& meta = paramMeta(id);
-        QMenu* sub = termMenu->addMenu(QString::fromUtf8(meta.label.data(), meta.label.size()));
-        for (size_t i = 0; i < meta.choices.size(); ++i) {
-            const QString choice =
-                QString::fromUtf8(meta.choices[i].data(), qsizetype(meta.choices[i].size()));
-            sub->addAction(choice, this, [this, id, i] { setAbSplitTerm(id, int(i)); });
-        }
-    }
-    abMenu->addAction(tr("B from preset…"), this, [this] {
-        const QString path = QFileDialog::getOpenFileName(this, tr("Material preset for B"),
-                                                          QString(), fileFilter());
-        if (!path.isEmpty())
-            setAbSplitPreset(path);
-    });
-    auto* abButton = new QToolButton(this);
-    abButton->setObjectName(QStringLiteral("abSplitButton"));
-    abButton->setDefaultAction(m_abAction);
-    abButton->setMenu(abMenu);
-    abButton->setPopupMode(QToolButton::MenuButtonPopup);
+    // A/B split: view state beside the debug view and overlay toggles (ui/ab_split_control.h).
+    m_abSplit = new AbSplitControl(this, m_controller, m_viewport, m_log);
+    connect(m_abSplit, &AbSplitControl::status, this,
+            [this](const QString& text) { statusBar()->showMessage(text, 6000); });
     m_viewToolbar->addSeparator();
-    m_viewToolbar->addWidget(abButton);
+    m_viewToolbar->addWidget(m_abSplit->button());
     addToolBarBreak(Qt::TopToolBarArea);
     m_sceneToolbar = new SceneToolbar(m_controller, this);
     addToolBar(Qt::TopToolBarArea, m_sceneToolbar);
@@ -347,36 +335,19 @@ void MainWindow::applyViewState() {
 }
 
 void MainWindow::setAbSplit(bool on, std::optional<Material> b) {
-    if (on && !b)
-        b = m_controller->material(); // the snapshot B
-    m_viewport->setSplitMaterial(on ? std::move(b) : std::nullopt);
-    const QSignalBlocker block(m_abAction);
-    m_abAction->setChecked(on);
-    if (on)
-        statusBar()->showMessage(tr("A/B split: left the current material, right B"), 4000);
+    m_abSplit->setSplit(on, std::move(b));
 }
 
 void MainWindow::setAbSplitTerm(ParamId term, int choice) {
-    Material b = m_controller->material();
-    b.setChoice(term, choice);
-    setAbSplit(true, b);
-    const ParamMeta& meta = paramMeta(term);
-    const std::string_view name = meta.choices[size_t(b.choice(term))];
-    m_log->info(tr("A/B split: B is A with %1 %2")
-                    .arg(QString::fromUtf8(meta.label.data(), qsizetype(meta.label.size())),
-                         QString::fromUtf8(name.data(), qsizetype(name.size()))));
+    m_abSplit->setSplitTerm(term, choice);
 }
 
 bool MainWindow::setAbSplitPreset(const QString& path) {
-    Problems problems;
-    std::optional<Material> material = loadMaterialFile(path.toStdString(), problems);
-    if (!material || problems.hasErrors()) {
-        m_log->error(tr("Could not read the preset %1 for B").arg(path));
-        return false;
-    }
-    setAbSplit(true, std::move(material));
-    m_log->info(tr("A/B split: B is %1").arg(path));
-    return true;
+    return m_abSplit->setSplitPreset(path);
+}
+
+QAction* MainWindow::abSplitAction() const {
+    return m_abSplit->action();
 }
 
 void MainWindow::rotateEnvironment(float deltaDeg, int gestureKey) {
@@ -459,7 +430,8 @@ bool MainWindow::openDroppedFile(const QString& path) {
         MeshRef mesh;
         mesh.kind = PreviewMeshKind::Custom;
         mesh.file = documentPath(path);
-        m_controller->editMesh(mesh);
+        if (!m_controller->editMesh(mesh))
+            return false; // refused: said in the Log, the status bar and the Scene panel
         m_log->info(tr("Preview mesh: %1").arg(path));
         return true;
     }
@@ -492,10 +464,22 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 void MainWindow::dropEvent(QDropEvent* event) {
     if (!event->mimeData()->hasUrls())
         return;
+    // A preset dropped on B's side of the A/B split becomes B (view state); anywhere else it is
+    // applied to the document (one undo step), like a drag from the Library.
+    const QPoint inViewport = m_viewport->mapFrom(this, event->position().toPoint());
+    const bool onB =
+        m_viewport->rect().contains(inViewport) && m_viewport->isOnSplitB(inViewport.x());
     bool handled = false;
-    for (const QUrl& url : event->mimeData()->urls())
-        if (url.isLocalFile())
-            handled |= openDroppedFile(url.toLocalFile());
+    for (const QUrl& url : event->mimeData()->urls()) {
+        if (!url.isLocalFile())
+            continue;
+        const QString path = url.toLocalFile();
+        if (onB && dropKindOf(path) == DropKind::Document &&
+            detectDocumentKind(path.toStdString()) == DocumentKind::Material)
+            handled |= setAbSplitPreset(path);
+        else
+            handled |= openDroppedFile(path);
+    }
     if (handled)
         event->acceptProposedAction();
 }

@@ -23,6 +23,7 @@ class ColorManagement;
 
 namespace velvet::ui {
 
+class AbSplitControl;
 class AtlasPanel;
 class ScenePanel;
 class Autosave;
@@ -62,7 +63,9 @@ public:
     ScenePanel* scenePanel() const { return m_scene; }
     Autosave* autosave() const { return m_autosave; }
     /// The toolbar's A/B split toggle.
-    QAction* abSplitAction() const { return m_abAction; }
+    QAction* abSplitAction() const;
+    /// The A/B split's toolbar button, menu and swap shortcut.
+    AbSplitControl* abSplit() const { return m_abSplit; }
 
     /// Opens @p path, showing problems in a message box and the Log. False when it could not be
     /// opened. Successful opens go to the recent files.
@@ -126,7 +129,7 @@ private:
     AtlasPanel* m_atlas = nullptr;
     ScenePanel* m_scene = nullptr;
     Autosave* m_autosave = nullptr;
-    QAction* m_abAction = nullptr;
+    AbSplitControl* m_abSplit = nullptr;
     QMenu* m_recentMenu = nullptr;
     QLabel* m_frameLabel = nullptr;
     QLabel* m_progressLabel = nullptr;

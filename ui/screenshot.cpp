@@ -37,7 +37,7 @@ QImage grabWithViewports(QWidget* widget) {
     for (ViewportWidget* viewport : viewports) {
         if (!viewport->isVisible())
             continue;
-        const QImage frame = viewport->grabFramebuffer();
+        const QImage frame = viewport->grabDecorated();
         if (frame.isNull())
             continue;
         painter.drawImage(QRect(viewport->mapTo(widget, QPoint(0, 0)), viewport->size()), frame);

@@ -56,7 +56,11 @@ bool ViewportWidget::mousePress(QMouseEvent* event) {
     }
     switch (event->button()) {
     case Qt::LeftButton:
-        m_drag = Drag::Orbit;
+        // On the A/B seam: drag the seam, not the view.
+        m_drag =
+            m_splitMaterial && std::abs(event->position().x() - splitSeamX()) <= kSeamGrabPixels
+                ? Drag::Seam
+                : Drag::Orbit;
         break;
     case Qt::MiddleButton:
         m_drag = Drag::Pan;
@@ -82,8 +86,23 @@ bool ViewportWidget::mousePress(QMouseEvent* event) {
 }
 
 bool ViewportWidget::mouseMove(QMouseEvent* event) {
-    if (m_drag == Drag::None)
+    if (m_drag == Drag::None) {
+        // Hovering the seam shows that it can be dragged.
+        const bool onSeam =
+            m_splitMaterial && std::abs(event->position().x() - splitSeamX()) <= kSeamGrabPixels;
+        if (onSeam)
+            glWindow()->setCursor(Qt::SplitHCursor);
+        else
+            glWindow()->unsetCursor();
         return false;
+    }
+    if (m_drag == Drag::Seam) {
+        const int width = std::max(1, glWindow()->width());
+        setSplitPosition(float(event->position().x() / width));
+        emit splitPositionChanged(m_splitPosition);
+        event->accept();
+        return true;
+    }
     const QPoint pos = event->position().toPoint();
     const QPoint delta = pos - m_lastMouse;
     m_lastMouse = pos;
@@ -123,6 +142,7 @@ bool ViewportWidget::mouseMove(QMouseEvent* event) {
         emit environmentRotationDragged(float(delta.x()) * kEnvironmentDegPerPixel, m_gestureKey);
         return true;
     case Drag::None:
+    case Drag::Seam:
         break;
     }
     setViewCamera(camera);
@@ -130,10 +150,11 @@ bool ViewportWidget::mouseMove(QMouseEvent* event) {
 }
 
 bool ViewportWidget::mouseRelease(QMouseEvent* event) {
-    const bool ends = (m_drag == Drag::Orbit && event->button() == Qt::LeftButton) ||
-                      (m_drag == Drag::Pan && event->button() == Qt::MiddleButton) ||
-                      ((m_drag == Drag::Look || m_drag == Drag::RotateEnvironment) &&
-                       event->button() == Qt::RightButton);
+    const bool ends =
+        ((m_drag == Drag::Orbit || m_drag == Drag::Seam) && event->button() == Qt::LeftButton) ||
+        (m_drag == Drag::Pan && event->button() == Qt::MiddleButton) ||
+        ((m_drag == Drag::Look || m_drag == Drag::RotateEnvironment) &&
+         event->button() == Qt::RightButton);
     if (ends) {
         m_drag = Drag::None;
         m_flyTimer->stop();

@@ -73,7 +73,7 @@ QComboBox* makeCombo(const QString& name, const QString& tip, QWidget* parent) {
 
 ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorManagement,
                                  QWidget* parent)
-    : QToolBar(tr("View"), parent), m_colorManagement(std::move(colorManagement)) {
+    : QToolBar(tr("View toolbar"), parent), m_colorManagement(std::move(colorManagement)) {
     setObjectName(QStringLiteral("viewportToolbar"));
 
     m_debugView = makeCombo(QStringLiteral("debugViewCombo"),
@@ -243,7 +243,7 @@ void ViewportToolbar::saveSettings() const {
 // SceneToolbar
 
 SceneToolbar::SceneToolbar(DocumentController* controller, QWidget* parent)
-    : QToolBar(tr("Scene"), parent), m_controller(controller) {
+    : QToolBar(tr("Scene toolbar"), parent), m_controller(controller) {
     setObjectName(QStringLiteral("sceneToolbar"));
 
     m_mesh = makeCombo(QStringLiteral("meshCombo"), tr("Preview mesh"), this);

@@ -243,6 +243,77 @@ void ViewportWidget::setSplitPosition(float fraction) {
     requestFrame();
 }
 
+void ViewportWidget::setSplitLabel(const QString& label) {
+    m_splitLabel = label;
+    requestFrame();
+}
+
+void ViewportWidget::setSplitSwapped(bool swapped) {
+    m_splitSwapped = swapped;
+    requestFrame();
+}
+
+int ViewportWidget::splitSeamX() const {
+    // The renderer's seam is at round(position x frame width) in device pixels.
+    const qreal dpr = m_surface->devicePixelRatio();
+    return int(std::lround(std::lround(m_splitPosition * frameSize().width()) / dpr));
+}
+
+bool ViewportWidget::isOnSplitB(int x) const {
+    if (!m_splitMaterial)
+        return false;
+    return m_splitSwapped ? x < splitSeamX() : x >= splitSeamX();
+}
+
+void ViewportWidget::paintSplitDecorations(QPainter& painter, QSize size) const {
+    if (!m_splitMaterial)
+        return;
+    // A dark line with a light core reads on bright and dark frames alike; a handle in the
+    // middle says it can be dragged.
+    const int seam = int(std::lround(m_splitPosition * size.width()));
+    painter.save();
+    painter.setRenderHint(QPainter::Antialiasing, false);
+    painter.fillRect(QRect(seam - 2, 0, 4, size.height()), QColor(0, 0, 0, 160));
+    painter.fillRect(QRect(seam - 1, 0, 2, size.height()), QColor(240, 240, 240));
+    const QRect handle(seam - 5, size.height() / 2 - 18, 10, 36);
+    painter.setRenderHint(QPainter::Antialiasing, true);
+    painter.setPen(QPen(QColor(0, 0, 0, 180), 1));
+    painter.setBrush(QColor(240, 240, 240));
+    painter.drawRoundedRect(handle, 4, 4);
+    // The labels: A is the document's material, B what the toolbar says.
+    QFont font = painter.font();
+    font.setBold(true);
+    painter.setFont(font);
+    const QFontMetrics metrics(font);
+    const QString a = tr("A · current material");
+    const QString b = m_splitLabel.isEmpty() ? tr("B") : tr("B · %1").arg(m_splitLabel);
+    const auto label = [&](const QString& text, bool leftSide) {
+        const int margin = 8;
+        const int room = std::max(0, (leftSide ? seam : size.width() - seam) - 2 * margin - 8);
+        const QString shown = metrics.elidedText(text, Qt::ElideRight, room);
+        const int w = metrics.horizontalAdvance(shown) + 12;
+        const int x = leftSide ? seam - margin - w : seam + margin;
+        const QRect box(x, margin, w, metrics.height() + 6);
+        painter.setPen(Qt::NoPen);
+        painter.setBrush(QColor(0, 0, 0, 150));
+        painter.drawRoundedRect(box, 4, 4);
+        painter.setPen(QColor(240, 240, 240));
+        painter.drawText(box, Qt::AlignCenter, shown);
+    };
+    label(m_splitSwapped ? b : a, true);
+    label(m_splitSwapped ? a : b, false);
+    painter.restore();
+}
+
+QImage ViewportWidget::grabDecorated() {
+    QImage image = grabFramebuffer();
+    if (image.isNull() || !m_splitMaterial)
+        return image;
+    QPainter painter(&image);
+    paintSplitDecorations(painter, image.deviceIndependentSize().toSize());
+    return image;
+}
+
 void ViewportWidget::setReducedResolution(bool enabled, float scale) {
     m_reducedEnabled = enabled;
     m_reducedScale = std::clamp(scale, 0.1f, 1.0f);
@@ -284,13 +355,16 @@ bool ViewportWidget::isTimingOverlayVisible() const {
 }
 
 void ViewportWidget::frameMesh() {
-    // Every preview mesh is modelled to fit the unit sphere at the origin (core/mesh.h), which
-    // the default Camera's distance frames at ~70 % of the height.
+    // The built-in meshes fit the unit sphere at the origin (core/mesh.h), which the default
+    // Camera's distance frames at ~70 % of the height; an imported mesh is scaled into
+    // [-1, 1]^3 (a cube's corners are sqrt 3 away), so the distance scales with the mesh's
+    // bounding sphere (Renderer::meshRadius) to frame it the same way.
     Camera camera = viewCamera();
     const Camera framing;
+    const float radius = m_renderer ? std::max(0.05f, m_renderer->meshRadius()) : 1.0f;
     camera.target = framing.target;
-    camera.distance = framing.distance;
-    camera.orthoHeight = framing.orthoHeight;
+    camera.distance = framing.distance * radius;
+    camera.orthoHeight = framing.orthoHeight * radius;
     setViewCamera(camera);
 }
 
@@ -351,10 +425,14 @@ void ViewportWidget::updateOverlay() {
 
 void ViewportWidget::paintOverlay() {
     // Child widgets cannot sit over a native GL window, so Qt's paint engine draws the box (the
-    // look of the former QLabel overlay); ui/ issues no GL itself.
-    if (!m_overlayVisible || m_overlayText.isEmpty())
+    // look of the former QLabel overlay) and the A/B divider; ui/ issues no GL itself.
+    const bool timings = m_overlayVisible && !m_overlayText.isEmpty();
+    if (!timings && !m_splitMaterial)
         return;
     QPainter painter(m_surface);
+    paintSplitDecorations(painter, m_surface->size());
+    if (!timings)
+        return;
     QFont font(QStringLiteral("monospace"));
     font.setStyleHint(QFont::Monospace);
     painter.setFont(font);
@@ -442,6 +520,7 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     settings.height = size.height();
     settings.splitMaterial = m_splitMaterial;
     settings.splitPosition = m_splitPosition;
+    settings.splitSwapped = m_splitSwapped;
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
     settings.time = float(animationTime());
 

@@ -37,6 +37,7 @@
 #include <optional>
 
 class QKeyEvent;
+class QPainter;
 class QMouseEvent;
 class QTimer;
 class QWheelEvent;
@@ -82,6 +83,25 @@ public:
     void setSplitMaterial(std::optional<Material> b);
     const std::optional<Material>& splitMaterial() const { return m_splitMaterial; }
     void setSplitPosition(float fraction);
+    float splitPosition() const { return m_splitPosition; }
+    /// What B is ("snapshot of A", "gold", "A with Beckmann"): drawn in B's label over the frame.
+    void setSplitLabel(const QString& label);
+    QString splitLabel() const { return m_splitLabel; }
+    /// B left of the seam and A right of it (the X shortcut swaps).
+    void setSplitSwapped(bool swapped);
+    bool splitSwapped() const { return m_splitSwapped; }
+    /// The seam's x in the viewport's (and the GL window's) logical coordinates.
+    int splitSeamX() const;
+    /// Whether x (viewport coordinates) is on B's side of the seam; false without a split.
+    bool isOnSplitB(int x) const;
+    /// The divider and the A / B labels, drawn over the frame by Qt's paint engine while the
+    /// split is on (nothing otherwise); also what grabDecorated() adds to a frame.
+    void paintSplitDecorations(QPainter& painter, QSize size) const;
+    /// grabFramebuffer() with the split's divider and labels painted over it (what the artist
+    /// sees; screenshots).
+    QImage grabDecorated();
+    /// A press within this many pixels of the seam drags it instead of orbiting.
+    static constexpr int kSeamGrabPixels = 6;
     /// @}
     /// @name Reduced resolution while editing
     /// A scene or camera change that comes within kRefineDelayMs of the previous one (a slider
@@ -172,9 +192,11 @@ signals:
     /// Shift + right drag moved by @p deltaDeg degrees of HDRI rotation. Every move of one drag
     /// carries the same @p gestureKey, so the edits merge into one undo command.
     void environmentRotationDragged(float deltaDeg, int gestureKey);
+    /// The artist dragged the A/B seam to @p fraction of the width.
+    void splitPositionChanged(float fraction);
 
 private:
-    enum class Drag { None, Orbit, Pan, Look, RotateEnvironment };
+    enum class Drag { None, Orbit, Pan, Look, RotateEnvironment, Seam };
     class Surface; ///< the QOpenGLWindow; forwards everything to the methods below
 
     /// @name Called by the Surface (its context current for the GL ones)
@@ -234,6 +256,8 @@ private:
     QPointer<QWidget> m_dragTarget; ///< the widget the current drag over the GL window went to
     std::optional<Material> m_splitMaterial;
     float m_splitPosition = 0.5f;
+    QString m_splitLabel;
+    bool m_splitSwapped = false;
     bool m_reducedEnabled = true;
     float m_reducedScale = 0.5f;
     bool m_interacting = false; ///< the next frame is reduced

@@ -273,6 +273,34 @@ private slots:
             QVERIFY(std::abs(glm::dot(glm::vec3(v.tangent), v.normal)) < 1e-3f);
         }
     }
+    // Issue 17 item 14: the OBJ cube above has no normals. Generated ones keep its 90-degree
+    // edges hard (a crease angle): every vertex normal is its face's axis, not the average of
+    // three faces (0.577 on each axis, a pillow).
+    void objWithoutNormalsKeepsHardEdges() {
+        writeText(path("hard.obj"), kCubeObj);
+        MeshData mesh;
+        std::string error;
+        QVERIFY2(importMeshInProcess(path("hard.obj"), mesh, &error), error.c_str());
+        QCOMPARE(mesh.triangleCount(), size_t(12));
+        for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+            const glm::vec3 a = mesh.vertices[mesh.indices[t]].position;
+            const glm::vec3 b = mesh.vertices[mesh.indices[t + 1]].position;
+            const glm::vec3 c = mesh.vertices[mesh.indices[t + 2]].position;
+            const glm::vec3 face = glm::normalize(glm::cross(b - a, c - a));
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3 n = mesh.vertices[mesh.indices[t + size_t(k)]].normal;
+                QVERIFY2(glm::dot(n, face) > 0.999f,
+                         qPrintable(QString("triangle %1: normal (%2, %3, %4), face (%5, %6, %7)")
+                                        .arg(t / 3)
+                                        .arg(n.x)
+                                        .arg(n.y)
+                                        .arg(n.z)
+                                        .arg(face.x)
+                                        .arg(face.y)
+                                        .arg(face.z)));
+            }
+        }
+    }
     void plyRoundTrip() {
         writeText(path("quad.ply"), "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
                                     "property float y\nproperty float z\nelement face 1\n"

@@ -35,6 +35,17 @@ GraphPanel::GraphPanel(DocumentController* controller, QWidget* parent)
     connect(m_model, &GraphModel::reset, this, &GraphPanel::schedulePreviews);
 }
 
+bool GraphPanel::showNode(graph::NodeId id) {
+    NodeItem* item = m_scene->nodeItem(id);
+    if (!item)
+        return false;
+    m_scene->clearSelection();
+    item->setSelected(true);
+    m_view->centerOn(item);
+    m_view->setFocus();
+    return true;
+}
+
 void GraphPanel::setPreviewSource(PreviewSource source) {
     m_previewSource = std::move(source);
     schedulePreviews();

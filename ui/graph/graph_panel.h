@@ -52,6 +52,9 @@ public:
     static constexpr int kPreviewDelayMs = 100;
 
 public slots:
+    /// Selects node @p id alone and centres the view on it (Properties' "driven by" links). The
+    /// selection shows the node in Properties (nodeSelected). False when there is no such node.
+    bool showNode(velvet::graph::NodeId id);
     /// The preview source may draw now (the viewport drew a frame): runs a batch it missed.
     void previewSourceReady();
 

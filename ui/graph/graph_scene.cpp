@@ -53,9 +53,12 @@ PortItem* GraphScene::portAt(QPointF p) const {
 }
 
 void GraphScene::rebuild() {
-    clear();
+    // Forget the items first: clear() deletes a selected node, which emits selectionChanged,
+    // and the slot above must not touch links already deleted (a crash on File > New with a
+    // node selected).
     m_nodes.clear();
     m_connections.clear();
+    clear();
     for (const auto& [id, node] : m_model->graph().nodes())
         addNodeItem(node);
     for (const graph::Connection& c : m_model->graph().connections())

@@ -3,6 +3,8 @@
 #include "render/renderer.h"
 
 #include <QCoreApplication>
+#include <QFont>
+#include <QFontMetricsF>
 #include <QGraphicsScene>
 #include <QPainter>
 #include <QStyleOptionGraphicsItem>
@@ -70,6 +72,19 @@ NodeItem::NodeItem(const graph::Node& node) : m_node(node.id) {
     setToolTip(qs(t.tooltip));
     m_texture = t.samplesTexture;
     m_hasPreview = previewedCategory(t.category) && !t.outputs.empty();
+    // Wide enough for the longest input label beside the longest output label and the title
+    // ("Specular weight", "Normal strength" were cut at half of a fixed 160 px).
+    const QFontMetricsF metrics{QFont()};
+    qreal inputWidth = 0, outputWidth = 0;
+    for (const graph::InputSpec& in : t.inputs)
+        if (in.connectable)
+            inputWidth = std::max(inputWidth, metrics.horizontalAdvance(qs(in.label)));
+    for (const graph::OutputSpec& out : t.outputs)
+        outputWidth = std::max(outputWidth, metrics.horizontalAdvance(qs(out.label)));
+    m_inputColumn = std::ceil(inputWidth) + 2;
+    m_outputColumn = std::ceil(outputWidth) + 2;
+    m_width = std::max<qreal>({160, 10 + m_inputColumn + 16 + m_outputColumn + 10,
+                               std::ceil(metrics.horizontalAdvance(m_title)) + 20});
     size_t rows = 0;
     m_inputs.resize(t.inputs.size(), nullptr);
     for (size_t i = 0; i < t.inputs.size(); ++i) {
@@ -125,14 +140,11 @@ void NodeItem::paint(QPainter* painter, const QStyleOptionGraphicsItem* option, 
     painter->setPen(QColor(220, 220, 220));
     for (size_t i = 0; i < m_inputLabels.size(); ++i) {
         painter->setPen(m_inputDimmed[i] ? QColor(140, 140, 140) : QColor(220, 220, 220));
-        painter->drawText(QRectF(10, kTitleHeight + kRowHeight * qreal(i), m_width / 2, kRowHeight),
-                          Qt::AlignVCenter | Qt::AlignLeft, m_inputLabels[i]);
+        painter->drawText(inputLabelRect(i), Qt::AlignVCenter | Qt::AlignLeft, m_inputLabels[i]);
     }
     painter->setPen(QColor(220, 220, 220));
     for (size_t i = 0; i < m_outputLabels.size(); ++i)
-        painter->drawText(
-            QRectF(m_width / 2, kTitleHeight + kRowHeight * qreal(i), m_width / 2 - 10, kRowHeight),
-            Qt::AlignVCenter | Qt::AlignRight, m_outputLabels[i]);
+        painter->drawText(outputLabelRect(i), Qt::AlignVCenter | Qt::AlignRight, m_outputLabels[i]);
     if (m_hasPreview) {
         const QRectF r((m_width - kThumbnailSide) / 2, m_height - kThumbnailSide - 6,
                        kThumbnailSide, kThumbnailSide);
@@ -147,6 +159,15 @@ void NodeItem::paint(QPainter* painter, const QStyleOptionGraphicsItem* option, 
             painter->drawImage(r, m_preview);
         }
     }
+}
+
+QRectF NodeItem::inputLabelRect(size_t i) const {
+    return QRectF(10, kTitleHeight + kRowHeight * qreal(i), m_inputColumn, kRowHeight);
+}
+
+QRectF NodeItem::outputLabelRect(size_t i) const {
+    return QRectF(m_width - 10 - m_outputColumn, kTitleHeight + kRowHeight * qreal(i),
+                  m_outputColumn, kRowHeight);
 }
 
 PortItem* NodeItem::inputPort(graph::PortIndex index) const {

@@ -57,6 +57,12 @@ public:
     PortItem* outputPort(graph::PortIndex index) const;
     /// Re-reads settings (a texture node's file, shown as the tooltip) and repaints.
     void refresh(const graph::Node& node);
+    /// Where input label @p i / output label @p i is drawn, in item coordinates (each column as
+    /// wide as its longest label, so none is cut).
+    QRectF inputLabelRect(size_t i) const;
+    QRectF outputLabelRect(size_t i) const;
+    const std::vector<QString>& inputLabels() const { return m_inputLabels; }
+    const std::vector<QString>& outputLabels() const { return m_outputLabels; }
     /// Whether the node shows a thumbnail: the Texture, Noise, Math and Channels categories.
     bool hasPreview() const { return m_hasPreview; }
     /// Shows @p image (RGBA holding display values in [0, 1], render/graph_preview.h) as the
@@ -77,6 +83,7 @@ private:
     std::vector<bool> m_inputDimmed; ///< per input label: the viewport does not draw it per pixel
     std::vector<PortItem*> m_inputs, m_outputs; ///< indexed like the type's ports
     qreal m_width = 160, m_height = 60;
+    qreal m_inputColumn = 70, m_outputColumn = 70; ///< the label columns' widths
     bool m_hasPreview = false;
     bool m_texture = false; ///< samples a file: without one its thumbnail says "no image"
     bool m_hasFile = false;

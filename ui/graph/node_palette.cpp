@@ -2,10 +2,13 @@
 
 #include "core/graph/node_catalogue.h"
 
+#include <QGuiApplication>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QListWidget>
+#include <QScreen>
 #include <QVBoxLayout>
+#include <algorithm>
 
 namespace velvet::ui {
 namespace {
@@ -41,7 +44,24 @@ NodePalette::NodePalette(QWidget* parent)
 void NodePalette::popup(QPoint at) {
     m_filter->clear();
     applyFilter(QString());
-    move(at);
+    // At the cursor, but inside the window (and its screen): near the bottom or right edge it
+    // opens above or left of the cursor instead of running off the window.
+    QRect bounds = parentWidget() ? parentWidget()->window()->geometry() : QRect();
+    if (const QScreen* screen = QGuiApplication::screenAt(at))
+        bounds = bounds.isValid() ? bounds.intersected(screen->availableGeometry())
+                                  : screen->availableGeometry();
+    QPoint pos = at;
+    if (bounds.isValid()) {
+        if (pos.y() + height() > bounds.bottom())
+            pos.setY(at.y() - height());
+        if (pos.x() + width() > bounds.right())
+            pos.setX(at.x() - width());
+        pos.setX(
+            std::clamp(pos.x(), bounds.left(), std::max(bounds.left(), bounds.right() - width())));
+        pos.setY(
+            std::clamp(pos.y(), bounds.top(), std::max(bounds.top(), bounds.bottom() - height())));
+    }
+    move(pos);
     show();
     m_filter->setFocus();
 }

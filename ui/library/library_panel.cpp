@@ -15,6 +15,7 @@
 #include <QLineEdit>
 #include <QListView>
 #include <QMessageBox>
+#include <QMimeData>
 #include <QPainter>
 #include <QPushButton>
 #include <QRegularExpression>
@@ -22,6 +23,7 @@
 #include <QStandardItemModel>
 #include <QStandardPaths>
 #include <QUndoStack>
+#include <QUrl>
 #include <QVBoxLayout>
 
 namespace velvet::ui {
@@ -64,6 +66,26 @@ QString fileNameFor(const QString& name) {
     return base.isEmpty() ? QStringLiteral("preset") : base;
 }
 
+/// The grid's model as a drag source: a preset leaves as its file's URL, so a drop on the
+/// viewport (or any window that takes files) applies it like a file from a file manager.
+class PresetDragModel final : public QSortFilterProxyModel {
+public:
+    using QSortFilterProxyModel::QSortFilterProxyModel;
+    QStringList mimeTypes() const override { return {QStringLiteral("text/uri-list")}; }
+    Qt::DropActions supportedDragActions() const override { return Qt::CopyAction; }
+    QMimeData* mimeData(const QModelIndexList& indexes) const override {
+        QList<QUrl> urls;
+        for (const QModelIndex& index : indexes)
+            if (index.isValid())
+                urls << QUrl::fromLocalFile(index.data(LibraryPanel::PathRole).toString());
+        if (urls.isEmpty())
+            return nullptr;
+        auto* mime = new QMimeData;
+        mime->setUrls(urls);
+        return mime;
+    }
+};
+
 } // namespace
 
 LibraryPanel::LibraryPanel(DocumentController* controller, QWidget* parent)
@@ -94,7 +116,7 @@ void LibraryPanel::init(const Options& options) {
             });
 
     m_model = new QStandardItemModel(this);
-    m_proxy = new QSortFilterProxyModel(this);
+    m_proxy = new PresetDragModel(this);
     m_proxy->setSourceModel(m_model);
     m_proxy->setFilterRole(SearchRole);
     m_proxy->setFilterCaseSensitivity(Qt::CaseInsensitive);
@@ -115,7 +137,10 @@ void LibraryPanel::init(const Options& options) {
     m_view->setIconSize(QSize(ThumbnailRenderer::kSize, ThumbnailRenderer::kSize));
     m_view->setGridSize(QSize(ThumbnailRenderer::kSize + 28, ThumbnailRenderer::kSize + 36));
     m_view->setResizeMode(QListView::Adjust);
-    m_view->setMovement(QListView::Static);
+    m_view->setMovement(QListView::Static); // (turns dragging off: on again, as a source only)
+    m_view->setDragEnabled(true);
+    m_view->setDragDropMode(QAbstractItemView::DragOnly);
+    m_view->setDefaultDropAction(Qt::CopyAction);
     m_view->setUniformItemSizes(true);
     m_view->setWordWrap(true);
     m_view->setSelectionMode(QAbstractItemView::SingleSelection);

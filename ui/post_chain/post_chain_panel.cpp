@@ -181,8 +181,13 @@ PostChainPanel::PostChainPanel(DocumentController* controller, QWidget* parent)
          {m_addButton, m_removeButton, m_duplicateButton, m_upButton, m_downButton})
         buttons->addWidget(b);
     buttons->addStretch(1);
-    buttons->addWidget(load);
-    buttons->addWidget(save);
+    // Load and Save under the list: one row of seven buttons made the panel (and the Log it is
+    // tabbed with) 400 px wide at least, leaving the graph beside them no room (issue 17 item 2).
+    auto* files = new QHBoxLayout;
+    files->setContentsMargins(0, 0, 0, 0);
+    files->addStretch(1);
+    files->addWidget(load);
+    files->addWidget(save);
 
     m_issueLabel = new QLabel(this);
     m_issueLabel->setObjectName(QStringLiteral("postChainIssues"));
@@ -194,6 +199,7 @@ PostChainPanel::PostChainPanel(DocumentController* controller, QWidget* parent)
     layout->addLayout(buttons);
     layout->addWidget(m_list, 1);
     layout->addWidget(m_issueLabel);
+    layout->addLayout(files);
 
     connect(m_removeButton, &QToolButton::clicked, this, &PostChainPanel::removeCurrent);
     connect(m_duplicateButton, &QToolButton::clicked, this, &PostChainPanel::duplicateCurrent);

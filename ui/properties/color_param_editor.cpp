@@ -1,6 +1,8 @@
 #include "ui/properties/color_param_editor.h"
 
-#include <QColorDialog>
+#include "ui/properties/linear_color_picker.h"
+#include "ui/viewport_widget.h"
+
 #include <QHBoxLayout>
 #include <QPainter>
 #include <QPixmap>
@@ -27,6 +29,8 @@ ColorParamEditor::ColorParamEditor(const ParamMeta& spec, const QString& name, Q
 
 void ColorParamEditor::setValue(glm::vec3 linear) {
     m_linear = linear;
+    if (m_picker && m_picker->linear() != linear)
+        m_picker->setLinear(linear); // undo, or an edit elsewhere, while the picker is open
     const QColor shown = m_space.toQColor(linear);
     QPixmap pixmap(m_swatch->iconSize());
     pixmap.fill(shown);
@@ -49,14 +53,36 @@ void ColorParamEditor::setColorSpace(const PickerColorSpace& space) {
     setValue(m_linear);
 }
 
+void ColorParamEditor::setIntensity(const ParamMeta& meta, float value) {
+    m_intensityMeta = &meta;
+    m_intensity = value;
+}
+
+void ColorParamEditor::setIntensityValue(float value) {
+    m_intensity = value;
+    if (m_picker)
+        m_picker->setIntensityValue(value);
+}
+
 void ColorParamEditor::pick() {
-    const QColor initial = m_space.toQColor(m_linear);
-    const QColor chosen = QColorDialog::getColor(
-        initial, this, tr("%1 (%2)").arg(QString::fromUtf8(meta().label), m_space.name()));
-    // Unchanged (or cancelled): keep the stored value exactly, rather than its round trip.
-    if (!chosen.isValid() || chosen.rgb() == initial.rgb())
+    if (m_picker) { // already open: bring it forward
+        m_picker->raise();
+        m_picker->activateWindow();
         return;
-    emitEdited(m_space.fromQColor(chosen), 0);
+    }
+    m_picker =
+        new LinearColorPicker(tr("%1 (%2)").arg(QString::fromUtf8(meta().label), m_space.name()),
+                              m_linear, m_space, this);
+    if (m_intensityMeta)
+        m_picker->setIntensity(m_intensity, m_intensityMeta->max,
+                               QString::fromUtf8(m_intensityMeta->unit));
+    m_picker->setViewport(window()->findChild<ViewportWidget*>());
+    // Live: every change is an edit; a wheel or slider drag shares one merge key (one step).
+    connect(m_picker, &LinearColorPicker::colorEdited, this,
+            [this](glm::vec3 linear, int key) { emitEdited(linear, key); });
+    connect(m_picker, &LinearColorPicker::intensityEdited, this,
+            &ColorParamEditor::intensityEdited);
+    m_picker->show();
 }
 
 } // namespace velvet::ui

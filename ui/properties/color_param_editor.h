@@ -1,15 +1,20 @@
 #pragma once
 /// @file color_param_editor.h
-/// A Color parameter: a swatch button that opens a colour picker. The document stores
-/// scene-linear Rec.709; the swatch and the picker show display values through the viewport's
-/// display / view (PickerColorSpace; plain sRGB with the built-in tone mapper).
+/// A Color parameter: a swatch button that opens the linear colour picker
+/// (linear_color_picker.h: live, one undo step per gesture). The document stores scene-linear
+/// Rec.709; the swatch and the picker show display values through the viewport's display / view
+/// (PickerColorSpace; plain sRGB with the built-in tone mapper).
 
 #include "ui/color_picking.h"
+#include "ui/properties/linear_color_picker.h"
 #include "ui/properties/param_editor.h"
+
+#include <QPointer>
 
 class QToolButton;
 
 namespace velvet::ui {
+
 
 class ColorParamEditor : public ParamEditor {
     Q_OBJECT
@@ -21,8 +26,17 @@ public:
     const PickerColorSpace& colorSpace() const { return m_space; }
 
     QToolButton* swatch() const { return m_swatch; }
+    /// The picker while it is open (null otherwise).
+    LinearColorPicker* picker() const { return m_picker; }
+    /// The picker also offers this intensity (emissive strength for the emissive colour): an
+    /// intensity beyond 1 without a colour beyond 1. Edits come out of intensityEdited.
+    void setIntensity(const ParamMeta& meta, float value);
+    void setIntensityValue(float value);
     /// The linear value shown.
     glm::vec3 value() const { return m_linear; }
+
+signals:
+    void intensityEdited(float value, int mergeKey);
 
 private:
     void pick();
@@ -30,6 +44,9 @@ private:
     QToolButton* m_swatch;
     glm::vec3 m_linear{0.0f};
     PickerColorSpace m_space;
+    QPointer<LinearColorPicker> m_picker;
+    const ParamMeta* m_intensityMeta = nullptr;
+    float m_intensity = 0.0f;
 };
 
 } // namespace velvet::ui

@@ -20,6 +20,8 @@ namespace velvet::ui {
 class ParamEditor : public QWidget {
     Q_OBJECT
 public:
+    /// A key no other gesture has used (process-wide; the colour picker's gestures too).
+    static int nextGestureKey();
     /// The editor for @p meta's type, named @p name ("param:lobes.base.roughness",
     /// "effectParam:intensity", "nodeInput:factor"); child widgets are "<name>/<part>".
     /// @p meta's strings and spans must outlive the editor (they are static tables).
@@ -48,8 +50,6 @@ protected:
     QToolButton* makeResetButton();
     /// objectName for a child widget: "<name>/<part>".
     QString partName(const char* part) const;
-    /// A key no other gesture has used (process-wide).
-    static int nextGestureKey();
     void emitEdited(glm::vec3 value, int mergeKey) {
         emit edited(glm::vec4(value, 0.0f), mergeKey);
     }

@@ -5,6 +5,7 @@
 #include "ui/document_controller.h"
 #include "ui/models/graph_model.h"
 #include "ui/properties/color_param_editor.h"
+#include "ui/properties/graph_driven_rows.h"
 #include "ui/properties/param_editor.h"
 #include "ui/properties/texture_slot_editor.h"
 
@@ -16,6 +17,8 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalBlocker>
 #include <QStackedWidget>
 #include <QToolButton>
@@ -88,12 +91,19 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
     m_stack = new QStackedWidget(this);
     outer->addWidget(m_stack);
     outer->addStretch(1);
+    // A QStackedWidget is as large as its largest page: a node's three inputs would sit on top
+    // of the material page's height (a screen of blank space, issue 17 item 1) and inherit its
+    // minimum width (cut off under a scroll area without a horizontal bar). Only the page shown
+    // counts (QStackedLayout ignores an Ignored page's size hints).
+    connect(m_stack, &QStackedWidget::currentChanged, this, &PropertyPanel::fitStackToPage);
     m_materialPage = new QWidget(m_stack);
     m_materialPage->setObjectName(QStringLiteral("materialPage"));
     m_stack->addWidget(m_materialPage);
     auto* layout = new QVBoxLayout(m_materialPage);
     layout->setContentsMargins(0, 0, 0, 0);
 
+    m_driven = new GraphDrivenRows(this);
+    connect(m_driven, &GraphDrivenRows::nodeRequested, this, &PropertyPanel::graphNodeRequested);
     // Groups appear in the order their first parameter has in the metadata table.
     std::map<std::string_view, QFormLayout*> groups;
     std::vector<QLabel*> labels;
@@ -114,6 +124,7 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
         label->setToolTip(QString::fromUtf8(meta.tooltip));
         label->setBuddy(editor);
         form->addRow(label, editor);
+        m_driven->add(id, form, editor); // "Driven by <node>" under it while a graph feeds it
         labels.push_back(label);
         m_editors[static_cast<size_t>(i)] = editor;
 
@@ -122,6 +133,20 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
         connect(editor, &ParamEditor::resetRequested, this,
                 [this, id] { m_controller->resetParam(id); });
     }
+    // The emissive colour's picker offers the emission's strength as its intensity (beyond 1).
+    if (auto* emissive = qobject_cast<ColorParamEditor*>(editor(ParamId::EmissiveColor))) {
+        emissive->setIntensity(paramMeta(ParamId::EmissiveStrength),
+                               m_controller->param(ParamId::EmissiveStrength).x);
+        connect(emissive, &ColorParamEditor::intensityEdited, this, [this](float v, int key) {
+            if (!m_refreshing)
+                m_controller->editParam(ParamId::EmissiveStrength, glm::vec3(v), key);
+        });
+        connect(m_controller, &DocumentController::paramChanged, emissive,
+                [this, emissive](ParamId id) {
+                    if (id == ParamId::EmissiveStrength)
+                        emissive->setIntensityValue(m_controller->param(id).x);
+                });
+    }
 
     // Textures: one row per slot (thumbnail, file, Browse…, Clear, colour space; drops).
     {
@@ -129,6 +154,10 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
         box->setObjectName(QStringLiteral("group:Textures"));
         auto* form = new QFormLayout(box);
         form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+        // Each slot's name above its row, the row the panel's full width: beside a label column
+        // as wide as "Specular / roughness / metallic" the rows made the panel wider than its
+        // dock, cutting every value box and reset button at the right (issue 17 item 2).
+        form->setRowWrapPolicy(QFormLayout::WrapAllRows);
         for (const TextureSlotMeta& meta : textureSlotMetas()) {
             const auto slot = static_cast<TextureSlot>(&meta - textureSlotMetas().data());
             auto* row = new TextureSlotEditor(m_controller, slot, box);
@@ -136,14 +165,13 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
             label->setToolTip(fromView(meta.tooltip));
             label->setBuddy(row);
             form->addRow(label, row);
-            labels.push_back(label);
             m_textureEditors[static_cast<size_t>(slot)] = row;
             connect(row, &TextureSlotEditor::message, this, &PropertyPanel::reportMessage);
         }
         layout->addWidget(box);
     }
 
-    // One label column width for every group, so sliders line up from group to group.
+    // One label column width for every parameter group, so sliders line up from group to group.
     int labelWidth = 0;
     for (QLabel* label : labels)
         labelWidth = std::max(labelWidth, label->sizeHint().width());
@@ -153,6 +181,8 @@ PropertyPanel::PropertyPanel(DocumentController* controller, QWidget* parent)
     connect(m_controller, &DocumentController::paramChanged, this, &PropertyPanel::refresh);
     // Texture slots change through sceneChanged (edit, undo, redo, open); rows skip unchanged.
     connect(m_controller, &DocumentController::sceneChanged, this, [this](ScenePart parts) {
+        if (touches(parts, ScenePart::Graph))
+            m_driven->refresh(m_controller->material());
         if (!touches(parts, ScenePart::MaterialStructure))
             return;
         for (TextureSlotEditor* row : m_textureEditors)
@@ -226,7 +256,24 @@ void PropertyPanel::setSubject(Subject subject, const QString& title) {
     m_title->setText(title);
     m_materialButton->setVisible(subject != Subject::Material);
     m_stack->setCurrentWidget(subject == Subject::Material ? m_materialPage : m_subjectPage);
+    fitStackToPage();
+    // A new subject starts at its top, wherever the material page had been scrolled to.
+    for (QWidget* w = parentWidget(); w; w = w->parentWidget())
+        if (auto* area = qobject_cast<QScrollArea*>(w)) {
+            area->verticalScrollBar()->setValue(0);
+            break;
+        }
     emit subjectChanged();
+}
+
+void PropertyPanel::fitStackToPage() {
+    for (int i = 0; i < m_stack->count(); ++i) {
+        QWidget* page = m_stack->widget(i);
+        const auto policy =
+            page == m_stack->currentWidget() ? QSizePolicy::Preferred : QSizePolicy::Ignored;
+        page->setSizePolicy(policy, policy);
+    }
+    m_stack->updateGeometry();
 }
 
 QWidget* PropertyPanel::newSubjectPage(const QString& title, const QString& description) {

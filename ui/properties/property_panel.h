@@ -37,6 +37,7 @@ struct Change;
 namespace velvet::ui {
 
 class DocumentController;
+class GraphDrivenRows;
 class GraphModel;
 class ParamEditor;
 class TextureSlotEditor;
@@ -54,6 +55,8 @@ public:
     TextureSlotEditor* textureEditor(TextureSlot slot) const {
         return m_textureEditors[static_cast<size_t>(slot)];
     }
+    /// The material page's "Driven by <node>" links (parameters a graph feeds).
+    GraphDrivenRows* drivenRows() const { return m_driven; }
     /// How colour swatches and pickers show and pick values (the viewport's display / view).
     void setPickerColorSpace(const PickerColorSpace& space);
 
@@ -86,6 +89,8 @@ public slots:
 signals:
     /// The subject changed (the window raises the Properties dock).
     void subjectChanged();
+    /// The artist clicked "Driven by <node>" under a material parameter: show node @p id.
+    void graphNodeRequested(velvet::graph::NodeId id);
     /// A refused edit (e.g. a file that is not an image dropped onto a texture slot). Also shown
     /// in the window's status bar and Log.
     void message(const QString& text);
@@ -98,6 +103,8 @@ private:
     /// may be what led here).
     QWidget* newSubjectPage(const QString& title, const QString& description);
     void setSubject(Subject subject, const QString& title);
+    /// Only the page shown sizes the stack (see the constructor).
+    void fitStackToPage();
     void applyColorSpace(QWidget* root);
     void reportMessage(const QString& text);
 
@@ -111,6 +118,7 @@ private:
     DocumentController* m_controller;
     std::vector<ParamEditor*> m_editors;              ///< material page, indexed by ParamId
     std::vector<TextureSlotEditor*> m_textureEditors; ///< material page, indexed by TextureSlot
+    GraphDrivenRows* m_driven = nullptr;              ///< the material page's "driven by" links
     QLabel* m_title = nullptr;
     QToolButton* m_materialButton = nullptr;
     QStackedWidget* m_stack = nullptr;

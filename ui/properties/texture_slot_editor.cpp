@@ -253,8 +253,9 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
     m_colorSpace->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
     m_colorSpace->setMinimumContentsLength(8);
     connect(m_colorSpace, &QComboBox::activated, this, &TextureSlotEditor::onColorSpaceActivated);
-    buttons->addWidget(m_colorSpace, 1);
+    buttons->addStretch(1);
     column->addLayout(buttons);
+    column->addWidget(m_colorSpace); // its own line: "Default (sRGB texture)" needs the width
     row->addLayout(column, 1);
     // The UV transform under the row, full width (a column beside the thumbnail would widen
     // the whole panel).

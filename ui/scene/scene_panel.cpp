@@ -252,6 +252,17 @@ void ScenePanel::buildEnvironmentGroup(QFormLayout* form) {
     m_mesh->setObjectName(QStringLiteral("sceneMesh"));
     m_mesh->setToolTip(tr("Preview mesh (built-in, or a file through Assimp)"));
     form->addRow(tr("Mesh"), m_mesh);
+    // A refused mesh file stays said here (and in the Log) until the mesh changes.
+    m_meshError = new QLabel(this);
+    m_meshError->setObjectName(QStringLiteral("sceneMeshError"));
+    m_meshError->setWordWrap(true);
+    m_meshError->setStyleSheet(QStringLiteral("color: #e07070"));
+    m_meshError->hide();
+    form->addRow(m_meshError);
+    connect(m_controller, &DocumentController::meshRefused, m_meshError, [this](const QString& m) {
+        m_meshError->setText(m);
+        m_meshError->show();
+    });
     m_hdri = new QComboBox(this);
     m_hdri->setObjectName(QStringLiteral("sceneHdri"));
     m_hdri->setToolTip(tr("Environment (HDRI) lighting the scene"));
@@ -536,8 +547,10 @@ void ScenePanel::refresh(ScenePart parts) {
         return;
     const Scene& scene = m_controller->scene();
     m_updating = true;
-    if (touches(parts, ScenePart::Mesh))
+    if (touches(parts, ScenePart::Mesh)) {
         fillMeshCombo(m_mesh, scene);
+        m_meshError->hide();
+    }
     if (touches(parts, ScenePart::Environment))
         fillHdriCombo(m_hdri, scene);
     if (touches(parts, ScenePart::Lights))

@@ -17,6 +17,7 @@ class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
 class QFormLayout;
+class QLabel;
 class QLineEdit;
 class QListWidget;
 class QPushButton;
@@ -61,6 +62,7 @@ private:
 
     // Mesh and environment.
     QComboBox* m_mesh;
+    QLabel* m_meshError; ///< the last refused mesh file and why (hidden once the mesh changes)
     QComboBox* m_hdri;
     QDoubleSpinBox* m_envIntensity;
     QDoubleSpinBox* m_envRotation;
