@@ -80,7 +80,7 @@ const char* kHelp =
     "EXR output is scene-linear either way.\n\n"
     "Batch: with several FILEs (or --jobs, --shard), -o names a folder and each FILE is rendered\n"
     "as OUT/STEM.png (--format exr: .exr) in its own process, --jobs at a time; progress on\n"
-    "stderr; a failed FILE is reported and the others go on (exit 2). docs/batch.md.\n\n";
+    "stderr; a failed FILE is reported and the others go on (exit 2). docs/batch.md.\n\n"
     "Turntable: --turntable FRAMES writes FRAMES images, turning the mesh (or, with\n"
     "--turntable-mode light, the HDRI and the lights) once around, with one line of progress\n"
     "per frame on stderr (frames done / total, elapsed, ETA). docs/turntable.md.\n\n";
