@@ -15,7 +15,7 @@ using velvet::test::runVelvet;
 
 namespace {
 
-// Every pixel finite and the image not black: a render was written, not a placeholder.
+// Every pixel finite and the image not black: the file holds a real render.
 void checkWrittenImage(const QString& file, int width, int height) {
     velvet::Image image;
     std::string error;

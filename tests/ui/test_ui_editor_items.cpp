@@ -18,6 +18,7 @@
 #include "ui/properties/property_panel.h"
 #include "ui/viewport_widget.h"
 #include "ui_test_modal.h"
+#include "ui_test_util.h"
 #include "ui_test_window.h"
 
 #include <QComboBox>
@@ -38,28 +39,11 @@
 using namespace velvet;
 using namespace velvet::ui;
 
+using velvet::test::dropFile;
+
 namespace {
 
 using test::kFrameTimeoutMs;
-
-/// A file drop of @p file on @p target at @p pos (enter, move, drop); whether it was accepted.
-bool dropFile(QObject* target, QPoint pos, const QString& file) {
-    QMimeData mime;
-    mime.setUrls({QUrl::fromLocalFile(file)});
-    QDragEnterEvent enter(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    enter.setAccepted(false);
-    QCoreApplication::sendEvent(target, &enter);
-    if (!enter.isAccepted())
-        return false;
-    QDragMoveEvent move(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    move.setDropAction(enter.dropAction());
-    move.setAccepted(true);
-    QCoreApplication::sendEvent(target, &move);
-    QDropEvent drop(QPointF(pos), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    drop.setAccepted(false);
-    QCoreApplication::sendEvent(target, &drop);
-    return drop.isAccepted();
-}
 
 bool writeFile(const QString& path, const QByteArray& bytes) {
     QFile f(path);

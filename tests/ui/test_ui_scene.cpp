@@ -46,6 +46,8 @@
 using namespace velvet;
 using namespace velvet::ui;
 
+using velvet::test::dropFile;
+
 namespace {
 
 /// Mean luma of a 9x9 block around the centre (on the sphere), 0..255.
@@ -58,25 +60,6 @@ double centreLuma(const QImage& image) {
             sum += 0.2126 * c.red() + 0.7152 * c.green() + 0.0722 * c.blue();
         }
     return sum / 81.0;
-}
-
-/// Sends a file drop of @p file to @p target (enter, move, drop, as QGuiApplication does).
-bool dropFile(QObject* target, QPoint pos, const QString& file) {
-    QMimeData mime;
-    mime.setUrls({QUrl::fromLocalFile(file)});
-    QDragEnterEvent enter(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    enter.setAccepted(false);
-    QCoreApplication::sendEvent(target, &enter);
-    if (!enter.isAccepted())
-        return false;
-    QDragMoveEvent move(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    move.setDropAction(enter.dropAction());
-    move.setAccepted(true);
-    QCoreApplication::sendEvent(target, &move);
-    QDropEvent drop(QPointF(pos), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    drop.setAccepted(false);
-    QCoreApplication::sendEvent(target, &drop);
-    return drop.isAccepted();
 }
 
 /// Answers the next modal message box with the button whose role is @p role (as a click).

@@ -7,6 +7,7 @@
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_util.h"
 #include "ui_test_window.h"
 
 #include <QDropEvent>
@@ -25,25 +26,9 @@
 using namespace velvet;
 using namespace velvet::ui;
 
-namespace {
+using velvet::test::dropFile;
 
-bool dropFile(QObject* target, QPoint pos, const QString& file) {
-    QMimeData mime;
-    mime.setUrls({QUrl::fromLocalFile(file)});
-    QDragEnterEvent enter(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    enter.setAccepted(false);
-    QCoreApplication::sendEvent(target, &enter);
-    if (!enter.isAccepted())
-        return false;
-    QDragMoveEvent move(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    move.setDropAction(enter.dropAction());
-    move.setAccepted(true);
-    QCoreApplication::sendEvent(target, &move);
-    QDropEvent drop(QPointF(pos), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    drop.setAccepted(false);
-    QCoreApplication::sendEvent(target, &drop);
-    return drop.isAccepted();
-}
+namespace {
 
 double median(std::vector<double> v) {
     if (v.empty())

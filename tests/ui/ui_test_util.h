@@ -5,11 +5,15 @@
 #include "ui_test_window.h"
 
 #include <QColor>
+#include <QCoreApplication>
+#include <QDropEvent>
 #include <QImage>
+#include <QMimeData>
 #include <QSlider>
 #include <QStyle>
 #include <QStyleOptionSlider>
 #include <QTest>
+#include <QUrl>
 #include <QVector>
 #include <algorithm>
 #include <cmath>
@@ -53,6 +57,25 @@ inline QPoint handleCentre(QSlider* slider) {
     return slider->style()
         ->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider)
         .center();
+}
+
+/// Sends a file drop of @p file to @p target (enter, move, drop, as QGuiApplication does).
+inline bool dropFile(QObject* target, QPoint pos, const QString& file) {
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(file)});
+    QDragEnterEvent enter(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    enter.setAccepted(false);
+    QCoreApplication::sendEvent(target, &enter);
+    if (!enter.isAccepted())
+        return false;
+    QDragMoveEvent move(pos, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    move.setDropAction(enter.dropAction());
+    move.setAccepted(true);
+    QCoreApplication::sendEvent(target, &move);
+    QDropEvent drop(QPointF(pos), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    drop.setAccepted(false);
+    QCoreApplication::sendEvent(target, &drop);
+    return drop.isAccepted();
 }
 
 } // namespace velvet::test
