@@ -124,6 +124,34 @@ float visibilityKelemen(float VdotH) {
     return 1.0f / (4.0f * std::max(VdotH * VdotH, 1e-4f));
 }
 
+// KHR_materials_anisotropy (Khronos glTF extension, README "Definition"): the direction of the
+// stretch has alpha_t = mix(alpha, 1, strength^2), the perpendicular one keeps alpha.
+glm::vec2 anisotropicAlphas(float roughness, float strength) {
+    const float rough = std::max(roughness, kMinRoughness);
+    const float alpha = rough * rough;
+    return {glm::mix(alpha, 1.0f, strength * strength), alpha};
+}
+
+// Burley 2012, "Physically-Based Shading at Disney", addenda (anisotropic GGX), as the
+// KHR_materials_anisotropy README's D_GGX_anisotropic: with a2 = at ab and
+// f = (ab t.h, at b.h, a2 n.h), D = a2 (a2 / f.f)^2 / pi.
+float distributionGGXAnisotropic(float NdotH, float TdotH, float BdotH, float at, float ab) {
+    const float a2 = at * ab;
+    const glm::vec3 f(ab * TdotH, at * BdotH, a2 * NdotH);
+    const float w2 = a2 / glm::dot(f, f);
+    return a2 * w2 * w2 / kPi;
+}
+
+// Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", the
+// height-correlated Smith term for the anisotropic GGX, as the KHR_materials_anisotropy README's
+// V_GGX_anisotropic.
+float visibilitySmithGGXCorrelatedAnisotropic(float NdotL, float NdotV, float TdotV, float BdotV,
+                                              float TdotL, float BdotL, float at, float ab) {
+    const float ggxV = NdotL * glm::length(glm::vec3(at * TdotV, ab * BdotV, NdotV));
+    const float ggxL = NdotV * glm::length(glm::vec3(at * TdotL, ab * BdotL, NdotL));
+    return saturate(0.5f / (ggxV + ggxL));
+}
+
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering"
 glm::vec3 fresnelSchlick(glm::vec3 f0, glm::vec3 f90, float VdotH) {
     const float x = 1.0f - saturate(VdotH);
@@ -379,7 +407,27 @@ Surface surfaceFromMaterial(const Material& m) {
     s.fresnel = m.fresnel();
     s.diffuse = m.diffuse();
     s.sheenModel = m.sheenModel();
+    s.anisotropyStrength = m.scalar(ParamId::AnisotropyStrength);
     return s;
+}
+
+bool usesAnisotropy(const Surface& s) {
+    return s.anisotropyStrength > 0.0f && s.distribution == Distribution::GGX;
+}
+
+float specularDV(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l, glm::vec3 h, float NdotL,
+                 float NdotV, float NdotH, float sin2H, float VdotH, float alpha) {
+    if (!usesAnisotropy(s))
+        return distribution(s.distribution, NdotH, sin2H, alpha) *
+               visibility(s.visibility, NdotL, NdotV, NdotH, VdotH, alpha);
+    // KHR_materials_anisotropy: t the stretch direction, b = n x t; the height-correlated V
+    // replaces the Visibility choice (the Khronos sample viewer does the same).
+    const glm::vec3 t = s.anisotropyDirection;
+    const glm::vec3 b = glm::cross(n, t);
+    const glm::vec2 a = anisotropicAlphas(s.roughness, s.anisotropyStrength);
+    return distributionGGXAnisotropic(NdotH, glm::dot(t, h), glm::dot(b, h), a.x, a.y) *
+           visibilitySmithGGXCorrelatedAnisotropic(NdotL, NdotV, glm::dot(t, v), glm::dot(b, v),
+                                                   glm::dot(t, l), glm::dot(b, l), a.x, a.y);
 }
 
 glm::vec3 dielectricF0(const Surface& s) {
@@ -400,8 +448,7 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
 
     const float rough = std::max(s.roughness, kMinRoughness);
     const float alpha = rough * rough;
-    const float specular = distribution(s.distribution, NdotH, sin2H, alpha) *
-                           visibility(s.visibility, NdotL, NdotV, NdotH, VdotH, alpha);
+    const float specular = specularDV(s, n, v, l, h, NdotL, NdotV, NdotH, sin2H, VdotH, alpha);
 
     // glTF 2.0 Appendix B + KHR_materials_specular: fresnel_mix for the dielectric,
     // conductor_fresnel for the metal, mixed by metallic. LdotH = VdotH (h is the half vector).
@@ -482,9 +529,9 @@ Lobes evalLobes(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 lDiffuse, 
         const float NdotH = saturate(glm::dot(n, h));
         const float sin2H = sinSquared(n, h);
         const float VdotH = saturate(glm::dot(v, h));
-        const float specular = distribution(s.distribution, NdotH, sin2H, alpha) *
-                               visibility(s.visibility, NdotL, NdotV, NdotH, VdotH, alpha) *
-                               lights::areaSpecularNormalization(alpha, widen);
+        const float specular =
+            specularDV(s, n, v, lSpecular, h, NdotL, NdotV, NdotH, sin2H, VdotH, alpha) *
+            lights::areaSpecularNormalization(alpha, widen);
         const glm::vec3 fDielectric =
             s.specularWeight * fresnelDielectric(s.fresnel, dielectricF0(s), s.ior, VdotH);
         const glm::vec3 fMetal = fresnelConductor(s.fresnel, s.baseColor, VdotH);

@@ -122,6 +122,23 @@ glm::vec3 diffuse(Diffuse which, glm::vec3 diffuseColor, float roughness, float 
 float visibilitySheen(SheenModel which, float NdotL, float NdotV, float sheenRoughness);
 /// @}
 
+/// @name Anisotropic GGX (KHR_materials_anisotropy)
+/// The extension stretches the base specular lobe along a tangent-space direction t (b =
+/// n x t): alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha, D is Burley 2012's anisotropic
+/// GGX and V the height-correlated Smith term of Heitz 2014 for it, both as the extension's
+/// README writes them (D_GGX_anisotropic, V_GGX_anisotropic). With alpha_t = alpha_b they are
+/// distributionGGX() and visibilitySmithGGXCorrelated().
+/// @{
+/// (alpha_t, alpha_b) from the perceptual @p roughness (clamped to kMinRoughness, as every lobe)
+/// and the anisotropy @p strength in [0, 1].
+glm::vec2 anisotropicAlphas(float roughness, float strength);
+/// 1 / (pi at ab ((t.h / at)^2 + (b.h / ab)^2 + (n.h)^2)^2); normalised like every D.
+float distributionGGXAnisotropic(float NdotH, float TdotH, float BdotH, float at, float ab);
+/// 0.5 / (n.l |(at t.v, ab b.v, n.v)| + n.v |(at t.l, ab b.l, n.l)|), clamped to [0, 1].
+float visibilitySmithGGXCorrelatedAnisotropic(float NdotL, float NdotV, float TdotV, float BdotV,
+                                              float TdotL, float BdotL, float at, float ab);
+/// @}
+
 /// Directional albedo E(NdotV, roughness) of the sheen lobe (Charlie D x the visibility of
 /// @p model, white sheen colour), for KHR_materials_sheen's albedo scaling and the sheen IBL term.
 /// One table per SheenModel (Ashikhmin and Neubelt are the same function, so their tables are
@@ -148,13 +165,28 @@ struct Surface {
     float clearcoat = 0.0f;
     float clearcoatRoughness = 0.03f;
     glm::vec3 emissive{0.0f}; ///< colour x strength
+    /// KHR_materials_anisotropy strength (texture's blue already applied). Above 0 with the GGX
+    /// distribution, the base specular lobe is the anisotropic GGX D and V (the Visibility choice
+    /// is then ignored, as in the Khronos sample viewer); at 0 nothing changes.
+    float anisotropyStrength = 0.0f;
+    /// World-space unit direction of the stretch, perpendicular to n: the mesh tangent rotated by
+    /// the anisotropy rotation (and the texture's direction). Its bitangent is cross(n, t).
+    /// surfaceFromMaterial() leaves the default; callers with geometry set it.
+    glm::vec3 anisotropyDirection{1.0f, 0.0f, 0.0f};
     Distribution distribution = Distribution::GGX;
     Visibility visibility = Visibility::SmithGGXSeparable;
     Fresnel fresnel = Fresnel::Schlick;
     Diffuse diffuse = Diffuse::Lambert;
     SheenModel sheenModel = SheenModel::CharlieContyKulla;
 };
+/// The material's values; anisotropyDirection stays at its default (no geometry here).
 Surface surfaceFromMaterial(const Material& m);
+/// True when @p s draws the base specular lobe with the anisotropic GGX terms.
+bool usesAnisotropy(const Surface& s);
+/// The base specular lobe's D x V for one light: the anisotropic GGX pair when
+/// usesAnisotropy(@p s), else the material's Distribution and Visibility choices.
+float specularDV(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l, glm::vec3 h, float NdotL,
+                 float NdotV, float NdotH, float sin2H, float VdotH, float alpha);
 
 /// Dielectric F0 from IOR and KHR_materials_specular's colour (before the weight).
 glm::vec3 dielectricF0(const Surface& s);

@@ -59,6 +59,12 @@ const std::array<ParamMeta, kParamCount> kParams{
                "Colour of the fibre retro-reflection (KHR_materials_sheen sheenColorFactor)."),
     floatParam("lobes.sheen.roughness", "Sheen roughness", "Sheen", 0, 1, 0.3f, "",
                "Spread of the sheen lobe (KHR_materials_sheen sheenRoughnessFactor)."),
+    floatParam("lobes.anisotropy.strength", "Anisotropy", "Anisotropy", 0, 1, 0, "",
+               "Stretches the base highlight along the anisotropy direction "
+               "(KHR_materials_anisotropy anisotropyStrength)."),
+    floatParam("lobes.anisotropy.rotation", "Anisotropy rotation", "Anisotropy", -180, 180, 0, "°",
+               "Direction of the stretch, counter-clockwise from the tangent toward the "
+               "bitangent (anisotropyRotation, in degrees)."),
     choiceParam("brdf.distribution", "Distribution (D)", "BRDF", kDistributionNames, 0,
                 "Microfacet normal distribution: GGX (Walter 2007), Beckmann (1963), Blinn-Phong."),
     choiceParam("brdf.visibility", "Geometry (G/V)", "BRDF", kVisibilityNames, 0,
@@ -88,6 +94,8 @@ const std::array<TextureSlotMeta, kTextureSlotCount> kSlots{{
     {"sheenRoughness", "Sheen roughness", false, "A: sheen roughness."},
     {"specular", "Specular", false, "A: specular weight."},
     {"specularColor", "Specular colour", true, "RGB specular colour."},
+    {"anisotropy", "Anisotropy", false,
+     "RG: direction in tangent space ([0, 1] to [-1, 1]), B: strength multiplier."},
 }};
 
 } // namespace

@@ -1,8 +1,8 @@
 #pragma once
 /// @file material.h
 /// A layered material: the glTF 2.0 metal-rough model with KHR_materials_clearcoat, _sheen,
-/// _specular, _ior and _emissive_strength, plus the BRDF term choices of the seed documents.
-/// Values are addressed by ParamId; their metadata comes from paramMeta().
+/// _specular, _ior, _emissive_strength and _anisotropy, plus the BRDF term choices of the seed
+/// documents. Values are addressed by ParamId; their metadata comes from paramMeta().
 
 #include "core/param_meta.h"
 #include "core/texture_ref.h"
@@ -65,6 +65,9 @@ enum class ParamId : int {
     SheenWeight,
     SheenColor,
     SheenRoughness,
+    // Anisotropy of the base specular lobe (KHR_materials_anisotropy; rotation in degrees)
+    AnisotropyStrength,
+    AnisotropyRotation,
     // BRDF term choices (seed documents; renderer issue implements each)
     Distribution,
     Visibility,

@@ -25,6 +25,8 @@ enum class TextureSlot : int {
     SheenRoughness,     ///< A sheen roughness (raw)
     Specular,           ///< A specular weight (raw)
     SpecularColor,      ///< RGB specular colour (sRGB texture)
+    Anisotropy, ///< KHR_materials_anisotropy: RG direction in tangent space ([0, 1] -> [-1, 1]),
+                ///< B strength multiplier (raw)
     Count
 };
 inline constexpr int kTextureSlotCount = static_cast<int>(TextureSlot::Count);

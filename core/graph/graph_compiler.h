@@ -10,14 +10,19 @@
 ///   `vec3 baseColor; float metallic; float roughness; float specularWeight; vec3 specularColor;
 ///   float ior; float normalScale; float occlusionStrength; vec3 emissionColor;
 ///   float emissionStrength; float clearcoatWeight; float clearcoatRoughness;
-///   float clearcoatNormalScale; float sheenWeight; vec3 sheenColor; float sheenRoughness;`
-///   then `float occlusion; vec3 normal; vec3 clearcoatNormal;`. Colours are scene-linear and
+///   float clearcoatNormalScale; float sheenWeight; vec3 sheenColor; float sheenRoughness;
+///   float anisotropyStrength; float anisotropyRotation;` then `float occlusion; vec3 normal;
+///   vec3 clearcoatNormal; vec2 anisotropyDirection;`. Colours are scene-linear and
 ///   unmultiplied (emissionColor before strength, sheenColor before weight), exactly the values of
 ///   the Material parameters; `occlusion` is the raw AO (1: none) before occlusionStrength;
 ///   `normal` / `clearcoatNormal` are unit tangent-space normals (+Z out, OpenGL +Y up) before
-///   normalScale, for the renderer's TBN.
+///   normalScale, for the renderer's TBN; `anisotropyStrength` is KHR_materials_anisotropy's
+///   strength in [0, 1], `anisotropyRotation` degrees counter-clockwise from the tangent, and
+///   `anisotropyDirection` the tangent-space direction (default (1, 0), unnormalised) that the
+///   rotation turns, as the extension's anisotropyTexture RG.
 /// - `MaterialInputs velvetGraphDefaults()` — every field at its ParamMeta default, (0, 0, 1)
-///   normals and occlusion 1 (for tests and previews without a material table).
+///   normals, anisotropy direction (1, 0) and occlusion 1 (for tests and previews without a
+///   material table).
 /// - `layout(std140, binding = B) uniform VelvetGraphValues { vec4 u_graphValues[N]; };` with
 ///   B = CompileOptions::valuesBinding and N = CompiledGraph::values.size() (>= 1). Every constant
 ///   and unconnected input value of the graph lives in one vec4 slot (x; xy; xyz; xyzw by type).

@@ -161,7 +161,7 @@ const OutputNames& outputNames() {
             n.inputOf[size_t(i)] = int(n.params.size());
             n.params.push_back(ParamId(i));
         }
-        for (int i = 0; i < 3; ++i)
+        for (int i = 0; i < 4; ++i) // occlusion, normal, clearcoatNormal, anisotropyDirection
             n.params.push_back(ParamId::Count);
         return n;
     }();
@@ -237,6 +237,20 @@ NodeType outputType() {
         n.tooltip = tip;
         t.inputs.push_back(n);
     }
+    // KHR_materials_anisotropy's direction (its texture's RG after remapping to [-1, 1]): a
+    // tangent-space 2D vector, +X the mesh tangent; a Weave's yarn direction feeds it. The
+    // renderer normalises it and rotates it by the anisotropy rotation.
+    InputSpec direction;
+    direction.name = "anisotropyDirection";
+    direction.label = "Anisotropy direction";
+    direction.type = PortType::Vec2;
+    direction.fallback = Fallback::Material;
+    direction.defaultValue = glm::vec4(1, 0, 0, 0);
+    direction.min = -1.0f;
+    direction.tooltip =
+        "Tangent-space direction of the anisotropic stretch (+X: the tangent), before the "
+        "anisotropy rotation.";
+    t.inputs.push_back(direction);
     return t;
 }
 

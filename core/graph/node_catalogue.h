@@ -117,9 +117,10 @@ inline constexpr std::string_view kOutputTypeId = "output.material";
 
 /// @name The material output's inputs
 /// One input per Float or Color ParamId (which includes every lobe weight: specularWeight,
-/// clearcoatWeight, sheenWeight, emissionStrength), in ParamId order, then three map inputs that
+/// clearcoatWeight, sheenWeight, emissionStrength), in ParamId order, then four map inputs that
 /// have no parameter: `occlusion` (Float, ambient occlusion before occlusionStrength), `normal` and
-/// `clearcoatNormal` (tangent-space Normal). The port names are generated from ParamMeta ids:
+/// `clearcoatNormal` (tangent-space Normal), `anisotropyDirection` (Vec2, tangent space, default
+/// (1, 0): the tangent; not normalised here). The port names are generated from ParamMeta ids:
 /// "lobes.base.color" -> "baseColor", "lobes.base.roughness" -> "roughness",
 /// "lobes.sheen.color" -> "sheenColor" (base-lobe fields keep their plain name, other lobes prefix
 /// theirs). They are also the field names of the GLSL struct MaterialInputs.
@@ -127,7 +128,7 @@ inline constexpr std::string_view kOutputTypeId = "output.material";
 /// The output input fed by parameter @p id, or -1 when the parameter is a Choice.
 int outputInputForParam(ParamId id);
 /// The parameter an output input stands for, or ParamId::Count for
-/// occlusion/normal/clearcoatNormal.
+/// occlusion/normal/clearcoatNormal/anisotropyDirection.
 ParamId paramForOutputInput(PortIndex input);
 /// @}
 

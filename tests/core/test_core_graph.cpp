@@ -113,7 +113,8 @@ private slots:
     }
 
     // The material output has one input per Float or Color parameter (every lobe weight included),
-    // typed and ranged from ParamMeta, plus occlusion and the two normals.
+    // typed and ranged from ParamMeta, plus occlusion, the two normals and the anisotropy
+    // direction.
     void outputInputs() {
         const NodeType& t = *findNodeType(kOutputTypeId);
         int params = 0;
@@ -132,7 +133,7 @@ private slots:
             QCOMPARE(spec.max, m.max);
             QCOMPARE(paramForOutputInput(PortIndex(input)), ParamId(i));
         }
-        QCOMPARE(int(t.inputs.size()), params + 3);
+        QCOMPARE(int(t.inputs.size()), params + 4);
         QCOMPARE(t.inputIndex("baseColor"), outputInputForParam(ParamId::BaseColor));
         QCOMPARE(t.inputIndex("roughness"), outputInputForParam(ParamId::Roughness));
         QCOMPARE(t.inputIndex("sheenWeight"), outputInputForParam(ParamId::SheenWeight));
@@ -142,6 +143,7 @@ private slots:
         QVERIFY(t.inputIndex("occlusion") >= 0);
         QCOMPARE(t.inputs[size_t(t.inputIndex("normal"))].type, PortType::Normal);
         QCOMPARE(t.inputs[size_t(t.inputIndex("clearcoatNormal"))].type, PortType::Normal);
+        QCOMPARE(t.inputs[size_t(t.inputIndex("anisotropyDirection"))].type, PortType::Vec2);
     }
 
     // The one conversion table: splat up, luminance down, normals only to normals.
