@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <map>
 
 namespace velvet::reference {
@@ -43,6 +45,22 @@ public:
 
 } // namespace
 
+glm::vec3 anisotropyWorldDirection(glm::vec3 n, glm::vec4 tangent, const AnisotropyInputs& a) {
+    // The tangent made orthogonal to the shading normal (Gram-Schmidt); the direction rotated
+    // counter-clockwise, tangent toward bitangent (KHR_materials_anisotropy's mat2(c, s, -s, c)).
+    glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
+    if (glm::dot(t, t) < 1e-12f) // no usable tangent: any unit vector orthogonal to n
+        t = std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0))
+                                 : glm::cross(n, glm::vec3(0, 1, 0));
+    t = glm::normalize(t);
+    const glm::vec3 b = glm::cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+    glm::vec2 d = glm::dot(a.direction, a.direction) > 1e-12f ? glm::normalize(a.direction)
+                                                              : glm::vec2(1.0f, 0.0f);
+    const float r = glm::radians(a.rotationDeg), c = std::cos(r), sn = std::sin(r);
+    d = glm::vec2(c * d.x - sn * d.y, sn * d.x + c * d.y);
+    return glm::normalize(t * d.x + b * d.y);
+}
+
 struct GraphMaterial::Impl {
     CachedGraphTextures textures;
     std::unique_ptr<graph::GraphEvaluator> evaluator;
@@ -50,7 +68,7 @@ struct GraphMaterial::Impl {
     float sheenWeight = 0, emissionStrength = 0, normalScale = 1;
     glm::vec3 sheenColor{0}, emissionColor{0};
     int sheenWeightIn = -1, sheenColorIn = -1, emissionColorIn = -1, emissionStrengthIn = -1;
-    int normalIn = -1;
+    int normalIn = -1, anisotropyDirectionIn = -1;
 };
 
 GraphMaterial::GraphMaterial(const Material& material, TextureCache& cache, Problems* problems)
@@ -84,8 +102,10 @@ GraphMaterial::GraphMaterial(const Material& material, TextureCache& cache, Prob
     d.sheenColorIn = graph::outputInputForParam(ParamId::SheenColor);
     d.emissionColorIn = graph::outputInputForParam(ParamId::EmissiveColor);
     d.emissionStrengthIn = graph::outputInputForParam(ParamId::EmissiveStrength);
-    if (const graph::NodeType* out = graph::findNodeType(graph::kOutputTypeId))
+    if (const graph::NodeType* out = graph::findNodeType(graph::kOutputTypeId)) {
         d.normalIn = out->inputIndex("normal");
+        d.anisotropyDirectionIn = out->inputIndex("anisotropyDirection");
+    }
 }
 
 GraphMaterial::~GraphMaterial() = default;
@@ -94,8 +114,8 @@ bool GraphMaterial::active() const {
     return m_impl->evaluator && m_impl->evaluator->drivesMaterial();
 }
 
-void GraphMaterial::apply(glm::vec2 uv, brdf::Surface& s, glm::vec3& tangentNormal,
-                          bool& normalFed) const {
+void GraphMaterial::apply(glm::vec2 uv, brdf::Surface& s, glm::vec3& tangentNormal, bool& normalFed,
+                          AnisotropyInputs* anisotropy) const {
     if (!active())
         return;
     const Impl& d = *m_impl;
@@ -122,6 +142,12 @@ void GraphMaterial::apply(glm::vec2 uv, brdf::Surface& s, glm::vec3& tangentNorm
     scalar(ParamId::SheenRoughness, s.sheenRoughness);
     scalar(ParamId::ClearcoatWeight, s.clearcoat);
     scalar(ParamId::ClearcoatRoughness, s.clearcoatRoughness);
+    scalar(ParamId::AnisotropyStrength, s.anisotropyStrength);
+    if (anisotropy) {
+        scalar(ParamId::AnisotropyRotation, anisotropy->rotationDeg);
+        if (const auto* v = fed(d.anisotropyDirectionIn))
+            anisotropy->direction = glm::vec2(**v);
+    }
     if (fed(d.sheenWeightIn) || fed(d.sheenColorIn)) {
         const float w = fed(d.sheenWeightIn) ? (**fed(d.sheenWeightIn)).x : d.sheenWeight;
         const glm::vec3 c = fed(d.sheenColorIn) ? glm::vec3(**fed(d.sheenColorIn)) : d.sheenColor;

@@ -37,7 +37,7 @@ struct Textures {
     std::shared_ptr<const Image> baseColor, metallicRoughness, specRoughMetal, normal, emissive;
     // The KHR lobes' slots (factor x texture, the channels of texture_ref.h).
     std::shared_ptr<const Image> clearcoat, clearcoatRoughness, sheenColor, sheenRoughness,
-        specular, specularColor;
+        specular, specularColor, anisotropy;
 };
 
 glm::vec4 sampleTexture(const Image& img, glm::vec2 uv) { // bilinear, repeat (GL_REPEAT)
@@ -67,6 +67,7 @@ struct Context {
     Textures tex;
     const GraphMaterial* graph = nullptr; ///< the material graph, when it feeds any input
     float normalScale = 1;
+    float anisotropyRotation = 0; ///< degrees, counter-clockwise from the tangent
     EnvironmentLight env;
     std::vector<LocalLight> lights;
     BackgroundMode background = BackgroundMode::Sharp;
@@ -129,6 +130,13 @@ bool intersect(const Context& ctx, glm::vec3 o, glm::vec3 d, float tMax, Hit& hi
         s.specularWeight *= sampleTexture(*ctx.tex.specular, uv).a;
     if (ctx.tex.specularColor)
         s.specularColor *= glm::vec3(sampleTexture(*ctx.tex.specularColor, uv));
+    // KHR_materials_anisotropy: the texture's RG is the tangent-space direction, B scales strength.
+    AnisotropyInputs aniso{glm::vec2(1.0f, 0.0f), ctx.anisotropyRotation};
+    if (ctx.tex.anisotropy) {
+        const glm::vec4 t = sampleTexture(*ctx.tex.anisotropy, uv);
+        aniso.direction = glm::vec2(t) * 2.0f - 1.0f;
+        s.anisotropyStrength *= t.b;
+    }
     glm::vec3 tn(0.0f, 0.0f, 1.0f);
     bool normalMapped = false;
     if (ctx.tex.normal) { // glTF: normalize((t * 2 - 1) * (s, s, 1))
@@ -137,7 +145,7 @@ bool intersect(const Context& ctx, glm::vec3 o, glm::vec3 d, float tMax, Hit& hi
         normalMapped = true;
     }
     if (ctx.graph) // the graph's outputs over the parameters and textures (gbuffer.frag)
-        ctx.graph->apply(uv, s, tn, normalMapped);
+        ctx.graph->apply(uv, s, tn, normalMapped, &aniso);
     s.roughness = std::clamp(s.roughness, 0.0f, 1.0f);
     if (normalMapped) { // Gram-Schmidt frame from the interpolated tangent
         glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
@@ -153,6 +161,8 @@ bool intersect(const Context& ctx, glm::vec3 o, glm::vec3 d, float tMax, Hit& hi
     if (glm::dot(n, hit.ng) < 0.0f)
         n = glm::normalize(n - 2.0f * glm::dot(n, hit.ng) * hit.ng);
     hit.n = n;
+    if (s.anisotropyStrength > 0.0f)
+        s.anisotropyDirection = anisotropyWorldDirection(n, tangent, aniso);
     hit.s = s;
     return true;
 }
@@ -422,6 +432,7 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
 
     ctx.surface = brdf::surfaceFromMaterial(scene.material);
     ctx.normalScale = scene.material.scalar(ParamId::NormalScale);
+    ctx.anisotropyRotation = scene.material.scalar(ParamId::AnisotropyRotation);
 
     // Textures through the same cache and colour conversion as the viewport (TextureSet).
     ColorManagement colorManagement;
@@ -459,6 +470,7 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
     ctx.tex.sheenRoughness = load(TextureSlot::SheenRoughness);
     ctx.tex.specular = load(TextureSlot::Specular);
     ctx.tex.specularColor = load(TextureSlot::SpecularColor);
+    ctx.tex.anisotropy = load(TextureSlot::Anisotropy);
     // A path tracer finds occlusion itself, so the occlusion map (a real-time stand-in for it)
     // is not applied; the coat's own normal map has no counterpart in brdf::Surface yet.
     if (!scene.material.texture(TextureSlot::ClearcoatNormal).empty() && problems)
