@@ -5,15 +5,18 @@
 #include "app/load_document.h"
 #include "core/color_management.h"
 #include "core/document_io.h"
+#include "core/frame_pattern.h"
 #include "core/image.h"
 #include "core/light_rigs.h"
 #include "core/post_chain_io.h"
-#include "render/offscreen.h"
+#include "core/turntable.h"
+#include "render/render_job.h"
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -51,11 +54,22 @@ const std::vector<OptionSpec> kOptions{
     {"format", 0, true, "png|exr", "batch: the images' type in the -o folder (default png)"},
     kJobsOption,
     kShardOption,
+    {"turntable", 0, true, "FRAMES",
+     "render a turntable of FRAMES frames (1 to 10000), frame i turned by 360 i / FRAMES "
+     "degrees, to -o PATTERN (one frame number: out/%03d.png, from 000), and/or --video"},
+    {"turntable-mode", 0, true, "MODE",
+     "what turns: mesh (default; the lights and the environment stay with the camera) or light "
+     "(the HDRI and the lights turn around the mesh)"},
+    {"video", 0, true, "OUT.mp4",
+     "also encode the turntable's frames into a video (.mp4, .mov or .mkv, H.264) with the "
+     "ffmpeg program; without -o the frames go to a temporary folder"},
+    {"fps", 0, true, "N", "the video's frame rate, 1 to 240 (default 30)"},
     {"help", 'h', false, "", "this text"},
 };
 
 const char* kHelp =
     "Usage: velvet render [FILE] -o OUT [--size WxH] [--display NAME] [--view NAME] [--look NAME]\n"
+    "       velvet render [FILE] --turntable FRAMES [-o out/%03d.png] [--video out.mp4]\n"
     "Renders FILE (a scene, or a material preset shown in the default scene; no FILE: the default\n"
     "scene) off screen through the deferred renderer. Needs no display.\n\n"
     "Colour: by default the image goes through the built-in Khronos PBR Neutral tone mapper\n"
@@ -66,7 +80,10 @@ const char* kHelp =
     "EXR output is scene-linear either way.\n\n"
     "Batch: with several FILEs (or --jobs, --shard), -o names a folder and each FILE is rendered\n"
     "as OUT/STEM.png (--format exr: .exr) in its own process, --jobs at a time; progress on\n"
-    "stderr; a failed FILE is reported and the others go on (exit 2). docs/batch.md.\n\n";
+    "stderr; a failed FILE is reported and the others go on (exit 2). docs/batch.md.\n\n"
+    "Turntable: --turntable FRAMES writes FRAMES images, turning the mesh (or, with\n"
+    "--turntable-mode light, the HDRI and the lights) once around, with one line of progress\n"
+    "per frame on stderr (frames done / total, elapsed, ETA). docs/turntable.md.\n\n";
 
 template <typename Enum, size_t N>
 bool parseName(const std::string& text, const std::pair<const char*, Enum> (&table)[N], Enum& out) {
@@ -105,35 +122,6 @@ const std::pair<const char*, render::DebugView> kDebugViews[] = {
     {"sheen-only", render::DebugView::SheenOnly},
     {"clearcoat-only", render::DebugView::ClearcoatOnly},
 };
-
-/// Keeps the first three channels (the file holds opaque colour).
-/// Empty when every pixel of @p image is finite, else how many are not and where the first is.
-std::string nonFiniteReason(const Image& image) {
-    size_t bad = 0, first = 0;
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-        if (!std::isfinite(image.pixels[i]) && bad++ == 0)
-            first = i / size_t(std::max(1, image.channels));
-    if (bad == 0)
-        return {};
-    const size_t w = size_t(std::max(1, image.width));
-    return std::to_string(bad) +
-           " channel values of the image are not finite (NaN or infinity), "
-           "the first at pixel (" +
-           std::to_string(first % w) + ", " + std::to_string(first / w) +
-           "): a value in the scene is beyond what the renderer can carry (an environment, light "
-           "or camera value far out of range)";
-}
-
-Image toRgb(const Image& rgba) {
-    Image out(rgba.width, rgba.height, 3);
-    for (int y = 0; y < rgba.height; ++y)
-        for (int x = 0; x < rgba.width; ++x) {
-            glm::vec4 p = rgba.rgba(x, y);
-            float* o = out.at(x, y);
-            o[0] = p.r, o[1] = p.g, o[2] = p.b;
-        }
-    return out;
-}
 
 int usage(const std::string& message) {
     std::cerr << "velvet render: " << message << "\nRun 'velvet render --help' for usage.\n";
@@ -246,19 +234,59 @@ int runRender(const std::vector<std::string>& argv) {
             std::cout << "OpenColorIO: " << error << "\n";
         return Ok;
     }
-    if (!args->has("output"))
-        return usage("missing -o OUT");
-    if (isRenderBatch(*args)) // several FILEs, --jobs or --shard: one child process per FILE
+    if (isRenderBatch(*args)) { // several FILEs, --jobs or --shard: one child process per FILE
+        if (!args->has("output"))
+            return usage("missing -o OUT");
         return runRenderBatch(*args, kOptions);
+    }
+    render::RenderJob job;
+    if (args->has("turntable")) {
+        const std::string text = args->value("turntable");
+        int frames = 0;
+        auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), frames);
+        if (ec != std::errc() || ptr != text.data() + text.size() || frames < 1 ||
+            frames > render::kMaxTurntableFrames)
+            return usage("--turntable expects a number of frames from 1 to " +
+                         std::to_string(render::kMaxTurntableFrames) + ", got '" + text + "'");
+        job.frames = frames;
+    } else {
+        for (const char* name : {"turntable-mode", "video", "fps"})
+            if (args->has(name))
+                return usage(std::string("--") + name + " needs --turntable FRAMES");
+    }
+    if (args->has("turntable-mode")) {
+        const auto mode = parseTurntableMode(args->value("turntable-mode"));
+        if (!mode)
+            return usage("--turntable-mode expects mesh or light, got '" +
+                         args->value("turntable-mode") + "'");
+        job.mode = *mode;
+    }
+    if (args->has("fps")) {
+        const std::string text = args->value("fps");
+        auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), job.fps);
+        if (ec != std::errc() || ptr != text.data() + text.size() || job.fps < 1 || job.fps > 240)
+            return usage("--fps expects 1 to 240 frames a second, got '" + text + "'");
+    }
+    job.output = args->value("output");
+    job.video = args->value("video");
+    if (job.output.empty() && (job.frames == 0 || job.video.empty()))
+        return usage(job.frames == 0 ? "missing -o OUT" : "missing -o PATTERN or --video OUT");
     if (args->positional.size() > 1)
         return usage("one FILE at most, got " + std::to_string(args->positional.size()));
 
-    const std::filesystem::path out = args->value("output");
+    const std::filesystem::path out = job.output;
     std::string ext = out.extension().string();
     for (char& c : ext)
         c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext != ".png" && ext != ".exr")
+    if (job.frames == 0 && ext != ".png" && ext != ".exr")
         return usage("OUT must end in .png or .exr, got '" + out.string() + "'");
+    // A still named with a frame number would be written under a name the user did not mean.
+    if (job.frames == 0 && looksLikeFramePattern(job.output)) {
+        std::cerr << out.string()
+                  << ": a '%' in the name of a still; a numbered sequence needs --turntable "
+                     "FRAMES\n";
+        return BadInput;
+    }
 
     render::FrameSettings settings;
     settings.width = settings.height = 512;
@@ -287,8 +315,15 @@ int runRender(const std::vector<std::string>& argv) {
         return code;
 
     // Check the destination before the (slow) render so bad input writes nothing and fails fast.
-    if (const int code = checkOutputFolder(out); code != Ok)
-        return code;
+    job.settings = settings;
+    job.colorManagement = colorManagement;
+    if (job.frames == 0) {
+        if (const int code = checkOutputFolder(out); code != Ok)
+            return code;
+    } else if (std::string why; render::checkRenderJob(job, &why) != render::RenderJobCheck::Ok) {
+        std::cerr << "velvet render: " << why << "\n";
+        return BadInput; // a bad pattern, a missing folder, no ffmpeg (the values parsed above)
+    }
 
     Problems problems;
     std::optional<Scene> scene;
@@ -303,25 +338,27 @@ int runRender(const std::vector<std::string>& argv) {
         scene->post = preset->chain;
     }
 
-    Image linear, display;
-    const bool wantExr = ext == ".exr";
-    // The scene-linear image is always read back: it is where a NaN or an infinity shows (the
-    // 8-bit display image has already turned them into 0 or 1).
-    if (!render::renderSceneOffscreen(*scene, settings, &linear, wantExr ? nullptr : &display,
-                                      &error, &problems, colorManagement)) {
-        printProblems(problems);
-        std::cerr << "velvet render: rendering failed: " << error << "\n";
-        return RenderFailure;
-    }
+    // One line per frame on stderr: a turntable is minutes of work, and a script reading stdout
+    // gets nothing mixed into it.
+    const auto progress = [&](const render::RenderJobProgress& p) {
+        if (job.frames == 0)
+            return true;
+        char line[160];
+        if (p.encoding)
+            std::snprintf(line, sizeof line, "velvet render: encoding %s with ffmpeg\n",
+                          job.video.c_str());
+        else
+            std::snprintf(line, sizeof line,
+                          "velvet render: frame %d/%d (%3.0f %%), %.1f s elapsed, ETA %.1f s\n",
+                          p.done, p.total, 100.0 * p.done / p.total, p.elapsedSeconds,
+                          p.etaSeconds);
+        std::cerr << line << std::flush;
+        return true;
+    };
+    const render::RenderJobStatus status =
+        render::runRenderJob(*scene, job, progress, &error, &problems);
     printProblems(problems); // warnings only (missing textures or HDRI fell back)
-    // Issue 18: a render whose result is not finite is a rendering failure, never a silent image.
-    if (const std::string why = nonFiniteReason(linear); !why.empty()) {
-        std::cerr << "velvet render: rendering failed: " << why << "; nothing was written\n";
-        return RenderFailure;
-    }
-
-    if (!writeImage(out, toRgb(wantExr ? linear : display),
-                    wantExr ? PixelFormat::Half : PixelFormat::UInt8, &error)) {
+    if (status != render::RenderJobStatus::Done) {
         std::cerr << "velvet render: " << error << "\n";
         return RenderFailure;
     }

@@ -1,5 +1,6 @@
 #include "app/load_document.h"
 
+#include "core/default_stage.h"
 #include "core/document_io.h"
 #include "core/light_rigs.h"
 
@@ -37,8 +38,9 @@ std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Proble
 
 int loadSceneArguments(const Arguments& args, const char* command, std::optional<Scene>& scene,
                        Problems& problems) {
+    // No FILE: the look-dev stage (core/default_stage.h); the golden image keeps defaultScene().
     if (args.positional.empty())
-        scene = defaultScene(&problems);
+        scene = stageScene(&problems);
     else
         scene = loadSceneOrPreset(args.positional[0], problems);
     if (!scene || problems.hasErrors()) {

@@ -1,5 +1,6 @@
 #include "ui/document_controller.h"
 
+#include "core/default_stage.h"
 #include "core/document_io.h"
 #include "core/mesh_import.h"
 #include "core/post_effects.h"
@@ -172,7 +173,9 @@ void DocumentController::setParam(ParamId id, glm::vec3 value) {
 
 void DocumentController::newDocument() {
     Problems problems; // the default scene falls back silently; problems go to the log issue
-    setDocument(defaultScene(&problems), QString());
+    // The look-dev stage (core/default_stage.h): the HDRI's bright side behind the mesh, a
+    // blurred background, the mesh framed.
+    setDocument(stageScene(&problems), QString());
 }
 
 bool DocumentController::openFile(const QString& path, QStringList* problems) {

@@ -1,6 +1,7 @@
 #include "ui/main_window.h"
 
 #include "core/color_management.h"
+#include "core/default_stage.h"
 #include "core/document_io.h"
 #include "core/texture_ref.h"
 #include "ui/ab_split_control.h"
@@ -419,6 +420,8 @@ bool MainWindow::openDroppedFile(const QString& path) {
     case DropKind::Hdri: {
         Environment env = m_controller->scene().environment;
         env.hdri = documentPath(path);
+        // Its bright side behind the mesh (core/default_stage.h), in the same undo step.
+        env.rotationDeg = hdriDefaultRotationDeg(env.hdri).value_or(env.rotationDeg);
         m_controller->editEnvironment(env, tr("HDRI %1").arg(QFileInfo(path).fileName()));
         m_log->info(tr("Environment: %1").arg(path));
         return true;

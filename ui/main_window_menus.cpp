@@ -4,6 +4,7 @@
 #include "ui/export_action.h"
 #include "ui/import_action.h"
 #include "ui/main_window.h"
+#include "ui/render_dialog.h"
 #include "ui/undo_shortcuts.h"
 #include "ui/viewport_widget.h"
 
@@ -45,6 +46,12 @@ void MainWindow::createMenus() {
                           [this] { importFileInteractively(this, *m_controller, m_log); });
     act->setObjectName(QStringLiteral("importAction"));
     act->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_I));
+    // A still at any size or a turntable, through `velvet render`'s code (ui/render_dialog.h);
+    // F12 as in Blender.
+    act = file->addAction(tr("&Render…"), this,
+                          [this] { renderInteractively(this, *m_controller, m_viewport, m_log); });
+    act->setObjectName(QStringLiteral("renderAction"));
+    act->setShortcut(QKeySequence(Qt::Key_F12));
     file->addSeparator();
     act = file->addAction(tr("&Quit"), this, &QWidget::close);
     act->setShortcut(QKeySequence::Quit);

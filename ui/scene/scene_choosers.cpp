@@ -1,5 +1,6 @@
 #include "ui/scene/scene_choosers.h"
 
+#include "core/default_stage.h"
 #include "core/light_rigs.h"
 #include "core/resources.h"
 #include "core/scene.h"
@@ -138,6 +139,8 @@ void applyHdriChoice(DocumentController* controller, QComboBox* combo, int index
     env.hdri = path.toStdString();
     if (path.isEmpty())
         env.color = glm::vec3(1.0f);
+    else // its bright side behind the mesh (core/default_stage.h), in the same undo step
+        env.rotationDeg = hdriDefaultRotationDeg(env.hdri).value_or(env.rotationDeg);
     controller->editEnvironment(env, path.isEmpty()
                                          ? QObject::tr("Uniform white environment")
                                          : QObject::tr("HDRI %1").arg(QFileInfo(path).fileName()));

@@ -1,0 +1,53 @@
+#pragma once
+/// @file default_stage.h
+/// The look-dev stage a new document starts on (the editor's File > New, `velvet render` without
+/// FILE): the default scene (core/document_io.h) with its HDRI turned so the brightest part of
+/// its backdrop sits behind the mesh, a blurred background and a camera that frames the mesh with
+/// a little room (docs/default-scene.md). defaultScene() itself is left as it was: it is the
+/// scene of the golden image (tests/render/test_render_golden.cpp), which must not change.
+
+#include "core/diagnostics.h"
+#include "core/image.h"
+#include "core/scene.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace velvet {
+
+/// How much of the frame's height the framed mesh's bounding sphere fills (the rest is room).
+inline constexpr float kStageFill = 0.8f;
+
+/// defaultScene() dressed as the stage: HDRI rotation from hdriDefaultRotationDeg (left as it is,
+/// with a warning in @p problems, when the HDRI cannot be read), BackgroundMode::Blurred, and
+/// framedCamera(). Never fails.
+Scene stageScene(Problems* problems = nullptr);
+
+/// Environment::rotationDeg (0 to 360, whole degrees) that puts the brightest part of the
+/// backdrop of @p equirect (an equirectangular radiance map, as core/spherical_harmonics.h lays
+/// it out) behind the mesh, i.e. in the direction a camera at yaw 0 looks (-Z). The backdrop is
+/// the band from 35 degrees below to 20 degrees above the horizon (what the default camera,
+/// pitched 10 degrees down with a 35 degree field of view, sees around the mesh, with margin);
+/// each azimuth scores the solid-angle-weighted luminance (Rec. 709 Y) of the band under a 60
+/// degree wide Hann window (a widescreen frame's field of view; the smooth window centres a
+/// bright area rather than placing it anywhere it fits), each pixel's luminance clamped at the
+/// band's 99th percentile, so a large bright area (a softbox, a lit sky) outweighs a tiny hot
+/// one (the sun) that would leave the rest of the frame dark.
+float backdropRotationDeg(const Image& equirect);
+
+/// backdropRotationDeg of the HDRI file @p hdri: for the shipped HDRIs (resources/hdri) a table
+/// of their answers (reading and scoring one takes 50-120 ms), for any other file
+/// computeHdriDefaultRotationDeg. nullopt + @p error when the file cannot be read.
+std::optional<float> hdriDefaultRotationDeg(const std::filesystem::path& hdri,
+                                            std::string* error = nullptr);
+/// backdropRotationDeg of the file @p hdri, read once per file and modification time.
+std::optional<float> computeHdriDefaultRotationDeg(const std::filesystem::path& hdri,
+                                                   std::string* error = nullptr);
+
+/// @p camera aimed at the centre of a mesh whose bounding sphere has @p radius (every preview
+/// mesh fits the unit sphere at the origin, core/mesh.h) from the distance at which that sphere
+/// fills @p fill of the vertical field of view (and of the orthographic height).
+Camera framedCamera(Camera camera, float radius = 1.0f, float fill = kStageFill);
+
+} // namespace velvet
