@@ -1,5 +1,5 @@
 // glTF 2.0 export. References: the glTF 2.0 specification (Khronos, 2021; section numbers
-// below), KHR_materials_clearcoat, _sheen, _specular, _ior, _emissive_strength and
+// below), KHR_materials_clearcoat, _sheen, _specular, _ior, _emissive_strength, _anisotropy and
 // KHR_texture_transform (github.com/KhronosGroup/glTF, extensions/2.0/Khronos/). The mapping of
 // each parameter is tabled in docs/interchange.md.
 #include "core/gltf_export.h"
@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
 namespace velvet {
@@ -243,6 +244,20 @@ Json materialJson(const Material& m, const GltfTexturePlan& plan, bool doubleSid
         putTexture(s, "sheenColorTexture", w.textureInfo(TextureSlot::SheenColor));
         putTexture(s, "sheenRoughnessTexture", w.textureInfo(TextureSlot::SheenRoughness));
         ext["KHR_materials_sheen"] = s;
+    }
+    // KHR_materials_anisotropy: the same strength and texture (RG direction, B strength); the
+    // rotation in radians where Velvet keeps degrees. Written when the strength is above 0 or a
+    // direction texture is set (the extension's defaults are strength 0, rotation 0).
+    {
+        const float strength = m.scalar(ParamId::AnisotropyStrength);
+        Json a;
+        putTexture(a, "anisotropyTexture", w.textureInfo(TextureSlot::Anisotropy));
+        if (strength > 0.0f || !a.is_null()) {
+            a["anisotropyStrength"] = num(strength);
+            if (const float r = m.scalar(ParamId::AnisotropyRotation); r != 0.0f)
+                a["anisotropyRotation"] = num(glm::radians(r));
+            ext["KHR_materials_anisotropy"] = a;
+        }
     }
     for (auto it = ext.begin(); it != ext.end(); ++it)
         extensions.push_back(it.key());

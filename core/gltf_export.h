@@ -1,10 +1,10 @@
 #pragma once
 /// @file gltf_export.h
 /// A material on a mesh as a glTF 2.0 asset: the metallic-roughness core with
-/// KHR_materials_clearcoat, _sheen, _specular, _ior and _emissive_strength, textures as PNG
-/// images (atlas regions through KHR_texture_transform), in a .glb (one file, buffers and images
-/// embedded) or a .gltf (JSON, a .bin and the images beside it). Every mapping, and what cannot
-/// be mapped, is in docs/interchange.md. Built in memory; writing is export_files.h's job.
+/// KHR_materials_clearcoat, _sheen, _specular, _ior, _emissive_strength and _anisotropy, textures
+/// as PNG images (atlas regions through KHR_texture_transform), in a .glb (one file, buffers and
+/// images embedded) or a .gltf (JSON, a .bin and the images beside it). Every mapping, and what
+/// cannot be mapped, is in docs/interchange.md. Built in memory; writing is export_files.h's job.
 
 #include "core/export_files.h"
 #include "core/material.h"

@@ -1,5 +1,5 @@
 // glTF 2.0 import. References: the glTF 2.0 specification (Khronos, 2021; section numbers
-// below), KHR_materials_clearcoat, _sheen, _specular, _ior, _emissive_strength,
+// below), KHR_materials_clearcoat, _sheen, _specular, _ior, _emissive_strength, _anisotropy,
 // KHR_texture_transform and the archived KHR_materials_pbrSpecularGlossiness
 // (github.com/KhronosGroup/glTF, extensions/2.0/). Every mapping, and what is not mapped, is
 // tabled in docs/interchange.md ("Import").
@@ -18,6 +18,7 @@
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <unistd.h>
@@ -725,8 +726,19 @@ private:
                 texture(*t, at(p, "sheenColorTexture"), TextureSlot::SheenColor, {});
             if (const Json* t = find(e, "sheenRoughnessTexture"))
                 texture(*t, at(p, "sheenRoughnessTexture"), TextureSlot::SheenRoughness, {});
+        } else if (name == "KHR_materials_anisotropy") {
+            checkKeys(e, p, {"anisotropyStrength", "anisotropyRotation", "anisotropyTexture"});
+            setScalar(ParamId::AnisotropyStrength, number(e, "anisotropyStrength", p, 0, 1, 0.0),
+                      at(p, "anisotropyStrength"));
+            // Radians in the file, degrees in Velvet, wrapped into [-180, 180] (a whole turn
+            // changes nothing).
+            const double rad = number(e, "anisotropyRotation", p, -1e9, 1e9, 0.0);
+            m.setScalar(ParamId::AnisotropyRotation,
+                        float(std::remainder(rad * 180.0 / std::numbers::pi, 360.0)));
+            if (const Json* t = find(e, "anisotropyTexture"))
+                texture(*t, at(p, "anisotropyTexture"), TextureSlot::Anisotropy, {});
         } else {
-            // KHR_materials_anisotropy, _transmission, _volume, _iridescence, _unlit, …: Velvet
+            // KHR_materials_transmission, _volume, _iridescence, _unlit, …: Velvet
             // has no counterpart (yet); the material is imported without it.
             warn(p + ": " + name +
                  " is not mapped (Velvet has no counterpart); imported without "

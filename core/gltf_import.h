@@ -2,8 +2,9 @@
 /// @file gltf_import.h
 /// A material of a glTF 2.0 asset (.gltf with its files, or .glb) as a Velvet material: the
 /// metallic-roughness core, KHR_materials_clearcoat, _sheen, _specular, _ior,
-/// _emissive_strength, KHR_texture_transform, and KHR_materials_pbrSpecularGlossiness converted
-/// (core/gltf_spec_gloss.h). Parsed with nlohmann-json; every mapping in docs/interchange.md.
+/// _emissive_strength, _anisotropy, KHR_texture_transform, and KHR_materials_pbrSpecularGlossiness
+/// converted (core/gltf_spec_gloss.h). Parsed with nlohmann-json; every mapping in
+/// docs/interchange.md.
 
 #include "core/material_import.h"
 

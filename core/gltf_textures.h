@@ -50,7 +50,7 @@ struct GltfTexturePlan {
 
 /// Loads every texture slot of @p material through @p textures and plans the images:
 /// - slots glTF reads as they are (base colour, normal, emissive, clearcoat, clearcoat
-///   roughness and normal, sheen colour and roughness, specular, specular colour, and
+///   roughness and normal, sheen colour and roughness, specular, specular colour, anisotropy, and
 ///   metallic-roughness or occlusion alone) keep their image, one image per distinct file and
 ///   colour handling, an atlas region becoming a KHR_texture_transform;
 /// - occlusion together with metallic-roughness, or any SpecRoughMetal texture, are packed

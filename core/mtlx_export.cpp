@@ -8,9 +8,12 @@
 
 #include "core/gltf_textures.h"
 #include "core/mapping_warnings.h"
+#include "core/mtlx_shader_inputs.h"
 
 #include <array>
 #include <charconv>
+#include <cmath>
+#include <glm/trigonometric.hpp>
 #include <map>
 #include <set>
 
@@ -237,6 +240,12 @@ std::vector<MxInput> shaderInputs(MtlxShader shader, const Material& m, Builder&
             in.push_back(std::move(*i));
     };
     const float sheen = m.scalar(P::SheenWeight);
+    // KHR_materials_anisotropy, written only when on (docs/interchange.md): standard_surface and
+    // open_pbr_surface take the ratio of their alphas (mtlx_shader_inputs.h), standard_surface's
+    // rotation is a fraction of a turn in [0, 1), gltf_pbr's is radians as glTF's.
+    const float aniso = m.scalar(P::AnisotropyStrength);
+    const float rotation = m.scalar(P::AnisotropyRotation);
+    const float mxAniso = mtlx::strengthToMtlxAnisotropy(aniso, m.scalar(P::Roughness));
     switch (shader) {
     case MtlxShader::StandardSurface:
         add(b.scalar("base", 1.0f));
@@ -256,6 +265,11 @@ std::vector<MxInput> shaderInputs(MtlxShader shader, const Material& m, Builder&
         add(b.color("emission_color", m.color(P::EmissiveColor), S::Emissive));
         add(b.normal("normal", S::Normal, m.scalar(P::NormalScale)));
         add(b.normal("coat_normal", S::ClearcoatNormal, m.scalar(P::ClearcoatNormalScale)));
+        if (aniso > 0.0f) {
+            add(b.scalar("specular_anisotropy", mxAniso));
+            const float turns = rotation / 360.0f;
+            add(b.scalar("specular_rotation", turns - std::floor(turns)));
+        }
         break;
     case MtlxShader::OpenPbrSurface:
         add(b.scalar("base_weight", 1.0f));
@@ -276,6 +290,13 @@ std::vector<MxInput> shaderInputs(MtlxShader shader, const Material& m, Builder&
         add(b.normal("geometry_normal", S::Normal, m.scalar(P::NormalScale)));
         add(b.normal("geometry_coat_normal", S::ClearcoatNormal,
                      m.scalar(P::ClearcoatNormalScale)));
+        if (aniso > 0.0f) {
+            add(b.scalar("specular_roughness_anisotropy", mxAniso));
+            if (rotation != 0.0f)
+                warnings.push_back(std::string(paramMeta(P::AnisotropyRotation).id) +
+                                   ": open_pbr_surface has no rotation input (its anisotropy "
+                                   "follows geometry_tangent); not exported");
+        }
         break;
     case MtlxShader::GltfPbr:
         add(b.color("base_color", m.color(P::BaseColor), S::BaseColor));
@@ -294,11 +315,19 @@ std::vector<MxInput> shaderInputs(MtlxShader shader, const Material& m, Builder&
         add(b.normal("clearcoat_normal", S::ClearcoatNormal, m.scalar(P::ClearcoatNormalScale)));
         add(b.color("emissive", m.color(P::EmissiveColor), S::Emissive));
         add(b.scalar("emissive_strength", m.scalar(P::EmissiveStrength)));
+        if (aniso > 0.0f) {
+            add(b.scalar("anisotropy_strength", aniso));
+            add(b.scalar("anisotropy_rotation", glm::radians(rotation)));
+        }
         break;
     case MtlxShader::Count:
         break;
     }
     const std::string id(kShaderIds[size_t(shader)]);
+    if (b.has(S::Anisotropy))
+        warnings.push_back("textures.anisotropy: " + id +
+                           " has no anisotropy direction input; not exported (the strength and "
+                           "rotation are)");
     if (shader != MtlxShader::GltfPbr && b.has(S::Occlusion))
         warnings.push_back("textures.occlusion: " + id +
                            " has no occlusion input (ambient occlusion is the renderer's); "

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <glm/trigonometric.hpp>
 #include <map>
 #include <optional>
 #include <pugixml.hpp>
@@ -104,9 +105,12 @@ public:
                                      extra.attribute("name").value() + "\" not mapped");
         m_material = &m;
         float baseWeight = 1.0f;
+        float mxAniso = -1.0f; // standard_surface / open_pbr_surface: converted after the loop
         for (pugi::xml_node in : shader.children("input")) {
             const std::string name = in.attribute("name").value();
             const std::string label = m_shader + "." + name;
+            if (readAnisotropy(in, name, label, mxAniso))
+                continue;
             if (name == "base" || name == "base_weight") {
                 baseWeight = constantScalar(in, label, 1.0f);
                 continue;
@@ -133,6 +137,9 @@ public:
             }
             readInput(in, label, t->second);
         }
+        if (mxAniso >= 0.0f) // needs the roughness (mtlx_shader_inputs.h)
+            m.setScalar(P::AnisotropyStrength,
+                        mtlx::mtlxAnisotropyToStrength(mxAniso, m.scalar(P::Roughness)));
         if (baseWeight != 1.0f) {
             if (m_graph && m_driven.count(P::BaseColor))
                 m_warnings.push_back(m_shader + ".base = " + std::to_string(baseWeight) +
@@ -209,6 +216,29 @@ private:
             return n;
         }
         return {};
+    }
+
+    /// KHR_materials_anisotropy's counterparts (docs/interchange.md): gltf_pbr's strength and
+    /// radians map directly; standard_surface's rotation is a fraction of a turn, and its and
+    /// open_pbr_surface's anisotropy (@p mxAniso) becomes a strength once the roughness is known.
+    bool readAnisotropy(pugi::xml_node in, const std::string& name, const std::string& label,
+                        float& mxAniso) {
+        const bool gltf = m_shader == "gltf_pbr";
+        if (gltf && name == "anisotropy_strength") {
+            set(P::AnisotropyStrength, {constantScalar(in, label, 0.0f)}, in, label);
+        } else if (gltf && name == "anisotropy_rotation") {
+            const float deg = glm::degrees(constantScalar(in, label, 0.0f));
+            m_material->setScalar(P::AnisotropyRotation, std::remainder(deg, 360.0f));
+        } else if (m_shader == "standard_surface" && name == "specular_rotation") {
+            const float deg = 360.0f * constantScalar(in, label, 0.0f);
+            m_material->setScalar(P::AnisotropyRotation, std::remainder(deg, 360.0f));
+        } else if ((m_shader == "standard_surface" && name == "specular_anisotropy") ||
+                   (m_shader == "open_pbr_surface" && name == "specular_roughness_anisotropy")) {
+            mxAniso = std::clamp(constantScalar(in, label, 0.0f), 0.0f, 1.0f);
+        } else {
+            return false;
+        }
+        return true;
     }
 
     float constantScalar(pugi::xml_node in, const std::string& label, float fallback) {

@@ -1,5 +1,10 @@
 #include "core/mtlx_shader_inputs.h"
 
+#include "core/brdf.h"
+
+#include <algorithm>
+#include <cmath>
+
 namespace velvet::mtlx {
 
 using S = TextureSlot;
@@ -65,6 +70,19 @@ const std::map<std::string, Target>& targetsOf(const std::string& shader) {
     if (shader == "gltf_pbr")
         return gltf;
     return none;
+}
+
+float strengthToMtlxAnisotropy(float s, float roughness) {
+    const glm::vec2 a = brdf::anisotropicAlphas(roughness, s); // (alpha_t, alpha_b)
+    return std::clamp(1.0f - a.y / a.x, 0.0f, 1.0f);
+}
+
+float mtlxAnisotropyToStrength(float a, float roughness) {
+    const float alpha = brdf::anisotropicAlphas(roughness, 0.0f).y;
+    if (alpha >= 1.0f)
+        return 0.0f; // alpha_t = alpha_b = 1 whatever the strength
+    const float at = alpha / std::max(1.0f - std::clamp(a, 0.0f, 1.0f), 1e-6f);
+    return std::sqrt(std::clamp((at - alpha) / (1.0f - alpha), 0.0f, 1.0f));
 }
 
 std::string velvetColorSpace(const std::string& mx) {

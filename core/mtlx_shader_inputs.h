@@ -26,6 +26,15 @@ struct Target {
 /// apart (they multiply or are checked, not mapped to one parameter).
 const std::map<std::string, Target>& targetsOf(const std::string& shader);
 
+/// KHR_materials_anisotropy's strength @p s as the anisotropy a of standard_surface
+/// (`specular_anisotropy`) and open_pbr_surface (`specular_roughness_anisotropy`): both shaders
+/// take the ratio of their two alphas from it (alpha_b / alpha_t = 1 - a), so a = 1 - alpha /
+/// mix(alpha, 1, s^2) keeps the extension's ratio at the material's @p roughness (alpha =
+/// roughness^2, clamped as brdf::anisotropicAlphas). Their alphas' magnitudes differ
+/// (docs/interchange.md); mtlxAnisotropyToStrength() is the exact inverse for roughness < 1.
+float strengthToMtlxAnisotropy(float s, float roughness);
+float mtlxAnisotropyToStrength(float a, float roughness);
+
 /// "srgb_texture" -> "sRGB texture", "lin_rec709" -> "Linear Rec.709", "acescg" / "lin_ap1" ->
 /// "ACEScg", "raw" / "none" -> "Raw" (the names of resources/ocio/config.ocio); others kept.
 std::string velvetColorSpace(const std::string& mx);
