@@ -14,6 +14,7 @@
 #include <QFileInfo>
 #include <QGuiApplication>
 #include <QUndoStack>
+#include <optional>
 
 namespace velvet::ui {
 namespace {
@@ -117,6 +118,35 @@ void DocumentController::editTexture(TextureSlot slot, const TextureRef& ref, co
     if (m_scene.material.texture(slot) == ref)
         return;
     m_undoStack->push(new SetTextureCommand(this, slot, m_scene.material.texture(slot), ref, text));
+}
+
+bool DocumentController::assignTextureImage(TextureSlot slot, const TextureRef& ref,
+                                            const QString& text) {
+    const auto factorOf = [](TextureSlot s) -> std::optional<ParamId> {
+        switch (s) {
+        case TextureSlot::BaseColor:
+            return ParamId::BaseColor;
+        case TextureSlot::Emissive:
+            return ParamId::EmissiveColor;
+        case TextureSlot::SheenColor:
+            return ParamId::SheenColor;
+        case TextureSlot::SpecularColor:
+            return ParamId::SpecularColor;
+        default:
+            return std::nullopt;
+        }
+    };
+    const std::optional<ParamId> factor = factorOf(slot);
+    const bool wasEmpty = m_scene.material.texture(slot).empty();
+    if (!factor || !wasEmpty || ref.empty() || m_scene.material.color(*factor) == glm::vec3(1.0f)) {
+        editTexture(slot, ref, text);
+        return false;
+    }
+    m_undoStack->beginMacro(text);
+    editTexture(slot, ref, text);
+    editParam(*factor, glm::vec3(1.0f));
+    m_undoStack->endMacro();
+    return true;
 }
 
 void DocumentController::setTexture(TextureSlot slot, const TextureRef& ref) {

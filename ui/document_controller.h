@@ -61,6 +61,12 @@ public:
     void editLights(const std::vector<Light>& lights, const QString& text, int mergeKey = 0);
     /// Fills a material texture slot (one command named @p text). No-op edits push nothing.
     void editTexture(TextureSlot slot, const TextureRef& ref, const QString& text);
+    /// An image the artist puts into an empty colour slot (a drop, a file chosen): the slot's
+    /// colour factor multiplies the map (glTF), so a dark factor would hide it; the factor goes to
+    /// white in the same undo step so the map shows as painted, as Blender and Substance show an
+    /// image connected to a colour. Other slots, or a slot that had a map, are editTexture().
+    /// Returns true when the factor was reset (the caller may say so).
+    bool assignTextureImage(TextureSlot slot, const TextureRef& ref, const QString& text);
     /// @}
 
     /// @name Applied by undo commands (not undoable by themselves)

@@ -411,10 +411,14 @@ bool MainWindow::openDroppedFile(const QString& path) {
     case DropKind::Image: {
         TextureRef ref;
         ref.file = documentPath(path);
-        m_controller->editTexture(TextureSlot::BaseColor, ref,
-                                  tr("Set Base colour texture %1").arg(QFileInfo(path).fileName()));
+        const bool factorReset = m_controller->assignTextureImage(
+            TextureSlot::BaseColor, ref,
+            tr("Set Base colour texture %1").arg(QFileInfo(path).fileName()));
         m_log->info(
             tr("Base colour texture: %1 (drop on a Properties slot for another one)").arg(path));
+        if (factorReset)
+            m_log->info(tr("Base colour factor set to white so the map shows as painted (it "
+                           "multiplies the map; Ctrl+Z restores both)"));
         return true;
     }
     case DropKind::Hdri: {
