@@ -52,6 +52,10 @@ int runSchema(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 /// `velvet bench --textures` (app/command_bench_textures.cpp).
 int runTextureBench(bool json, bool quick);
+/// velvet bench's G-buffer layout figures (app/command_bench_gbuffer.cpp): the 24-byte layout
+/// with lobe channels beside the compact 16-byte one, side by side. Needs a current context.
+bool gbufferLayoutFigures(int width, int height, int frames,
+                          std::vector<std::pair<std::string, double>>& figures, std::string* error);
 int runPack(const std::vector<std::string>& args);
 int runUnpack(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);

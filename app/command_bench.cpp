@@ -28,11 +28,13 @@ const std::vector<OptionSpec> kOptions{
      "the texture path instead: a generated 4096² map (2048² with --short) loaded cold and from "
      "the mip cache, peak memory, frames drawn while it loads"},
     {"stage", 0, false, "", "only the look-dev stage's figures (shadows, occlusion)"},
+    {"gbuffer", 0, false, "",
+     "only the G-buffer layouts: 24 bytes with lobe channels beside the compact 16 bytes"},
     {"help", 'h', false, "", "this text"},
 };
 
 const char* kHelp =
-    "Usage: velvet bench [--json] [--short]\n"
+    "Usage: velvet bench [--json] [--short] [--stage | --gbuffer | --textures]\n"
     "Renders the default sphere at 1280x720 (--short: 320x180) headless and measures, in one\n"
     "process, the variants side by side: the three many-light paths (light volumes, tiled\n"
     "compute, brute force) at 100 and 1,000 point lights placed in a grid around the mesh with\n"
@@ -42,6 +44,9 @@ const char* kHelp =
     "per-pass times are GPU timer queries (misattributed between passes on llvmpipe).\n"
     "The look-dev stage: the shader ball on a shadow catcher under the key light, the frame with\n"
     "its shadow (and ambient occlusion) against without, and the shadow-map and occlusion passes.\n"
+    "The G-buffer: the 24-byte layout with eight lobe channels beside the compact 16-byte one,\n"
+    "alternate frames of two renderers, G-buffer + lighting time and frame time, for the default\n"
+    "velvet and for a velvet with four lobe maps (which the compact layout draws as means).\n"
     "Ratios compare variants of the same process; absolute times are machine-specific.\n\n";
 
 double median(std::vector<double> v) {
@@ -216,7 +221,10 @@ int runBench(const std::vector<std::string>& argv) {
         // The look-dev stage: shadows and ambient occlusion on and off (--stage: only these).
         if (!stageFigures(b.width, b.height, b.frames, figures, &error))
             return failed("stage measurement failed");
-        if (args->has("stage")) {
+        // The G-buffer layouts side by side (--gbuffer: only these).
+        if (!gbufferLayoutFigures(b.width, b.height, b.frames, figures, &error))
+            return failed("G-buffer layout measurement failed");
+        if (args->has("stage") || args->has("gbuffer")) {
             for (const auto& [k, v] : figures)
                 std::cout << (json ? "\"" + k + "\": " : "  " + k + " ") << jsonNumber(v) << "\n";
             return Ok;
@@ -267,7 +275,6 @@ int runBench(const std::vector<std::string>& argv) {
         put("width", b.width);
         put("height", b.height);
         put("frames", b.frames);
-        put("gbuffer_bytes_per_pixel", render::gbufferBytesPerPixel());
         put("lights_radius_m", radius);
         put("lights1000_avg_lights_per_pixel", avg1000);
         put("lights100_avg_lights_per_pixel", avg100);

@@ -40,7 +40,7 @@ const std::vector<OptionSpec> kOptions{
      "final (default), albedo, normal, depth, roughness, metallic, position, specular, "
      "clearcoat, sheen, occlusion, emissive, material-id, lights-per-pixel (heat map), "
      "diffuse-only, specular-only, base-specular, sheen-only, clearcoat-only (lobe views: direct "
-     "light only)"},
+     "light only), anisotropy (direction x strength)"},
     {"light-rig", 0, true, "ID",
      "replace the scene's lights with a rig: key, three-point, softboxes, sun, stage-spot, "
      "coloured-points or environment (the HDRI alone)"},
@@ -121,6 +121,7 @@ const std::pair<const char*, render::DebugView> kDebugViews[] = {
     {"base-specular", render::DebugView::BaseSpecular},
     {"sheen-only", render::DebugView::SheenOnly},
     {"clearcoat-only", render::DebugView::ClearcoatOnly},
+    {"anisotropy", render::DebugView::Anisotropy},
 };
 
 int usage(const std::string& message) {

@@ -17,6 +17,7 @@ struct ProbeSample {
     glm::vec4 scalars; ///< roughness, ior, clearcoat, clearcoat roughness
     glm::ivec4 terms;
     glm::ivec4 terms2;
+    glm::vec4 anisotropy; ///< xyz direction (perpendicular to n), w strength
 };
 /// Mirrors ProbeResult in brdf_probe.comp.
 struct ProbeResult {
@@ -69,7 +70,8 @@ std::vector<BrdfProbeResult> BrdfProbe::evaluate(const std::vector<BrdfProbeSamp
             glm::vec4(m.sheenColor, m.sheenRoughness),
             glm::vec4(m.roughness, m.ior, m.clearcoat, m.clearcoatRoughness),
             glm::ivec4(int(m.distribution), int(m.visibility), int(m.fresnel), int(m.diffuse)),
-            glm::ivec4(int(m.sheenModel), 0, 0, 0)};
+            glm::ivec4(int(m.sheenModel), 0, 0, 0),
+            glm::vec4(m.anisotropyDirection, m.anisotropyStrength)};
     }
     if (samples.size() > m_capacity) {
         for (GLuint b : {m_sampleSsbo, m_resultSsbo})

@@ -25,8 +25,9 @@ FrameTargets::~FrameTargets() {
         glDeleteFramebuffers(1, &m_geometryFbo);
 }
 
-bool FrameTargets::resize(int width, int height, std::string* error) {
-    return m_gbuffer.resize(width, height, error) && m_hdr.resize(width, height, GL_RGBA16F, error);
+bool FrameTargets::resize(int width, int height, bool compactGBuffer, std::string* error) {
+    return m_gbuffer.resize(width, height, compactGBuffer, error) &&
+           m_hdr.resize(width, height, GL_RGBA16F, error);
 }
 
 unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
@@ -44,7 +45,8 @@ unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &texture);
             glNamedFramebufferTexture(m_geometryFbo, GLenum(GL_COLOR_ATTACHMENT0 + i),
                                       GLuint(texture), 0);
-            drawBuffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+            drawBuffers.push_back(m_gbuffer.texture(i) ? GLenum(GL_COLOR_ATTACHMENT0 + i)
+                                                       : GLenum(GL_NONE));
         }
         glNamedFramebufferTexture(m_geometryFbo, GLenum(GL_COLOR_ATTACHMENT0 + n), m_hdr.texture(),
                                   0);
@@ -63,8 +65,9 @@ unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
     }
     if (m_geometryEmission != int(emission)) {
         std::vector<GLenum> drawBuffers;
-        for (int i = 0; i < n; ++i)
-            drawBuffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+        for (int i = 0; i < n; ++i) // the compact layout has no lobe channels (GL_NONE)
+            drawBuffers.push_back(m_gbuffer.texture(i) ? GLenum(GL_COLOR_ATTACHMENT0 + i)
+                                                       : GLenum(GL_NONE));
         drawBuffers.push_back(emission ? GLenum(GL_COLOR_ATTACHMENT0 + n) : GLenum(GL_NONE));
         glNamedFramebufferDrawBuffers(m_geometryFbo, GLsizei(drawBuffers.size()),
                                       drawBuffers.data());

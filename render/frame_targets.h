@@ -26,7 +26,8 @@ public:
     FrameTargets& operator=(const FrameTargets&) = delete;
 
     /// (Re)allocates the G-buffer and the HDR colour (RGBA16F) for @p width x @p height.
-    bool resize(int width, int height, std::string* error);
+    /// @p compactGBuffer: the 16-byte G-buffer without lobe channels (GBuffer::resize).
+    bool resize(int width, int height, bool compactGBuffer, std::string* error);
 
     /// The geometry pass's framebuffer, its HDR draw buffer on only when the frame can emit
     /// (writing emission costs a 16-bit RGBA store per pixel and a blend in the lighting pass:

@@ -2,6 +2,7 @@
 
 #include "render/gbuffer_layout.h"
 
+#include <algorithm>
 #include <epoxy/gl.h>
 
 namespace velvet::render {
@@ -58,8 +59,10 @@ GBuffer::~GBuffer() {
 }
 
 void GBuffer::release() {
-    if (m_count)
-        glDeleteTextures(m_count, m_textures);
+    for (int i = 0; i < m_count; ++i)
+        if (m_textures[i])
+            glDeleteTextures(1, &m_textures[i]);
+    std::fill(std::begin(m_textures), std::end(m_textures), 0u);
     if (m_fbo)
         glDeleteFramebuffers(1, &m_fbo);
     m_fbo = 0;
@@ -74,26 +77,30 @@ unsigned nextTargetGeneration() {
 }
 } // namespace
 
-bool GBuffer::resize(int width, int height, std::string* error) {
-    if (m_fbo && width == m_width && height == m_height)
+bool GBuffer::resize(int width, int height, bool compact, std::string* error) {
+    if (m_fbo && width == m_width && height == m_height && compact == m_compact)
         return true;
     release();
     m_generation = nextTargetGeneration();
     const auto attachments = gbufferAttachments();
     m_count = int(attachments.size());
     glCreateFramebuffers(1, &m_fbo);
-    glCreateTextures(GL_TEXTURE_2D, m_count, m_textures);
     GLenum drawBuffers[8];
     const int colorCount = gbufferColorAttachmentCount();
     for (int i = 0; i < m_count; ++i) {
+        // The compact layout (velvet bench's 16-byte comparison) leaves the lobe channels out:
+        // their draw buffers are GL_NONE, so the geometry pass's writes to them cost nothing.
+        const bool present = !(compact && attachments[i].lobeChannels);
+        if (i < colorCount)
+            drawBuffers[i] = present ? GLenum(GL_COLOR_ATTACHMENT0 + i) : GLenum(GL_NONE);
+        if (!present)
+            continue;
+        glCreateTextures(GL_TEXTURE_2D, 1, &m_textures[i]);
         glTextureStorage2D(m_textures[i], 1, toGl(attachments[i].format), width, height);
         setNearest(m_textures[i]);
-        if (i < colorCount) {
-            glNamedFramebufferTexture(m_fbo, GL_COLOR_ATTACHMENT0 + i, m_textures[i], 0);
-            drawBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
-        } else {
-            glNamedFramebufferTexture(m_fbo, GL_DEPTH_ATTACHMENT, m_textures[i], 0);
-        }
+        glNamedFramebufferTexture(
+            m_fbo, i < colorCount ? GLenum(GL_COLOR_ATTACHMENT0 + i) : GLenum(GL_DEPTH_ATTACHMENT),
+            m_textures[i], 0);
     }
     glNamedFramebufferDrawBuffers(m_fbo, colorCount, drawBuffers);
     const GLenum status = glCheckNamedFramebufferStatus(m_fbo, GL_FRAMEBUFFER);
@@ -106,12 +113,18 @@ bool GBuffer::resize(int width, int height, std::string* error) {
     }
     m_width = width;
     m_height = height;
+    m_compact = compact;
     return true;
 }
 
 void GBuffer::bindTextures() const {
+    const auto attachments = gbufferAttachments();
     for (int i = 0; i < m_count; ++i)
-        glBindTextureUnit(GLuint(i), m_textures[i]);
+        glBindTextureUnit(GLuint(attachments[i].unit), m_textures[i]);
+}
+
+unsigned GBuffer::texture(int attachment) const {
+    return attachment >= 0 && attachment < m_count ? m_textures[attachment] : 0u;
 }
 
 ColorTarget::~ColorTarget() {

@@ -13,11 +13,16 @@ public:
     GBuffer(const GBuffer&) = delete;
     GBuffer& operator=(const GBuffer&) = delete;
 
-    /// (Re)allocates for @p width x @p height when the size changed; checks completeness.
-    bool resize(int width, int height, std::string* error);
+    /// (Re)allocates for @p width x @p height when the size or the layout changed; checks
+    /// completeness. @p compact: the 16-byte layout without the lobe channels (for comparison).
+    bool resize(int width, int height, bool compact, std::string* error);
     unsigned framebuffer() const { return m_fbo; }
-    /// Binds every attachment as a texture at the unit its layout index names.
+    /// Binds every attachment as a texture at its layout unit (a compact layout's lobe units get
+    /// texture 0: incomplete, reads as zero; no material maps a channel then).
     void bindTextures() const;
+    /// The texture of attachment @p attachment (gbufferAttachments() order; 0 when absent).
+    unsigned texture(int attachment) const;
+    bool compact() const { return m_compact; }
     int width() const { return m_width; }
     int height() const { return m_height; }
     /// Changes whenever resize() reallocates, unique across targets: framebuffers built over
@@ -31,6 +36,7 @@ private:
     unsigned m_textures[8] = {};
     int m_count = 0;
     int m_width = 0, m_height = 0;
+    bool m_compact = false;
 };
 
 /// One colour texture + framebuffer (the HDR target, and the display target offscreen).

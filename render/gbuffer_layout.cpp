@@ -1,5 +1,8 @@
 #include "render/gbuffer_layout.h"
 
+#include "render/lobe_channels.h"
+#include "render/shader_program.h"
+
 #include <array>
 #include <cmath>
 #include <glm/common.hpp>
@@ -9,26 +12,36 @@
 namespace velvet::render {
 namespace {
 
-// RT0..RT2 then depth. Changing this table changes C++ allocation and GLSL together.
-constexpr std::array<GBufferAttachment, 4> kAttachments{{
+// RT0..RT4 then depth. Changing this table changes C++ allocation and GLSL together. RT0..RT2
+// and depth keep units 0..3; the lobe channels take their own units (render/shader_program.h).
+constexpr std::array<GBufferAttachment, 6> kAttachments{{
     {"gBaseColorOcclusion", "GBUFFER_BASE_COLOR_OCCLUSION", GBufferFormat::RGBA8, 4,
      "rgb: base colour, sRGB-encoded in the shader (8-bit precision where it is seen); "
-     "a: occlusion"},
+     "a: occlusion",
+     0, false},
     {"gNormal", "GBUFFER_NORMAL", GBufferFormat::RG16, 4,
-     "rg: world normal, octahedral, 16-bit unorm each (precise encoding)"},
+     "rg: world normal, octahedral, 16-bit unorm each (precise encoding)", 1, false},
     {"gMaterial", "GBUFFER_MATERIAL", GBufferFormat::RGBA8, 4,
-     "r: metallic, g: perceptual roughness, b: material id / 255, a: spare"},
+     "r: metallic, g: perceptual roughness, b: material id / 255, a: spare", 2, false},
+    {"gLobes0", "GBUFFER_LOBES0", GBufferFormat::RGBA8, 4,
+     "lobe channels 0..3: the material's per-pixel lobe values, placed by its lobe-channel map "
+     "(render/lobe_channels.h)",
+     binding::kGBufferLobes0Tex, true},
+    {"gLobes1", "GBUFFER_LOBES1", GBufferFormat::RGBA8, 4, "lobe channels 4..7 (as gLobes0)",
+     binding::kGBufferLobes1Tex, true},
     {"gDepth", "GBUFFER_DEPTH", GBufferFormat::Depth32F, 4,
-     "hardware depth; positions are reconstructed with the inverse projection"},
+     "hardware depth; positions are reconstructed with the inverse projection", 3, false},
 }};
 
-constexpr int sumBytes() {
+constexpr int sumBytes(bool compact) {
     int s = 0;
     for (const auto& a : kAttachments)
-        s += a.bytesPerPixel;
+        if (!(compact && a.lobeChannels))
+            s += a.bytesPerPixel;
     return s;
 }
-static_assert(sumBytes() <= 16, "G-buffer budget is 16 bytes per pixel including depth");
+static_assert(sumBytes(false) <= 24, "G-buffer budget is 24 bytes per pixel including depth");
+static_assert(sumBytes(true) == 16, "the compact layout is the 16-byte one");
 
 std::string_view glslOutType(GBufferFormat f) {
     return f == GBufferFormat::RG16 ? "vec2" : "vec4";
@@ -42,13 +55,21 @@ std::span<const GBufferAttachment> gbufferAttachments() {
 int gbufferColorAttachmentCount() {
     return int(kAttachments.size()) - 1;
 }
-int gbufferBytesPerPixel() {
-    return sumBytes();
+int gbufferBytesPerPixel(bool compact) {
+    return sumBytes(compact);
+}
+
+int gbufferUnit(std::string_view define) {
+    for (const auto& a : kAttachments)
+        if (a.define == define)
+            return a.unit;
+    return -1;
 }
 
 std::string gbufferGlsl() {
     std::string s = "// Generated from render/gbuffer_layout.cpp; do not edit.\n";
-    s += "#define GBUFFER_BYTES_PER_PIXEL " + std::to_string(sumBytes()) + "\n";
+    s += "#define GBUFFER_BYTES_PER_PIXEL " + std::to_string(sumBytes(false)) + "\n";
+    s += lobeChannelsGlsl();
     for (size_t i = 0; i < kAttachments.size(); ++i)
         s += "#define " + std::string(kAttachments[i].define) + " " + std::to_string(i) + "\n";
     s += "#ifdef GBUFFER_WRITE\n";
@@ -65,7 +86,7 @@ std::string gbufferGlsl() {
     s += "#else\n";
     for (size_t i = 0; i < kAttachments.size(); ++i) {
         const auto& a = kAttachments[i];
-        s += "layout(binding = " + std::to_string(i) + ") uniform sampler2D " +
+        s += "layout(binding = " + std::to_string(a.unit) + ") uniform sampler2D " +
              std::string(a.glslName) + "Tex;\n";
     }
     s += "#endif\n";

@@ -2,8 +2,11 @@
 /// @file gbuffer_layout.h
 /// The one definition of the G-buffer (DESIGN.md, "G-buffer"): attachments, formats, encodings.
 /// C++ allocates from this table and the shader loader injects gbufferGlsl(), generated from the
-/// same table, into every shader that includes "gbuffer_layout.glsl". Budget: 16 bytes per pixel
-/// including depth. Also the CPU twins of the normal encoding. No GL types here.
+/// same table, into every shader that includes "gbuffer_layout.glsl". Budget: 24 bytes per pixel
+/// including depth: the 16 bytes every material fills, and 8 lobe channels each material maps its
+/// per-pixel lobe values into (render/lobe_channels.h). The compact 16-byte layout without the
+/// lobe channels stays available for comparison (velvet bench). Also the CPU twins of the normal
+/// encoding. No GL types here.
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -22,14 +25,19 @@ struct GBufferAttachment {
     GBufferFormat format;
     int bytesPerPixel;
     std::string_view contents; ///< channel meanings and encodings, for docs and debug views
+    int unit;                  ///< texture unit the lighting passes sample it from
+    bool lobeChannels;         ///< one of the two lobe-channel targets (absent when compact)
 };
 
 /// Colour attachments in location order, then the depth attachment (last).
 std::span<const GBufferAttachment> gbufferAttachments();
 /// Number of colour attachments (the depth attachment is gbufferAttachments().back()).
 int gbufferColorAttachmentCount();
-/// Sum over all attachments, depth included (asserted <= 16 at compile time in the .cpp).
-int gbufferBytesPerPixel();
+/// Sum over all attachments, depth included (asserted <= 24 at compile time in the .cpp);
+/// @p compact: without the lobe-channel targets (16).
+int gbufferBytesPerPixel(bool compact = false);
+/// The texture unit of the attachment whose define is @p define ("GBUFFER_DEPTH"), or -1.
+int gbufferUnit(std::string_view define);
 /// The GLSL text of the virtual include "gbuffer_layout.glsl": location / binding macros,
 /// `out` declarations when GBUFFER_WRITE is defined, samplers otherwise.
 std::string gbufferGlsl();

@@ -54,8 +54,8 @@ bool bakeWithContext(const Material& material, int width, int height, MaterialMa
     // The material's slots and values exactly as the renderer uploads them.
     TextureSet slots;
     slots.setMaterial(material, problems);
-    GpuMaterial record = packMaterial(material);
-    slots.applyTo(record);
+    // The bake draws the maps the base reads (material_bake.frag); the lobes stay per material.
+    const GpuMaterial record = packMaterialRecord(material, slots, {}, /*compactGBuffer=*/true);
     MaterialTable table;
     table.upload({record});
 

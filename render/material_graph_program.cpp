@@ -181,14 +181,10 @@ void MaterialGraphProgram::buildPending(TextureCache& cache, bool wait) {
 }
 
 bool graphOutputIsPerPixel(std::string_view field) {
-    // What gbuffer.frag reads back from velvetGraph(): keep in step with it.
-    static constexpr std::string_view kPerPixel[] = {
-        "baseColor", "metallic",          "roughness",     "normal",          "normalScale",
-        "occlusion", "occlusionStrength", "emissionColor", "emissionStrength"};
-    for (std::string_view f : kPerPixel)
-        if (f == field)
-            return true;
-    return false;
+    // gbuffer.frag reads every MaterialInputs field back from velvetGraph() and writes it per
+    // pixel (the lobes through the lobe channels, render/lobe_channels.h) except the IOR, which
+    // the lighting passes take from the material table.
+    return field != "ior";
 }
 
 } // namespace velvet::render

@@ -60,6 +60,10 @@ public:
     /// A structural change is waiting for its program.
     bool pending() const { return m_hasPending; }
 
+    /// The MaterialInputs fields the drawn program's graph writes (its lobe-channel map follows
+    /// them: render/lobe_channels.h).
+    const std::vector<std::string>& writtenFields() const { return m_linked.writtenFields; }
+
     /// G-buffer programs built (GL compiles) since construction.
     int compileCount() const { return m_compileCount; }
     /// Graph-to-GLSL compiles (start() and setGraph()) since construction.

@@ -1,8 +1,11 @@
 #include "render/material_table.h"
 
+#include "render/lobe_channels.h"
 #include "render/shader_program.h"
+#include "render/texture_set.h"
 
 #include <epoxy/gl.h>
+#include <glm/trigonometric.hpp>
 
 namespace velvet::render {
 
@@ -15,14 +18,34 @@ GpuMaterial packMaterial(const Material& m) {
         glm::vec4(m.scalar(ParamId::Roughness), m.scalar(ParamId::Ior),
                   m.scalar(ParamId::OcclusionStrength), m.scalar(ParamId::NormalScale));
     g.emissive = glm::vec4(m.color(ParamId::EmissiveColor), m.scalar(ParamId::EmissiveStrength));
-    g.sheenColorRoughness = glm::vec4(m.scalar(ParamId::SheenWeight) * m.color(ParamId::SheenColor),
-                                      m.scalar(ParamId::SheenRoughness));
+    // The sheen colour without its weight: the geometry pass multiplies them per pixel (a graph
+    // may drive either), the lighting passes when they stay per material.
+    g.sheenColorRoughness =
+        glm::vec4(m.color(ParamId::SheenColor), m.scalar(ParamId::SheenRoughness));
+    g.sheenWeightAnisotropy =
+        glm::vec4(m.scalar(ParamId::SheenWeight), m.scalar(ParamId::AnisotropyStrength),
+                  glm::radians(m.scalar(ParamId::AnisotropyRotation)), 0.0f);
     g.clearcoat =
         glm::vec4(m.scalar(ParamId::ClearcoatWeight), m.scalar(ParamId::ClearcoatRoughness),
                   m.scalar(ParamId::ClearcoatNormalScale), 0.0f);
     g.terms = glm::ivec4(m.choice(ParamId::Distribution), m.choice(ParamId::Visibility),
                          m.choice(ParamId::Fresnel), m.choice(ParamId::Diffuse));
-    g.terms2 = glm::ivec4(m.choice(ParamId::SheenModel), 0, 0, 0);
+    // No texture yet, every lobe value per material (packMaterialRecord() maps the varying ones).
+    g.terms2 = glm::ivec4(m.choice(ParamId::SheenModel), 0, 0, assignLobeChannels(0).packed());
+    return g;
+}
+
+GpuMaterial packMaterialRecord(const Material& m, const TextureSet& textures,
+                               const std::vector<std::string>& graphFields, bool compactGBuffer,
+                               std::uint32_t* overflow) {
+    GpuMaterial g = packMaterial(m);
+    const LobeChannelMap map =
+        assignLobeChannels(varyingLobeValues(m, textures.presentSlots(), graphFields),
+                           compactGBuffer ? 0 : kLobeChannelCount);
+    g.terms2.w = map.packed();
+    textures.applyTo(g, map);
+    if (overflow)
+        *overflow = compactGBuffer ? 0u : map.overflow;
     return g;
 }
 

@@ -5,8 +5,10 @@
 
 #include "core/material.h"
 
+#include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
+#include <string>
 #include <vector>
 
 namespace velvet::render {
@@ -20,12 +22,26 @@ struct GpuMaterial {
     glm::vec4 emissive;
     glm::vec4 sheenColorRoughness;
     glm::vec4 clearcoat;
+    glm::vec4 sheenWeightAnisotropy;
     glm::ivec4 terms;
     glm::ivec4 terms2;
 };
-static_assert(sizeof(GpuMaterial) == 128, "GpuMaterial must match the std430 layout");
+static_assert(sizeof(GpuMaterial) == 144, "GpuMaterial must match the std430 layout");
 
+/// The parameters alone (no texture presence, every lobe per material).
 GpuMaterial packMaterial(const Material& m);
+
+class TextureSet;
+
+/// The record a frame draws with: packMaterial(), the lobe-channel map (terms2.w) of the values
+/// @p m varies per pixel given the slots @p textures holds and the MaterialInputs fields
+/// @p graphFields the drawn graph writes, and the texture presence bits with the means of the
+/// slots that stay per material (TextureSet::applyTo). @p compactGBuffer: the 16-byte layout,
+/// every lobe per material. @p overflow (optional) receives the values that varied but found no
+/// channel (render/lobe_channels.h).
+GpuMaterial packMaterialRecord(const Material& m, const TextureSet& textures,
+                               const std::vector<std::string>& graphFields, bool compactGBuffer,
+                               std::uint32_t* overflow = nullptr);
 
 class MaterialTable {
 public:

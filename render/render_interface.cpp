@@ -69,12 +69,14 @@ constexpr std::array kMaterialMembers{
     VELVET_MEMBER(GpuMaterial, "vec4", emissive, "",
                   "rgb colour, a strength (nits); drawn per pixel by gbuffer.frag"),
     VELVET_MEMBER(GpuMaterial, "vec4", sheenColorRoughness, "",
-                  "rgb sheen weight x colour, a sheen roughness"),
+                  "rgb sheen colour (without its weight), a sheen roughness"),
     VELVET_MEMBER(GpuMaterial, "vec4", clearcoat, "", "weight, roughness, normal scale, unused"),
+    VELVET_MEMBER(GpuMaterial, "vec4", sheenWeightAnisotropy, "",
+                  "sheen weight, anisotropy strength, anisotropy rotation (radians), unused"),
     VELVET_MEMBER(GpuMaterial, "ivec4", terms, "", "distribution, visibility, fresnel, diffuse"),
     VELVET_MEMBER(GpuMaterial, "ivec4", terms2, "",
                   "sheen model, texture-slot presence bits, atlas-region bits "
-                  "(render/texture_set.h), unused"),
+                  "(render/texture_set.h), lobe-channel map (render/lobe_channels.h)"),
 };
 
 constexpr std::array kPostFrameMembers{
@@ -112,15 +114,15 @@ static_assert(std140Packed(kPostFrameMembers, sizeof(PostFrameBlock)),
               "PostFrameBlock: a member is not at its std140 offset");
 
 /// DebugView's GLSL names, in enum order (the numbers are the enum's).
-constexpr std::array<std::string_view, 19> kDebugViewNames{
-    "DEBUG_FINAL",         "DEBUG_ALBEDO",           "DEBUG_NORMAL",
-    "DEBUG_DEPTH",         "DEBUG_ROUGHNESS",        "DEBUG_METALLIC",
-    "DEBUG_POSITION",      "DEBUG_SPECULAR",         "DEBUG_CLEARCOAT",
-    "DEBUG_SHEEN",         "DEBUG_OCCLUSION",        "DEBUG_EMISSIVE",
-    "DEBUG_MATERIAL_ID",   "DEBUG_LIGHTS_PER_PIXEL", "DEBUG_DIFFUSE_ONLY",
-    "DEBUG_SPECULAR_ONLY", "DEBUG_BASE_SPECULAR",    "DEBUG_SHEEN_ONLY",
-    "DEBUG_CLEARCOAT_ONLY"};
-static_assert(kDebugViewNames.size() == size_t(DebugView::ClearcoatOnly) + 1,
+constexpr std::array<std::string_view, 20> kDebugViewNames{
+    "DEBUG_FINAL",          "DEBUG_ALBEDO",           "DEBUG_NORMAL",
+    "DEBUG_DEPTH",          "DEBUG_ROUGHNESS",        "DEBUG_METALLIC",
+    "DEBUG_POSITION",       "DEBUG_SPECULAR",         "DEBUG_CLEARCOAT",
+    "DEBUG_SHEEN",          "DEBUG_OCCLUSION",        "DEBUG_EMISSIVE",
+    "DEBUG_MATERIAL_ID",    "DEBUG_LIGHTS_PER_PIXEL", "DEBUG_DIFFUSE_ONLY",
+    "DEBUG_SPECULAR_ONLY",  "DEBUG_BASE_SPECULAR",    "DEBUG_SHEEN_ONLY",
+    "DEBUG_CLEARCOAT_ONLY", "DEBUG_ANISOTROPY"};
+static_assert(kDebugViewNames.size() == size_t(DebugView::Anisotropy) + 1,
               "every DebugView needs its GLSL name");
 
 constexpr std::string_view debugName(DebugView v) {

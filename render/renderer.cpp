@@ -12,6 +12,7 @@
 #include "render/ibl_bake.h"
 #include "render/light_passes.h"
 #include "render/lighting_pass.h"
+#include "render/lobe_channels.h"
 #include "render/material_graph_program.h"
 #include "render/material_table.h"
 #include "render/mesh_cache.h"
@@ -24,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <epoxy/gl.h>
+#include <utility>
 
 namespace velvet::render {
 namespace {
@@ -50,11 +52,11 @@ struct Renderer::Impl {
     /// and the graph it was given.
     std::unique_ptr<MaterialGraphProgram> graphB;
     SharedGraph graphBSource;
-    LightingPass lighting;      ///< background, then directional + image-based lighting
-    LightPasses lights;         ///< point, spot and area lights
-    PostChainRenderer post;     ///< the scene's post chain, run after lighting
-    DisplayOutput display;      ///< tone mapping / OCIO into the caller's framebuffer
-    Stage stage;                ///< shadow maps, the ground, screen-space occlusion
+    LightingPass lighting;  ///< background, then directional + image-based lighting
+    LightPasses lights;     ///< point, spot and area lights
+    PostChainRenderer post; ///< the scene's post chain, run after lighting
+    DisplayOutput display;  ///< tone mapping / OCIO into the caller's framebuffer
+    Stage stage;            ///< shadow maps, the ground, screen-space occlusion
     /// @}
 
     FrameTargets targets; ///< G-buffer, HDR colour, the framebuffers over them
@@ -64,7 +66,13 @@ struct Renderer::Impl {
     const MeshCache::Entry* mesh = nullptr;
     TextureSet textures;
     MaterialTable materials;
-    GpuMaterial packedA{};      ///< the scene's material as last packed (material id 0)
+    GpuMaterial packedA{}; ///< the scene's material as last packed (material id 0)
+    /// The drawn graph's written fields packedA's lobe-channel map follows (re-packed when the
+    /// program that draws changes: render/lobe_channels.h).
+    std::vector<std::string> packedGraphFields;
+    bool compactGBuffer = false;    ///< the 16-byte layout (Renderer::setCompactGBuffer)
+    std::uint32_t lobeOverflow = 0; ///< lobe values last warned about as kept per material
+    Problems lobeWarnings;
     GpuMaterial packedGround{}; ///< the ground's record (ids 2 and 3, render/stage_interface.h)
     EnvironmentCache environments;
     IblBaker ibl; ///< prefiltered cube, DFG LUT, sheen tables
@@ -119,10 +127,24 @@ struct Renderer::Impl {
     /// the G-buffer cannot carry (render/texture_set.h). Never a shader.
     void uploadMaterial() {
         ++uploads.materialUploads;
-        GpuMaterial g = packMaterial(scene.material);
-        textures.applyTo(g);
-        packedA = g;
+        packedGraphFields = graph.writtenFields();
+        std::uint32_t overflow = 0;
+        packedA = packMaterialRecord(scene.material, textures, packedGraphFields, compactGBuffer,
+                                     &overflow);
+        warnLobeOverflow(scene.material, overflow);
         writeMaterialTable(nullptr);
+    }
+    /// Once per change of what does not fit: the values a material varies beyond the eight
+    /// lobe channels are drawn with their texture's mean (render/lobe_channels.h).
+    void warnLobeOverflow(const Material& m, std::uint32_t overflow) {
+        if (overflow && overflow != lobeOverflow)
+            lobeWarnings.warning(
+                "", "lobes",
+                "material '" + m.name + "' varies more lobe values per pixel than the G-buffer's " +
+                    std::to_string(kLobeChannelCount) + " lobe channels hold; the viewport draws " +
+                    lobeValueNames(overflow) +
+                    " with their texture's mean (exports keep the maps)");
+        lobeOverflow = overflow;
     }
     /// The table: A, B (A again without a split), the plain ground and the catcher.
     void writeMaterialTable(const GpuMaterial* b) {
@@ -134,9 +156,9 @@ struct Renderer::Impl {
     }
 
     /// A/B split: material id 1 is FrameSettings::splitMaterial with A's textures.
-    void uploadSplitMaterial(const Material& b) {
-        GpuMaterial g = packMaterial(b);
-        textures.applyTo(g);
+    void uploadSplitMaterial(const Material& b, const MaterialGraphProgram* program) {
+        const GpuMaterial g = packMaterialRecord(
+            b, textures, (program ? *program : graph).writtenFields(), compactGBuffer);
         writeMaterialTable(&g);
     }
 
@@ -231,6 +253,8 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     // build completes here (the frame waits, as before). A failure keeps the old program
     // (graphError()).
     graph.buildPending(textures.sharedCache());
+    if (graph.writtenFields() != packedGraphFields)
+        uploadMaterial(); // the program now drawing writes other fields: a new lobe map
     graph.refreshTextures(textures.sharedCache(), nullptr); // files changed on disk re-upload
     // lighting.frag's variant for this view (built the first time a debug family is shown).
     // The ground's variants look the background up with its mode compiled in (Blurred only once
@@ -254,7 +278,7 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     const auto iblStart = std::chrono::steady_clock::now();
     ibl.step(kIblFrameBudgetMs);
     timings.iblMs = msSince(iblStart);
-    if (!targets.resize(fs.width, fs.height, error))
+    if (!targets.resize(fs.width, fs.height, compactGBuffer, error))
         return false;
     if (targetFbo != 0) {
         const GLenum status = glCheckNamedFramebufferStatus(targetFbo, GL_DRAW_FRAMEBUFFER);
@@ -465,9 +489,24 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
 
 Problems Renderer::takeWarnings() {
     Problems p = m_impl->display.takeWarnings();
+    for (Problem& w : std::exchange(m_impl->lobeWarnings, Problems{}).items)
+        p.items.push_back(std::move(w));
     for (Problem& t : m_impl->textures.takeProblems().items)
         p.items.push_back(std::move(t));
     return p;
+}
+
+void Renderer::setCompactGBuffer(bool compact) {
+    Impl& d = *m_impl;
+    if (compact == d.compactGBuffer)
+        return;
+    d.compactGBuffer = compact;
+    if (d.initialized)
+        d.uploadMaterial(); // every lobe per material, or mapped again; targets follow next frame
+}
+
+bool Renderer::compactGBuffer() const {
+    return m_impl->compactGBuffer;
 }
 
 void Renderer::setAsyncTextures(bool async) {
@@ -538,8 +577,6 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.stage.annotate(block, d.scene.lights); // which directional lights have shadow maps
     d.uniforms.bindFrame(block);
     d.stage.beginFrame(d.scene, fs.width, fs.height);
-    if (fs.splitMaterial)
-        d.uploadSplitMaterial(*fs.splitMaterial);
     d.materials.bind();
 
     // Known state: a host (Qt) may leave anything bound or enabled.
@@ -572,6 +609,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         geometry.splitGraph = d.splitGraphFor(*fs.splitMaterial, &splitError);
         if (!splitError.empty())
             return fail(error, "A/B split: B's material graph: " + splitError);
+        // B's record, its lobe map following the program B draws with (A's without its own).
+        d.uploadSplitMaterial(*fs.splitMaterial, geometry.splitGraph);
     }
     drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh

@@ -65,6 +65,9 @@ enum class DebugView {
     SheenOnly,
     ClearcoatOnly,
     /// @}
+    /// KHR_materials_anisotropy per pixel: the world-space stretch direction times the strength
+    /// (signed; its length is the strength, 0 where the surface is isotropic).
+    Anisotropy,
 };
 
 /// How point, spot and area lights are drawn (render/light_passes.h); all give the same image.
@@ -287,6 +290,14 @@ public:
     /// textureProgress().loading > 0; load problems come through takeWarnings().
     /// @{
     void setAsyncTextures(bool async);
+    /// @}
+
+    /// The 16-byte G-buffer without the lobe channels (render/gbuffer_layout.h): every lobe per
+    /// material, its textures as their mean, no anisotropy, as before the lobe channels. For
+    /// velvet bench's side-by-side comparison; off by default.
+    /// @{
+    void setCompactGBuffer(bool compact);
+    bool compactGBuffer() const;
     /// Bytes one render() may upload while textures load asynchronously (default 8 MiB).
     void setTextureUploadBudget(std::uint64_t bytes);
     TextureLoadProgress textureProgress() const;
@@ -328,9 +339,8 @@ private:
 };
 
 /// Whether the geometry pass draws the material graph's Material output input @p field
-/// ("baseColor", "roughness", "emissionColor", …) per pixel. The others (sheen, clearcoat,
-/// specular, IOR) have no room in the 16-byte G-buffer: in the viewport their parameter's value
-/// applies whatever the graph feeds them (docs/architecture.md, "G-buffer").
+/// ("baseColor", "sheenColor", "anisotropyStrength", …) per pixel: every one but the IOR, which
+/// the lighting passes read from the material table (docs/architecture.md, "G-buffer").
 bool graphOutputIsPerPixel(std::string_view field);
 
 } // namespace velvet::render

@@ -14,6 +14,17 @@
 namespace velvet::render {
 namespace {
 
+/// "baseColor" -> "BASE_COLOR", "metallicRoughness" -> "METALLIC_ROUGHNESS".
+std::string macroName(std::string_view id) {
+    std::string m;
+    for (char c : id) {
+        if (std::isupper(static_cast<unsigned char>(c)) && !m.empty())
+            m += '_';
+        m += char(std::toupper(static_cast<unsigned char>(c)));
+    }
+    return m;
+}
+
 std::string bindingsGlsl() {
     std::ostringstream s;
     s << "// Generated from render/shader_program.h; do not edit.\n"
@@ -27,7 +38,17 @@ std::string bindingsGlsl() {
       << "#define BINDING_IBL_DFG_TEX " << binding::kIblDfgTex << "\n"
       << "#define BINDING_DISPLAY_LUT_TEX_FIRST " << binding::kDisplayLutTexFirst << "\n"
       << "#define BINDING_MATERIAL_TEX_FIRST " << binding::kMaterialTexFirst << "\n"
-      << "#define MAX_MATERIALS " << kMaxMaterials << "\n";
+      << "#define MAX_MATERIALS " << kMaxMaterials << "\n"
+      << "#define BINDING_GBUFFER_LOBES0_TEX " << binding::kGBufferLobes0Tex << "\n"
+      << "#define BINDING_GBUFFER_LOBES1_TEX " << binding::kGBufferLobes1Tex << "\n";
+    // The material texture slots (core/texture_ref.h): their count, one TEX_<ID> per slot and
+    // the uniform locations of common_material_textures.glsl, so a new slot cannot leave the
+    // GLSL behind (uTexRegion takes 1 .. count, then uTexUvLinear, then uTexUvOffset).
+    s << "#define TEX_SLOT_COUNT " << kTextureSlotCount << "\n"
+      << "#define TEX_UV_LINEAR_LOCATION " << textureUvLinearLocation() << "\n"
+      << "#define TEX_UV_OFFSET_LOCATION " << textureUvOffsetLocation() << "\n";
+    for (int i = 0; i < kTextureSlotCount; ++i)
+        s << "#define TEX_" << macroName(textureSlotMetas()[size_t(i)].id) << " " << i << "\n";
     return s.str();
 }
 

@@ -5,6 +5,8 @@
 /// "render_bindings.glsl") keep one definition of the G-buffer and binding points. Compile errors
 /// name file:line (mapped back through `#line`) with the driver's log.
 
+#include "core/texture_ref.h"
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,10 +29,23 @@ inline constexpr int kIblDfgTex = 9;
 /// OCIO asks for, display_transform.cpp checks them against GL_MAX_TEXTURE_IMAGE_UNITS).
 inline constexpr int kDisplayLutTexFirst = 16;
 /// Units kMaterialTexFirst + TextureSlot hold a material's textures in the G-buffer pass
-/// (render/texture_set.h): 13 units, above the OCIO LUTs and within GL 4.5's minimum of 80
-/// combined units.
+/// (render/texture_set.h): kTextureSlotCount units, above the OCIO LUTs and within GL 4.5's minimum
+/// of 80 combined units.
 inline constexpr int kMaterialTexFirst = 40;
+/// The G-buffer's two lobe-channel targets (render/gbuffer_layout.h); units 0..3 hold the
+/// first G-buffer attachments and depth, 10..13 the stage's (render/stage_interface.h).
+inline constexpr int kGBufferLobes0Tex = 14;
+inline constexpr int kGBufferLobes1Tex = 15;
 } // namespace binding
+
+/// Uniform locations of common_material_textures.glsl's per-slot arrays: uTexRegion takes
+/// 1 .. kTextureSlotCount, then uTexUvLinear, then uTexUvOffset (emitted as TEX_UV_*_LOCATION).
+constexpr int textureUvLinearLocation() {
+    return 1 + kTextureSlotCount;
+}
+constexpr int textureUvOffsetLocation() {
+    return textureUvLinearLocation() + kTextureSlotCount;
+}
 
 /// Include files made at run time (name, GLSL text), e.g. OCIO's generated display transform.
 /// They are looked up before resources/shaders/ and get their own `#line` index like any file.

@@ -5,6 +5,7 @@
 #include "core/mip_texture.h"
 #include "core/texture_cache.h"
 #include "core/texture_loader.h"
+#include "render/lobe_channels.h"
 #include "render/material_table.h"
 #include "render/shader_program.h"
 
@@ -34,10 +35,10 @@ struct TextureSet::Entry {
     std::string colorSpace;
     TextureUsage usage = TextureUsage::Color;
     TextureFileStamp stamp;
-    std::shared_ptr<TextureJob> job;        ///< the load in flight
+    std::shared_ptr<TextureJob> job;  ///< the load in flight
     std::shared_ptr<MipTexture> data; ///< levels still to upload (each freed once uploaded)
-    int uploadLevel = -1;                   ///< level being uploaded (coarsest first), -1 none
-    int uploadRow = 0;                      ///< rows of it done
+    int uploadLevel = -1;             ///< level being uploaded (coarsest first), -1 none
+    int uploadRow = 0;                ///< rows of it done
     GLuint texture = 0;
     int width = 0, height = 0, levels = 0;
     MipFormat format = MipFormat::Rgba8;
@@ -80,10 +81,9 @@ void uploadMipChain(unsigned texture, const Image& image) {
 
 namespace {
 
-// Uniform locations of common_material_textures.glsl: uTexRegion takes 1 .. kTextureSlotCount.
-constexpr int kUvLinearLocation = 1 + kTextureSlotCount;
-constexpr int kUvOffsetLocation = kUvLinearLocation + kTextureSlotCount;
-static_assert(kUvLinearLocation == 14 && kUvOffsetLocation == 27, "the GLSL's literal locations");
+// Uniform locations of common_material_textures.glsl (generated: render_bindings.glsl).
+constexpr int kUvLinearLocation = textureUvLinearLocation();
+constexpr int kUvOffsetLocation = textureUvOffsetLocation();
 
 bool bit(std::uint32_t mask, TextureSlot s) {
     return (mask >> int(s)) & 1u;
@@ -496,34 +496,48 @@ std::uint64_t TextureSet::cacheHits() const {
     return m_loader ? m_loader->cacheHits() : 0;
 }
 
-void TextureSet::applyTo(GpuMaterial& g) const {
-    std::uint32_t present = 0, regions = 0;
+std::uint32_t TextureSet::presentSlots() const {
+    std::uint32_t present = 0;
+    for (int i = 0; i < kTextureSlotCount; ++i)
+        if ((*m_slots)[size_t(i)].valid)
+            present |= 1u << i;
+    return present;
+}
+
+void TextureSet::applyTo(GpuMaterial& g, const LobeChannelMap& lobes) const {
+    std::uint32_t regions = 0;
     for (int i = 0; i < kTextureSlotCount; ++i) {
         const Slot& s = (*m_slots)[size_t(i)];
-        if (s.valid)
-            present |= 1u << i;
         if (s.valid && s.useRegion)
             regions |= 1u << i;
     }
+    const std::uint32_t present = presentSlots();
     g.terms2.y = int(present);
     g.terms2.z = int(regions);
     const auto mean = [&](TextureSlot slot) { return (*m_slots)[size_t(slot)].mean; };
-    // Slots the G-buffer cannot carry per pixel: their mean, times the parameter (glTF: factor
-    // times texture), in the material table.
-    if (bit(present, TextureSlot::Clearcoat))
+    // A lobe value without a G-buffer channel (the compact layout, or more varying values than
+    // channels: render/lobe_channels.h) takes its texture's mean, times the parameter (glTF:
+    // factor times texture), from the material table. The geometry pass samples only the slots
+    // of the values it writes per pixel.
+    const auto perMaterial = [&](TextureSlot slot, LobeValue value) {
+        return bit(present, slot) && !lobes.perPixel(value);
+    };
+    if (perMaterial(TextureSlot::Clearcoat, LobeValue::Clearcoat))
         g.clearcoat.x *= mean(TextureSlot::Clearcoat).r;
-    if (bit(present, TextureSlot::ClearcoatRoughness))
+    if (perMaterial(TextureSlot::ClearcoatRoughness, LobeValue::ClearcoatRoughness))
         g.clearcoat.y *= mean(TextureSlot::ClearcoatRoughness).g;
-    if (bit(present, TextureSlot::SheenColor))
+    if (perMaterial(TextureSlot::SheenColor, LobeValue::SheenColor))
         g.sheenColorRoughness *= glm::vec4(glm::vec3(mean(TextureSlot::SheenColor)), 1.0f);
-    if (bit(present, TextureSlot::SheenRoughness))
+    if (perMaterial(TextureSlot::SheenRoughness, LobeValue::SheenRoughness))
         g.sheenColorRoughness.a *= mean(TextureSlot::SheenRoughness).a;
-    if (bit(present, TextureSlot::Specular))
+    if (perMaterial(TextureSlot::Specular, LobeValue::SpecularWeight))
         g.specularColorWeight.a *= mean(TextureSlot::Specular).a;
-    if (bit(present, TextureSlot::SpecularColor))
+    if (perMaterial(TextureSlot::SpecularColor, LobeValue::SpecularColor))
         g.specularColorWeight *= glm::vec4(glm::vec3(mean(TextureSlot::SpecularColor)), 1.0f);
-    if (bit(present, TextureSlot::SpecRoughMetal))
+    if (perMaterial(TextureSlot::SpecRoughMetal, LobeValue::SpecularWeight))
         g.specularColorWeight.a *= mean(TextureSlot::SpecRoughMetal).r;
+    if (perMaterial(TextureSlot::Anisotropy, LobeValue::Anisotropy))
+        g.sheenWeightAnisotropy.y *= mean(TextureSlot::Anisotropy).b;
 }
 
 UvTransformMatrix uvTransformMatrix(const UvTransform& uv) {
@@ -532,20 +546,6 @@ UvTransformMatrix uvTransformMatrix(const UvTransform& uv) {
     const float r = glm::radians(uv.rotation);
     const float c = std::cos(r), s = std::sin(r);
     return {glm::vec4(c * uv.scale.x, s * uv.scale.x, -s * uv.scale.y, c * uv.scale.y), uv.offset};
-}
-
-bool slotIsPerPixel(TextureSlot slot) {
-    switch (slot) {
-    case TextureSlot::BaseColor:
-    case TextureSlot::MetallicRoughness:
-    case TextureSlot::SpecRoughMetal: // G roughness and B metallic per pixel; R specular: mean
-    case TextureSlot::Normal:
-    case TextureSlot::Occlusion:
-    case TextureSlot::Emissive: // drawn into the HDR target by the geometry pass, no G-buffer byte
-        return true;
-    default:
-        return false;
-    }
 }
 
 void TextureSet::bind(unsigned program) const {

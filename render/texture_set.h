@@ -7,13 +7,13 @@
 /// binding::kMaterialTexFirst + slot when the material record's presence bit says so
 /// (GpuMaterial::terms2.y; atlas-region bits in terms2.z; regions in a per-draw uniform).
 ///
-/// What reaches the pixels: base colour (and alpha, a 0.5 cut-out), metallic-roughness, the
-/// seeds' spec/rough/metal atlas (roughness and metallic), normal map and occlusion go through the
-/// 16-byte G-buffer per pixel. The slots the G-buffer has no room for (emissive, clearcoat,
-/// clearcoat roughness, sheen colour / roughness, specular, specular colour and the spec channel
-/// of the atlas) enter the material table as their texture's mean, multiplied with the parameter:
-/// DESIGN.md's G-buffer contract puts per-material data that does not fit there. The clearcoat
-/// normal map (mean: flat) is not applied.
+/// What reaches the pixels: every slot, per pixel. Base colour (and alpha, a 0.5 cut-out),
+/// metallic-roughness, the seeds' atlas, normal map and occlusion go through the G-buffer's
+/// common 16 bytes, emission straight into the HDR target, and the lobe slots (sheen, clearcoat
+/// and its normal, specular, anisotropy) through the lobe channels each material maps them into
+/// (render/lobe_channels.h). Only a value that finds no channel (the compact 16-byte layout, or a
+/// material varying more than eight channels' worth) enters the material table as its texture's
+/// mean, multiplied with the parameter.
 
 #include "core/diagnostics.h"
 #include "core/image.h"
@@ -39,6 +39,7 @@ class TextureLoader;
 namespace velvet::render {
 
 struct GpuMaterial;
+struct LobeChannelMap;
 
 /// Uploads @p image (1 to 4 channels, RRR for grey, alpha 1 when absent) into every level of
 /// @p texture, an RGBA16F 2D texture with the full mip chain allocated
@@ -47,13 +48,6 @@ struct GpuMaterial;
 /// than glGenerateTextureMipmap's unspecified box filter. Row 0 goes to t = 0. Material slot and
 /// graph textures use it; needs a current context.
 void uploadMipChain(unsigned texture, const Image& image);
-
-/// True when the geometry pass reads slot @p slot per pixel (base colour, metallic / roughness,
-/// the material atlas's roughness and metallic, normal, occlusion, and emissive, which it writes
-/// straight into the HDR target). The other slots (clearcoat, sheen, specular) have no room in
-/// the 16-byte G-buffer: their image's mean, times the parameter, goes to the material table
-/// (docs/architecture.md, "G-buffer").
-bool slotIsPerPixel(TextureSlot slot);
 
 /// A slot's UV transform (core/texture_ref.h) as the shader applies it: uv' = mat2(linear.xy,
 /// linear.zw) * uv + offset (columns), uniforms uTexUvLinear and uTexUvOffset of
@@ -113,8 +107,11 @@ public:
     std::uint64_t decodeCount() const;
     std::uint64_t cacheHits() const;
 
-    /// Writes presence and region bits and the texture means into @p g (packMaterial's output).
-    void applyTo(GpuMaterial& g) const;
+    /// Bit i set: slot i has a texture on the GPU (drawn per pixel).
+    std::uint32_t presentSlots() const;
+    /// Writes presence and region bits into @p g (packMaterial's output), and the texture means
+    /// of the lobe values @p lobes keeps per material.
+    void applyTo(GpuMaterial& g, const LobeChannelMap& lobes) const;
     /// Binds the slot textures and sets @p program's region and UV-transform uniforms (location 1
     /// onwards: uTexRegion, uTexUvLinear, uTexUvOffset, kTextureSlotCount each).
     void bind(unsigned program) const;

@@ -46,6 +46,7 @@ constexpr DebugViewEntry kDebugViews[] = {
     {DebugView::BaseSpecular, "Base specular"},
     {DebugView::SheenOnly, "Sheen only"},
     {DebugView::ClearcoatOnly, "Clearcoat only"},
+    {DebugView::Anisotropy, "Anisotropy"},
 };
 
 const char* const kDebugViewKey = "viewport/debugView";

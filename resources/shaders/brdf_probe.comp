@@ -17,6 +17,7 @@ struct ProbeSample {
     vec4 scalars;            // roughness, ior, clearcoat, clearcoat roughness
     ivec4 terms;             // distribution, visibility, fresnel, diffuse
     ivec4 terms2;            // sheen model
+    vec4 anisotropy;         // xyz direction (perpendicular to n), w strength
 };
 // Mirrors ProbeResult: the layered BRDF x n.l and each selected term alone.
 struct ProbeResult {
@@ -51,6 +52,9 @@ void main() {
     s.sheenModel = p.terms2.x;
 
     vec3 n = p.n.xyz, l = p.l.xyz, v = p.v.xyz;
+    setIsotropicSingleNormal(s, n);
+    s.anisotropyStrength = p.anisotropy.w;
+    s.anisotropyDirection = p.anisotropy.xyz;
     float NdotL = max(dot(n, l), 1e-4);
     float NdotV = max(dot(n, v), 1e-4);
     vec3 h = normalize(l + v);

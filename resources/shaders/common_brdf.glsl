@@ -314,10 +314,75 @@ struct Surface {
     float sheenRoughness;
     float clearcoat;
     float clearcoatRoughness;
+    vec3 clearcoatNormal; // KHR_materials_clearcoat: the coat's own normal (the base's: n)
     vec3 emissive;
     ivec4 terms; // distribution, visibility, fresnel, diffuse (core/material.h enums)
     int sheenModel;
+    float anisotropyStrength; // KHR_materials_anisotropy (0: isotropic)
+    vec3 anisotropyDirection; // world-space unit stretch direction, perpendicular to n
 };
+
+// The lobe values a Surface has when nothing sets them: isotropic, the coat on the base normal.
+void setIsotropicSingleNormal(inout Surface s, vec3 n) {
+    s.clearcoatNormal = n;
+    s.anisotropyStrength = 0.0;
+    s.anisotropyDirection = vec3(1.0, 0.0, 0.0);
+}
+
+// ---- Anisotropic GGX (KHR_materials_anisotropy; twins in core/brdf.cpp) ----------------------
+// The stretch direction has alpha_t = mix(alpha, 1, strength^2); the perpendicular one alpha.
+vec2 anisotropicAlphas(float roughness, float strength) {
+    float rough = max(roughness, MIN_ROUGHNESS);
+    float alpha = rough * rough;
+    return vec2(mix(alpha, 1.0, strength * strength), alpha);
+}
+// Burley 2012, "Physically-Based Shading at Disney" (anisotropic GGX), as the extension's
+// D_GGX_anisotropic: a2 = at ab, f = (ab t.h, at b.h, a2 n.h), D = a2 (a2 / f.f)^2 / pi.
+float distributionGGXAnisotropic(float NdotH, float TdotH, float BdotH, float at, float ab) {
+    float a2 = at * ab;
+    vec3 f = vec3(ab * TdotH, at * BdotH, a2 * NdotH);
+    float w2 = a2 / dot(f, f);
+    return a2 * w2 * w2 / PI;
+}
+// Heitz 2014, the height-correlated Smith term of the anisotropic GGX (V_GGX_anisotropic).
+float visibilitySmithGGXCorrelatedAnisotropic(float NdotL, float NdotV, float TdotV, float BdotV,
+                                              float TdotL, float BdotL, float at, float ab) {
+    float ggxV = NdotL * length(vec3(at * TdotV, ab * BdotV, NdotV));
+    float ggxL = NdotV * length(vec3(at * TdotL, ab * BdotL, NdotL));
+    return saturate(0.5 / (ggxV + ggxL));
+}
+bool usesAnisotropy(Surface s) {
+    return s.anisotropyStrength > 0.0 && s.terms.x == 0; // GGX only (core/material.h)
+}
+// The base specular lobe's D x V: the anisotropic pair when the surface is anisotropic (the
+// Visibility choice is then ignored, as in the Khronos sample viewer), else the term choices.
+float specularDV(Surface s, vec3 n, vec3 v, vec3 l, vec3 h, float NdotL, float NdotV,
+                 float NdotH, float sin2H, float VdotH, float alpha) {
+    if (!usesAnisotropy(s))
+        return distribution(s.terms.x, NdotH, sin2H, alpha) *
+               visibility(s.terms.y, NdotL, NdotV, NdotH, VdotH, alpha);
+    vec3 t = s.anisotropyDirection;
+    vec3 b = cross(n, t);
+    vec2 a = anisotropicAlphas(s.roughness, s.anisotropyStrength);
+    return distributionGGXAnisotropic(NdotH, dot(t, h), dot(b, h), a.x, a.y) *
+           visibilitySmithGGXCorrelatedAnisotropic(NdotL, NdotV, dot(t, v), dot(b, v), dot(t, l),
+                                                   dot(b, l), a.x, a.y);
+}
+
+// The clear coat's lobe for one light through its own normal @p nc (KHR_materials_clearcoat):
+// Fresnel at the half vector times GGX at the coat roughness, n.l included; 0 below its horizon.
+float clearcoatLobe(Surface s, vec3 nc, vec3 v, vec3 l, float widenNormalization) {
+    float NdotL = dot(nc, l);
+    if (NdotL <= 0.0)
+        return 0.0;
+    float NdotV = max(dot(nc, v), 1e-4);
+    vec3 h = normalize(l + v);
+    float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
+    float ca = cr * cr;
+    return fresnelSchlick(0.04, 1.0, saturate(dot(v, h))) *
+           distributionGGX(saturate(dot(nc, h)), sinSquared(nc, h), ca) *
+           visibilitySmithGGXSeparable(NdotL, NdotV, ca) * widenNormalization * NdotL;
+}
 
 vec3 dielectricF0(Surface s) {
     float r = (s.ior - 1.0) / (s.ior + 1.0);
@@ -337,8 +402,7 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
 
     float rough = max(s.roughness, MIN_ROUGHNESS);
     float alpha = rough * rough;
-    float specular = distribution(s.terms.x, NdotH, sin2H, alpha) *
-                     visibility(s.terms.y, NdotL, NdotV, NdotH, VdotH, alpha);
+    float specular = specularDV(s, n, v, l, h, NdotL, NdotV, NdotH, sin2H, VdotH, alpha);
 
     vec3 fDielectric =
         s.specularWeight * fresnelDielectric(s.terms.z, dielectricF0(s), s.ior, VdotH);
@@ -359,13 +423,13 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
         f = f * scaling + s.sheenColor * sheen;
     }
 
+    f *= NdotL;
     if (s.clearcoat > 0.0) {
-        float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
-        float ca = cr * cr;
-        float coat = fresnelSchlick(0.04, 1.0, VdotH) * distributionGGX(NdotH, sin2H, ca) *
-                     visibilitySmithGGXSeparable(NdotL, NdotV, ca);
-        float fc = fresnelSchlick(0.04, 1.0, NdotV);
-        f = f * (1.0 - s.clearcoat * fc) + s.clearcoat * coat;
+        // The coat through its own normal (the base's unless a coat normal is given); with
+        // nc = n this is the twin's f (1 - c Fc) + c coat, times n.l.
+        float fc = fresnelSchlick(0.04, 1.0, max(dot(s.clearcoatNormal, v), 1e-4));
+        f = f * (1.0 - s.clearcoat * fc) +
+            s.clearcoat * clearcoatLobe(s, s.clearcoatNormal, v, l, 1.0);
     }
-    return f * NdotL;
+    return f;
 }

@@ -156,3 +156,19 @@ vec3 backgroundRadiance(vec3 dir, vec2 uv) {
                frame.ambientRadiance.rgb;
     return environmentRadiance(dir, frame.backgroundColor.w);
 }
+
+// The reflection direction an anisotropic base (KHR_materials_anisotropy) looks the prefiltered
+// environment up with: the bent-normal approximation of the Khronos glTF Sample Viewer
+// (getIBLRadianceAnisotropy; after McAuley's and Filament's "bent reflection vector"). The normal
+// is bent towards the plane that holds v and the direction across the stretch (b = n x t), the
+// more so the stronger and smoother the stretch (bend^4, bend = 1 - strength (1 - roughness)), so
+// the highlight of the environment smears across the stretch direction like the direct one.
+vec3 anisotropicReflection(Surface s, vec3 n, vec3 v) {
+    vec3 b = cross(n, s.anisotropyDirection);
+    vec3 anisotropicTangent = cross(b, v);
+    vec3 anisotropicNormal = cross(anisotropicTangent, b);
+    float bend = 1.0 - s.anisotropyStrength * (1.0 - s.roughness);
+    float bend4 = bend * bend * bend * bend;
+    vec3 bentNormal = normalize(mix(anisotropicNormal, n, bend4));
+    return reflect(-v, bentNormal);
+}

@@ -41,3 +41,48 @@ vec3 encodeBaseColor(vec3 linear) { return srgbEncode(linear); }
 vec3 decodeBaseColor(vec3 stored) { return srgbDecode(stored); }
 
 int decodeMaterialId(float stored) { return int(stored * 255.0 + 0.5); }
+
+// ---- Lobe channels (render/lobe_channels.h) ---------------------------------------------------
+// The first channel of lobe value @p value in the material's map (GpuMaterial::terms2.w), or
+// LOBE_PER_MATERIAL.
+int lobeChannel(int map, int value) { return (map >> (4 * value)) & 15; }
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (JCGT 6(1)): a frame around the
+// unit normal n, continuous except across n.z = 0. Both passes build it from the stored normal
+// (octDecodeUnorm16 of what the G-buffer holds), so they agree on every side of that seam.
+void normalFrame(vec3 n, out vec3 b1, out vec3 b2) {
+    float sgn = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (sgn + n.z);
+    float b = n.x * n.y * a;
+    b1 = vec3(1.0 + sgn * n.x * n.x * a, sgn * b, -sgn * n.x);
+    b2 = vec3(b, sgn + n.y * n.y * a, -n.y);
+}
+// An anisotropy direction t (perpendicular to n) as its angle in n's frame over pi, in [0, 1]:
+// t and -t stretch the lobe alike, so half a turn suffices (8 bits: 0.7 degree steps).
+float encodeTangentAngle(vec3 t, vec3 n) {
+    vec3 b1, b2;
+    normalFrame(n, b1, b2);
+    float phi = atan(dot(t, b2), dot(t, b1)); // (-pi, pi]
+    if (phi < 0.0)
+        phi += PI;
+    return saturate(phi / PI);
+}
+vec3 decodeTangentAngle(float stored, vec3 n) {
+    vec3 b1, b2;
+    normalFrame(n, b1, b2);
+    float phi = stored * PI;
+    return cos(phi) * b1 + sin(phi) * b2;
+}
+// A normal c within 90 degrees of n as its components along n's frame, [0, 1]^2 (8 bits each:
+// about 0.45 degree steps near n, where a coat's normal stays).
+vec2 encodeNormalInFrame(vec3 c, vec3 n) {
+    vec3 b1, b2;
+    normalFrame(n, b1, b2);
+    return vec2(dot(c, b1), dot(c, b2)) * 0.5 + 0.5;
+}
+vec3 decodeNormalInFrame(vec2 stored, vec3 n) {
+    vec3 b1, b2;
+    normalFrame(n, b1, b2);
+    vec2 xy = stored * 2.0 - 1.0;
+    return normalize(xy.x * b1 + xy.y * b2 + sqrt(saturate(1.0 - dot(xy, xy))) * n);
+}

@@ -2,24 +2,17 @@
 // BINDING_MATERIAL_TEX_FIRST + slot; the material record says which slots hold a texture
 // (terms2.y) and which use an atlas region (terms2.z); uTexRegion holds each region as
 // xy = size / atlas size, zw = offset / atlas size (per draw, like the texture bindings).
-// Slot numbers follow core/texture_ref.h's TextureSlot.
+// Slot numbers (TEX_BASE_COLOR .. TEX_SLOT_COUNT) and the uniform locations below are generated
+// from core/texture_ref.h's TextureSlot into render_bindings.glsl (render/shader_program.cpp).
 #include "render_bindings.glsl"
-
-#define TEX_BASE_COLOR 0
-#define TEX_METALLIC_ROUGHNESS 1
-#define TEX_SPEC_ROUGH_METAL 2
-#define TEX_NORMAL 3
-#define TEX_OCCLUSION 4
-#define TEX_EMISSIVE 5
-#define TEX_SLOT_COUNT 13
 
 layout(binding = BINDING_MATERIAL_TEX_FIRST) uniform sampler2D uMaterialTex[TEX_SLOT_COUNT];
 layout(location = 1) uniform vec4 uTexRegion[TEX_SLOT_COUNT];
 // Each slot's UV transform (core/texture_ref.h UvTransform: scale, rotate, offset) as a 2x2
-// matrix (columns xy, zw) and an offset; identity when unset (render/texture_set.cpp). Locations
-// 14 = 1 + TEX_SLOT_COUNT and 27 = 1 + 2 * TEX_SLOT_COUNT follow uTexRegion.
-layout(location = 14) uniform vec4 uTexUvLinear[TEX_SLOT_COUNT];
-layout(location = 27) uniform vec2 uTexUvOffset[TEX_SLOT_COUNT];
+// matrix (columns xy, zw) and an offset; identity when unset (render/texture_set.cpp). Their
+// locations follow uTexRegion's.
+layout(location = TEX_UV_LINEAR_LOCATION) uniform vec4 uTexUvLinear[TEX_SLOT_COUNT];
+layout(location = TEX_UV_OFFSET_LOCATION) uniform vec2 uTexUvOffset[TEX_SLOT_COUNT];
 
 bool hasTexture(GpuMaterial m, int slot) { return (m.terms2.y & (1 << slot)) != 0; }
 

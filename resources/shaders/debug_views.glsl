@@ -34,6 +34,8 @@ bool debugDisplay(int view, vec3 c, float exposure, out vec3 display, out bool e
     } else if (view == DEBUG_SPECULAR || view == DEBUG_SHEEN || view == DEBUG_EMISSIVE) {
         display = c;
         encode = true;
+    } else if (view == DEBUG_ANISOTROPY) {
+        display = c * 0.5 + 0.5; // the direction as a colour, like the normal view; grey: none
     } else if (isLobeView(view)) {
         display = c * exposure / (1.0 + c * exposure); // Reinhard: comparable lobes
         encode = true;

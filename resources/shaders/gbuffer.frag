@@ -15,14 +15,109 @@ in vec3 vWorldPosition;
 
 layout(location = 0) uniform int uMaterialId;
 
+// The lobe values before the graph: parameter x texture (glTF multiplies factors and textures).
+void readLobeInputs(GpuMaterial m, inout MaterialInputs inputs) {
+    inputs.sheenWeight = m.sheenWeightAnisotropy.x;
+    inputs.sheenColor = m.sheenColorRoughness.rgb;
+    if (hasTexture(m, TEX_SHEEN_COLOR))
+        inputs.sheenColor *= sampleSlot(m, TEX_SHEEN_COLOR, vUv).rgb;
+    inputs.sheenRoughness = m.sheenColorRoughness.a;
+    if (hasTexture(m, TEX_SHEEN_ROUGHNESS)) // KHR_materials_sheen: roughness in A
+        inputs.sheenRoughness *= sampleSlot(m, TEX_SHEEN_ROUGHNESS, vUv).a;
+    inputs.clearcoatWeight = m.clearcoat.x;
+    if (hasTexture(m, TEX_CLEARCOAT)) // KHR_materials_clearcoat: R
+        inputs.clearcoatWeight *= sampleSlot(m, TEX_CLEARCOAT, vUv).r;
+    inputs.clearcoatRoughness = m.clearcoat.y;
+    if (hasTexture(m, TEX_CLEARCOAT_ROUGHNESS)) // G
+        inputs.clearcoatRoughness *= sampleSlot(m, TEX_CLEARCOAT_ROUGHNESS, vUv).g;
+    inputs.clearcoatNormalScale = m.clearcoat.z;
+    if (hasTexture(m, TEX_CLEARCOAT_NORMAL))
+        inputs.clearcoatNormal = sampleSlot(m, TEX_CLEARCOAT_NORMAL, vUv).xyz * 2.0 - 1.0;
+    inputs.specularWeight = m.specularColorWeight.a;
+    if (hasTexture(m, TEX_SPECULAR)) // KHR_materials_specular: A
+        inputs.specularWeight *= sampleSlot(m, TEX_SPECULAR, vUv).a;
+    if (hasTexture(m, TEX_SPEC_ROUGH_METAL)) // the seeds' atlas: R specular
+        inputs.specularWeight *= sampleSlot(m, TEX_SPEC_ROUGH_METAL, vUv).r;
+    inputs.specularColor = m.specularColorWeight.rgb;
+    if (hasTexture(m, TEX_SPECULAR_COLOR))
+        inputs.specularColor *= sampleSlot(m, TEX_SPECULAR_COLOR, vUv).rgb;
+    inputs.anisotropyStrength = m.sheenWeightAnisotropy.y;
+    inputs.anisotropyRotation = degrees(m.sheenWeightAnisotropy.z);
+    if (hasTexture(m, TEX_ANISOTROPY)) { // KHR_materials_anisotropy: RG direction, B strength
+        vec3 a = sampleSlot(m, TEX_ANISOTROPY, vUv).rgb;
+        inputs.anisotropyDirection = a.rg * 2.0 - 1.0;
+        inputs.anisotropyStrength *= a.b;
+    }
+}
+
+// Writes the lobe values the material's map places in the lobe channels (render/lobe_channels.h;
+// decoded by gbuffer_read.glsl's readLobeChannels). @p tbn: the tangent frame on the geometric
+// normal @p ng; @p n: the shading normal as the G-buffer stores it.
+void writeLobeChannels(int map, MaterialInputs inputs, mat3 tbn, vec3 ng, vec3 n) {
+    float ch[LOBE_CHANNEL_COUNT] = float[](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    int c = lobeChannel(map, LOBE_ANISOTROPY);
+    if (c != LOBE_PER_MATERIAL) {
+        // KHR_materials_anisotropy: the tangent-space direction turned by the rotation
+        // (counter-clockwise, tangent towards bitangent), into the world, then onto n's plane.
+        float r = radians(inputs.anisotropyRotation);
+        vec2 d = mat2(cos(r), sin(r), -sin(r), cos(r)) * inputs.anisotropyDirection;
+        vec3 t = tbn * vec3(d, 0.0);
+        t -= n * dot(n, t);
+        t = dot(t, t) > 1e-12 ? normalize(t) : tbn[0];
+        ch[c] = saturate(inputs.anisotropyStrength);
+        ch[c + 1] = encodeTangentAngle(t, n);
+    }
+    c = lobeChannel(map, LOBE_SHEEN_COLOR);
+    if (c != LOBE_PER_MATERIAL) {
+        vec3 sheen = srgbEncode(clamp(inputs.sheenWeight * inputs.sheenColor, 0.0, 1.0));
+        ch[c] = sheen.r;
+        ch[c + 1] = sheen.g;
+        ch[c + 2] = sheen.b;
+    }
+    c = lobeChannel(map, LOBE_SHEEN_ROUGHNESS);
+    if (c != LOBE_PER_MATERIAL)
+        ch[c] = saturate(inputs.sheenRoughness);
+    c = lobeChannel(map, LOBE_CLEARCOAT);
+    if (c != LOBE_PER_MATERIAL)
+        ch[c] = saturate(inputs.clearcoatWeight);
+    c = lobeChannel(map, LOBE_CLEARCOAT_ROUGHNESS);
+    if (c != LOBE_PER_MATERIAL)
+        ch[c] = saturate(inputs.clearcoatRoughness);
+    c = lobeChannel(map, LOBE_CLEARCOAT_NORMAL);
+    if (c != LOBE_PER_MATERIAL) {
+        // KHR_materials_clearcoat: the coat's normal map on the geometric normal's frame; without
+        // one the coat keeps the geometric normal (the base's map does not bend the coat).
+        vec3 nc = ng;
+        if (inputs.clearcoatNormal != vec3(0.0, 0.0, 1.0)) {
+            vec3 tn = inputs.clearcoatNormal;
+            tn.xy *= inputs.clearcoatNormalScale;
+            nc = normalize(tbn * tn);
+        }
+        vec2 e = encodeNormalInFrame(nc, n);
+        ch[c] = e.x;
+        ch[c + 1] = e.y;
+    }
+    c = lobeChannel(map, LOBE_SPECULAR_WEIGHT);
+    if (c != LOBE_PER_MATERIAL)
+        ch[c] = saturate(inputs.specularWeight);
+    c = lobeChannel(map, LOBE_SPECULAR_COLOR);
+    if (c != LOBE_PER_MATERIAL) {
+        vec3 spec = srgbEncode(clamp(inputs.specularColor, 0.0, 1.0));
+        ch[c] = spec.r;
+        ch[c + 1] = spec.g;
+        ch[c + 2] = spec.b;
+    }
+    gLobes0 = vec4(ch[0], ch[1], ch[2], ch[3]);
+    gLobes1 = vec4(ch[4], ch[5], ch[6], ch[7]);
+}
+
 void main() {
     GpuMaterial m = materials[uMaterialId];
     vec3 baseColor = m.baseColorMetallic.rgb;
     float metallic = m.baseColorMetallic.a;
     float roughness = m.roughIorOcclusionNormal.x;
     vec3 n = normalize(vNormal);
-    // Texture x parameter, as glTF 2.0 multiplies textures with their factors. Slots the
-    // G-buffer has no room for enter the material table as means (render/texture_set.h).
+    // Texture x parameter, as glTF 2.0 multiplies textures with their factors.
     if (hasTexture(m, TEX_BASE_COLOR)) {
         vec4 t = sampleSlot(m, TEX_BASE_COLOR, vUv);
         if (t.a < 0.5) // alpha as a cut-out (glTF's MASK with the default cutoff)
@@ -53,29 +148,43 @@ void main() {
     bool normalMapped = hasTexture(m, TEX_NORMAL);
     if (normalMapped)
         inputs.normal = sampleSlot(m, TEX_NORMAL, vUv).xyz * 2.0 - 1.0;
+    readLobeInputs(m, inputs);
     velvetGraph(vUv, inputs);
     baseColor = inputs.baseColor;
     metallic = inputs.metallic;
     roughness = inputs.roughness;
+    // The surface's tangent frame (glTF: MikkTSpace tangents, w the bitangent's sign),
+    // re-orthogonalised against the geometric normal (Gram-Schmidt); a mesh without tangents
+    // gets n's own frame (normalFrame), so anisotropy still has a direction.
+    vec3 ng = n;
+    vec3 t = vTangent.xyz - ng * dot(ng, vTangent.xyz);
+    vec3 b;
+    if (dot(t, t) > 1e-12) {
+        t = normalize(t);
+        b = cross(ng, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+    } else {
+        normalFrame(ng, t, b);
+    }
+    mat3 tbn = mat3(t, b, ng);
     if (normalMapped || inputs.normal != vec3(0.0, 0.0, 1.0)) {
-        // Tangent-space normal map (glTF: scaled normal = normalize((t * 2 - 1) * (s, s, 1))),
-        // frame from the interpolated tangent re-orthogonalised against n (Gram-Schmidt).
+        // Tangent-space normal map (glTF: scaled normal = normalize((t * 2 - 1) * (s, s, 1))).
         vec3 tn = inputs.normal;
         tn.xy *= inputs.normalScale;
-        vec3 t = vTangent.xyz - n * dot(n, vTangent.xyz);
-        if (dot(t, t) > 1e-12) {
-            t = normalize(t);
-            vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
-            n = normalize(mat3(t, b, n) * tn);
-        }
+        n = normalize(tbn * tn);
     }
-    if (!gl_FrontFacing)
+    if (!gl_FrontFacing) {
         n = -n;
+        ng = -ng;
+        tbn = -tbn;
+    }
     // The occlusion channel holds 1 - strength * (1 - ao).
     float occlusion = 1.0 + inputs.occlusionStrength * (inputs.occlusion - 1.0);
     gBaseColorOcclusion = vec4(encodeBaseColor(baseColor), occlusion);
     gNormal = octEncodeUnorm16(n);
     gMaterial = vec4(metallic, clamp(roughness, 0.0, 1.0), float(uMaterialId) / 255.0, 0.0);
+    // The lobes this material varies, into the channels its map gives them, encoded relative to
+    // the normal exactly as the lighting passes will decode it.
+    writeLobeChannels(m.terms2.w, inputs, tbn, ng, octDecodeUnorm16(gNormal));
     // Emission per pixel (texture x colour x strength, or the graph's), into the HDR target the
     // lighting pass then adds to, as Killzone 2 wrote emissive into its light accumulation buffer
     // during the geometry pass; KHR_materials_clearcoat's attenuation of it by the coat's Fresnel

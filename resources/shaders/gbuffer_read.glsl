@@ -28,6 +28,42 @@ int readMaterialId(ivec2 pixel) {
     return decodeMaterialId(texelFetch(gMaterialTex, pixel, 0).b);
 }
 
+// The lobe values the material's map (render/lobe_channels.h) puts in the lobe channels, over the
+// material table's values in @p s. Encodings: gbuffer.frag.
+void readLobeChannels(ivec2 pixel, int map, vec3 n, inout Surface s) {
+    if (map == -1) // every entry LOBE_PER_MATERIAL (15): nothing per pixel
+        return;
+    vec4 l0 = texelFetch(gLobes0Tex, pixel, 0);
+    vec4 l1 = texelFetch(gLobes1Tex, pixel, 0);
+    float ch[LOBE_CHANNEL_COUNT] = float[](l0.r, l0.g, l0.b, l0.a, l1.r, l1.g, l1.b, l1.a);
+    int c = lobeChannel(map, LOBE_ANISOTROPY);
+    if (c != LOBE_PER_MATERIAL) {
+        s.anisotropyStrength = ch[c];
+        s.anisotropyDirection = decodeTangentAngle(ch[c + 1], n);
+    }
+    c = lobeChannel(map, LOBE_SHEEN_COLOR);
+    if (c != LOBE_PER_MATERIAL)
+        s.sheenColor = srgbDecode(vec3(ch[c], ch[c + 1], ch[c + 2]));
+    c = lobeChannel(map, LOBE_SHEEN_ROUGHNESS);
+    if (c != LOBE_PER_MATERIAL)
+        s.sheenRoughness = ch[c];
+    c = lobeChannel(map, LOBE_CLEARCOAT);
+    if (c != LOBE_PER_MATERIAL)
+        s.clearcoat = ch[c];
+    c = lobeChannel(map, LOBE_CLEARCOAT_ROUGHNESS);
+    if (c != LOBE_PER_MATERIAL)
+        s.clearcoatRoughness = ch[c];
+    c = lobeChannel(map, LOBE_CLEARCOAT_NORMAL);
+    if (c != LOBE_PER_MATERIAL)
+        s.clearcoatNormal = decodeNormalInFrame(vec2(ch[c], ch[c + 1]), n);
+    c = lobeChannel(map, LOBE_SPECULAR_WEIGHT);
+    if (c != LOBE_PER_MATERIAL)
+        s.specularWeight = ch[c];
+    c = lobeChannel(map, LOBE_SPECULAR_COLOR);
+    if (c != LOBE_PER_MATERIAL)
+        s.specularColor = srgbDecode(vec3(ch[c], ch[c + 1], ch[c + 2]));
+}
+
 // Decodes @p pixel, whose hardware depth is @p depth (read by the caller, which decides what the
 // far plane means for it).
 ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
@@ -49,7 +85,7 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     p.s.specularWeight = m.specularColorWeight.a;
     p.s.specularColor = m.specularColorWeight.rgb;
     p.s.ior = m.roughIorOcclusionNormal.y;
-    p.s.sheenColor = m.sheenColorRoughness.rgb;
+    p.s.sheenColor = m.sheenColorRoughness.rgb * m.sheenWeightAnisotropy.x;
     p.s.sheenRoughness = m.sheenColorRoughness.a;
     p.s.clearcoat = m.clearcoat.x;
     p.s.clearcoatRoughness = m.clearcoat.y;
@@ -58,5 +94,7 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     p.s.sheenModel = m.terms2.x;
     p.occlusion = rt0.a;
     p.n = octDecodeUnorm16(rt1);
+    setIsotropicSingleNormal(p.s, p.n);
+    readLobeChannels(pixel, m.terms2.w, p.n, p.s);
     return p;
 }

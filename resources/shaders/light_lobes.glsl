@@ -28,7 +28,9 @@ Lobes shadeLobes(Surface s, vec3 n, vec3 v, vec3 lDiffuse, vec3 lSpecular, float
     float NdotV = max(dot(n, v), 1e-4);
     float rough = max(s.roughness, MIN_ROUGHNESS);
     float alpha = rough * rough;
-    float fc = s.clearcoat > 0.0 ? s.clearcoat * fresnelSchlick(0.04, 1.0, NdotV) : 0.0;
+    float fc = s.clearcoat > 0.0
+                   ? s.clearcoat * fresnelSchlick(0.04, 1.0, max(dot(s.clearcoatNormal, v), 1e-4))
+                   : 0.0;
     float coatAttenuation = 1.0 - fc;
     bool hasSheen = max3(s.sheenColor) > 0.0;
     float sheenAlbedoV = hasSheen ? sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel) : 0.0;
@@ -59,8 +61,7 @@ Lobes shadeLobes(Surface s, vec3 n, vec3 v, vec3 lDiffuse, vec3 lSpecular, float
         float NdotH = saturate(dot(n, h));
         float sin2H = sinSquared(n, h);
         float VdotH = saturate(dot(v, h));
-        float specular = distribution(s.terms.x, NdotH, sin2H, alpha) *
-                         visibility(s.terms.y, NdotL, NdotV, NdotH, VdotH, alpha) *
+        float specular = specularDV(s, n, v, lSpecular, h, NdotL, NdotV, NdotH, sin2H, VdotH, alpha) *
                          areaSpecularNormalization(alpha, widen);
         vec3 fDielectric =
             s.specularWeight * fresnelDielectric(s.terms.z, dielectricF0(s), s.ior, VdotH);
@@ -71,12 +72,10 @@ Lobes shadeLobes(Surface s, vec3 n, vec3 v, vec3 lDiffuse, vec3 lSpecular, float
                           1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness, s.sheenModel));
         o.specular = mix(fDielectric, fMetal, s.metallic) * specular * scaling * coatAttenuation * NdotL;
         if (s.clearcoat > 0.0) {
+            // Through the coat's own normal (KHR_materials_clearcoat); n when it has none.
             float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
-            float ca = cr * cr;
-            float coat = fresnelSchlick(0.04, 1.0, VdotH) * distributionGGX(NdotH, sin2H, ca) *
-                         visibilitySmithGGXSeparable(NdotL, NdotV, ca) *
-                         areaSpecularNormalization(ca, widen);
-            o.clearcoat = vec3(s.clearcoat * coat * NdotL);
+            o.clearcoat = vec3(s.clearcoat * clearcoatLobe(s, s.clearcoatNormal, v, lSpecular,
+                                                           areaSpecularNormalization(cr * cr, widen)));
         }
     }
     return o;

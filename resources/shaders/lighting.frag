@@ -95,6 +95,7 @@ void main() {
                      : view == DEBUG_SHEEN     ? s.sheenColor
                      : view == DEBUG_OCCLUSION ? vec3(occlusion * screenSpaceOcclusion(pixel, -posView.z))
                      : view == DEBUG_EMISSIVE  ? vec3(0.0)
+                     : view == DEBUG_ANISOTROPY ? s.anisotropyDirection * s.anisotropyStrength
                                                : vec3(float(p.materialId));
         // Alpha 0 replaces the emission the geometry pass wrote; the emissive view keeps it
         // (alpha 1, nothing added): the per-pixel emission itself.
@@ -119,7 +120,8 @@ void main() {
     vec3 irradiance = irradianceOverPi(n);
     vec3 r = reflect(-v, n);
     float rough = max(s.roughness, MIN_ROUGHNESS);
-    vec3 prefiltered = specularRadiance(r, rough);
+    // An anisotropic base looks its reflection up along a bent normal (anisotropicReflection).
+    vec3 prefiltered = specularRadiance(usesAnisotropy(s) ? anisotropicReflection(s, n, v) : r, rough);
     vec2 ab = environmentDfg(NdotV, rough);
     vec3 specDielectric = s.specularWeight * specularAlbedo(dielectricF0(s), ab);
     vec3 specMetal = specularAlbedo(s.baseColor, ab);
@@ -135,11 +137,14 @@ void main() {
     }
     float keepEmission = 1.0; // KHR_materials_clearcoat: emission seen through the coat's Fresnel
     if (s.clearcoat > 0.0) {
+        // Through the coat's own normal (KHR_materials_clearcoat; the base's unless it has one).
+        vec3 nc = s.clearcoatNormal;
+        float NdotVc = max(dot(nc, v), 1e-4);
         float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
-        vec2 abc = environmentDfg(NdotV, cr);
-        float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotV);
+        vec2 abc = environmentDfg(NdotVc, cr);
+        float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotVc);
         ambient = ambient * (1.0 - fc) +
-                  s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(r, cr);
+                  s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(reflect(-v, nc), cr);
         keepEmission = 1.0 - fc;
     }
     color += ambient * occlusion * ssao;

@@ -55,7 +55,15 @@ private slots:
                               "occlusion_pass_ms"};
         for (const char* k : keys)
             QVERIFY2(o.contains(k) && o.value(k).isDouble(), k);
-        QVERIFY(o.value("gbuffer_bytes_per_pixel").toDouble() <= 16.0);
+        // The 24-byte layout with lobe channels beside the compact 16-byte one (issue 13).
+        QCOMPARE(o.value("gbuffer_bytes_per_pixel").toDouble(), 24.0);
+        QCOMPARE(o.value("gbuffer_bytes_per_pixel_compact").toDouble(), 16.0);
+        for (const char* k :
+             {"layout_default_lobes24_vs_compact16", "layout_mapped_lobes24_vs_compact16",
+              "layout_mapped_frame_lobes24_vs_compact16"}) {
+            const double v = o.value(k).toDouble();
+            QVERIFY2(o.contains(k) && std::isfinite(v) && v > 0.0, k);
+        }
         for (const char* k : {"lights1000_speedup_vs_volumes", "lights1000_speedup_vs_brute",
                               "lights_growth_1000_vs_100", "light_pixel_pairs_ratio_1000_vs_100",
                               "lights1000_avg_lights_per_pixel", "bloom_vs_gauss9",

@@ -68,13 +68,8 @@ bool applyPostChain(render::PostChainRenderer& post, const PostChain& chain,
         }
     const GLuint depthTex = makeTexture(GL_R32F, depth, 1);
     const GLuint normalTex = makeTexture(GL_RG32F, normals, 2);
-    int depthUnit = 0, normalUnit = 0;
-    for (size_t i = 0; i < gbufferAttachments().size(); ++i) {
-        if (gbufferAttachments()[i].define == "GBUFFER_DEPTH")
-            depthUnit = int(i);
-        if (gbufferAttachments()[i].define == "GBUFFER_NORMAL")
-            normalUnit = int(i);
-    }
+    const int depthUnit = gbufferUnit("GBUFFER_DEPTH");
+    const int normalUnit = gbufferUnit("GBUFFER_NORMAL");
     glBindTextureUnit(GLuint(depthUnit), depthTex);
     glBindTextureUnit(GLuint(normalUnit), normalTex);
 

@@ -92,7 +92,11 @@ private slots:
         // an identifier character and not assigned to.
         const size_t after = shader.find("velvetGraph(vUv, inputs);");
         QVERIFY(after != std::string::npos);
-        const std::string tail = shader.substr(after);
+        // ... and what writeLobeChannels (called there with them) reads into the lobe channels.
+        const size_t lobes = shader.find("void writeLobeChannels(");
+        QVERIFY(lobes != std::string::npos);
+        const std::string tail =
+            shader.substr(after) + shader.substr(lobes, shader.find("\n}\n", lobes) - lobes);
         int perPixel = 0;
         for (const graph::InputSpec& in : output->inputs) {
             const std::string field(in.name);
@@ -101,9 +105,11 @@ private slots:
             QVERIFY2(isRead == render::graphOutputIsPerPixel(field), field.c_str());
             perPixel += isRead;
         }
-        QCOMPARE(perPixel, 9);
-        QVERIFY(!render::graphOutputIsPerPixel("sheenColor"));
+        // Every input but the IOR (the lobes through the lobe channels, render/lobe_channels.h).
+        QCOMPARE(perPixel, int(output->inputs.size()) - 1);
+        QVERIFY(render::graphOutputIsPerPixel("sheenColor"));
         QVERIFY(render::graphOutputIsPerPixel("emissionColor"));
+        QVERIFY(!render::graphOutputIsPerPixel("ior"));
     }
 
     void initTestCase() {

@@ -102,8 +102,8 @@ NodeItem::NodeItem(const graph::Node& node) : m_node(node.id) {
             p->setToolTip(p->toolTip() +
                           QCoreApplication::translate(
                               "velvet::ui::NodeItem",
-                              "\nViewport: not drawn per pixel (the 16-byte G-buffer has no room); "
-                              "the parameter's value applies. Exports keep the connection."));
+                              "\nViewport: not drawn per pixel (the G-buffer carries no IOR); the "
+                              "parameter's value applies. Exports keep the connection."));
         ++rows;
     }
     for (size_t i = 0; i < t.outputs.size(); ++i) {

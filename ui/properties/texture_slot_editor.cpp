@@ -204,16 +204,8 @@ TextureSlotEditor::TextureSlotEditor(DocumentController* controller, TextureSlot
     const QString name = QStringLiteral("textureSlot:") + fromView(textureSlotMeta(slot).id);
     setObjectName(name);
     setAcceptDrops(true);
-    // Be honest about what the viewport does with the slot (render/texture_set.h).
-    QString viewportNote;
-    if (slot == TextureSlot::ClearcoatNormal)
-        viewportNote = tr("\nViewport: the coat shades with the base normal (the 16-byte "
-                          "G-buffer holds one normal); exports keep the file.");
-    else if (!render::slotIsPerPixel(slot))
-        viewportNote = tr("\nViewport: this texture's mean value is used for the whole material "
-                          "(the 16-byte G-buffer has no room for it per pixel); exports keep the "
-                          "file.");
-    setToolTip(fromView(textureSlotMeta(slot).tooltip) + viewportNote);
+    // Every slot reaches the viewport per pixel (render/lobe_channels.h).
+    setToolTip(fromView(textureSlotMeta(slot).tooltip));
 
     auto* outer = new QVBoxLayout(this);
     outer->setContentsMargins(0, 0, 0, 0);
@@ -433,7 +425,9 @@ bool TextureSlotEditor::assignFile(const QString& path) {
     ref.file = QDir::cleanPath(QFileInfo(path).absoluteFilePath()).toStdString();
     ref.useRegion = false; // a new file: the whole image
     ref.region = {};
-    m_controller->editTexture(m_slot, ref, tr("Set %1 texture").arg(label()));
+    // Into an empty colour slot the colour factor goes white with it (one undo step), so the map
+    // shows as painted (DocumentController::assignTextureImage).
+    m_controller->assignTextureImage(m_slot, ref, tr("Set %1 texture").arg(label()));
     return true;
 }
 
