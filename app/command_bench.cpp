@@ -219,10 +219,11 @@ int runBench(const std::vector<std::string>& argv) {
         if (!b.renderer.initialize(&error) || !b.target.resize(b.width, b.height, &error))
             return failed("renderer initialisation failed");
         // The look-dev stage: shadows and ambient occlusion on and off (--stage: only these).
-        if (!stageFigures(b.width, b.height, b.frames, figures, &error))
+        if (!args->has("gbuffer") && !stageFigures(b.width, b.height, b.frames, figures, &error))
             return failed("stage measurement failed");
         // The G-buffer layouts side by side (--gbuffer: only these).
-        if (!gbufferLayoutFigures(b.width, b.height, b.frames, figures, &error))
+        if (!args->has("stage") &&
+            !gbufferLayoutFigures(b.width, b.height, b.frames, figures, &error))
             return failed("G-buffer layout measurement failed");
         if (args->has("stage") || args->has("gbuffer")) {
             for (const auto& [k, v] : figures)

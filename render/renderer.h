@@ -66,7 +66,8 @@ enum class DebugView {
     ClearcoatOnly,
     /// @}
     /// KHR_materials_anisotropy per pixel: the world-space stretch direction times the strength
-    /// (signed; its length is the strength, 0 where the surface is isotropic).
+    /// (its length is the strength, 0 where the surface is isotropic; its sign is arbitrary, as
+    /// t and -t stretch the lobe alike, so the display image shows seams where it flips).
     Anisotropy,
 };
 
