@@ -113,7 +113,13 @@ private:
             *error = QString::fromStdString(message);
             return {};
         }
-        const Scene scene = sceneWithMaterial(std::move(*material));
+        // A fabric reads as cloth on the drape (folds catch the sheen and show the weave's scale);
+        // every other material on the sphere.
+        const bool fabric = std::find(material->tags.begin(), material->tags.end(), "fabric") !=
+                            material->tags.end();
+        Scene scene = sceneWithMaterial(std::move(*material));
+        if (fabric)
+            scene.mesh.kind = PreviewMeshKind::ClothDrape;
         Problems sceneProblems; // a missing texture falls back; the thumbnail still helps
         m_renderer->setScene(scene, &sceneProblems);
         m_renderer->finishEnvironment();

@@ -24,7 +24,8 @@ public:
     static constexpr int kSize = 96;
     /// Bump when the renderer's look changes (shaders, default scene) so cached thumbnails
     /// are rendered again.
-    static constexpr const char* kRendererVersion = "velvet-thumbnails-1";
+    /// Bumped when thumbnails change look (2: fabrics on the cloth drape; lobes per pixel).
+    static constexpr const char* kRendererVersion = "velvet-thumbnails-2";
 
     /// @p cacheDir: where PNGs are kept; empty: QStandardPaths::CacheLocation/thumbnails.
     explicit ThumbnailRenderer(const QString& cacheDir = {}, QObject* parent = nullptr);

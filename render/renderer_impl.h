@@ -1,0 +1,235 @@
+#pragma once
+/// @file renderer_impl.h
+/// Render-private: the state behind render::Renderer (render/renderer.h) — the passes in pipeline
+/// order, the targets, the scene as last uploaded and the per-frame steps. renderer.cpp holds the
+/// public API; renderer_impl.cpp the per-frame steps (prepare, local lights, post, reduced
+/// resolution). Split from renderer.cpp (795 lines) by job.
+
+#include "core/color_management.h"
+#include "core/post_effects.h"
+#include "core/texture_cache.h"
+#include "render/display_output.h"
+#include "render/environment_map.h"
+#include "render/frame_targets.h"
+#include "render/frame_uniforms.h"
+#include "render/geometry_pass.h"
+#include "render/gl_util.h"
+#include "render/ibl_bake.h"
+#include "render/light_passes.h"
+#include "render/lighting_pass.h"
+#include "render/lobe_channels.h"
+#include "render/material_graph_program.h"
+#include "render/material_table.h"
+#include "render/mesh_cache.h"
+#include "render/post_chain.h"
+#include "render/renderer.h"
+#include "render/shader_program.h"
+#include "render/stage.h"
+#include "render/texture_set.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+namespace velvet::render {
+
+/// Milliseconds since @p start (wall clock).
+inline double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+struct Renderer::Impl {
+    bool initialized = false;
+    bool parallelShaderCompile = false; ///< GL_KHR_parallel_shader_compile (shader_program.h)
+
+    /// @name The passes, in pipeline order
+    /// @{
+    MaterialGraphProgram graph; ///< geometry: the G-buffer program with the material graph
+    /// The A/B split's B when its graph is not A's: its own G-buffer program (made on first use)
+    /// and the graph it was given.
+    std::unique_ptr<MaterialGraphProgram> graphB;
+    SharedGraph graphBSource;
+    LightingPass lighting;  ///< background, then directional + image-based lighting
+    LightPasses lights;     ///< point, spot and area lights
+    PostChainRenderer post; ///< the scene's post chain, run after lighting
+    DisplayOutput display;  ///< tone mapping / OCIO into the caller's framebuffer
+    Stage stage;            ///< shadow maps, the ground, screen-space occlusion
+    /// @}
+
+    FrameTargets targets; ///< G-buffer, HDR colour, the framebuffers over them
+    ColorTarget scaled;   ///< FrameSettings::renderScale < 1: the reduced display-encoded frame
+    FrameUniforms uniforms;
+    MeshCache meshes;
+    const MeshCache::Entry* mesh = nullptr;
+    TextureSet textures;
+    MaterialTable materials;
+    GpuMaterial packedA{}; ///< the scene's material as last packed (material id 0)
+    /// The drawn graph's written fields packedA's lobe-channel map follows (re-packed when the
+    /// program that draws changes: render/lobe_channels.h).
+    std::vector<std::string> packedGraphFields;
+    bool compactGBuffer = false;    ///< the 16-byte layout (Renderer::setCompactGBuffer)
+    std::uint32_t lobeOverflow = 0; ///< lobe values last warned about as kept per material
+    Problems lobeWarnings;
+    GpuMaterial packedGround{}; ///< the ground's record (ids 2 and 3, render/stage_interface.h)
+    EnvironmentCache environments;
+    IblBaker ibl; ///< prefiltered cube, DFG LUT, sheen tables
+    unsigned emptyVao = 0;
+    unsigned queries[4] = {}; // GL query names
+    unsigned lightsQuery = 0; ///< between the full-screen lighting pass and the local lights
+    bool queriesIssued = false;
+    glm::mat4 lastViewProj{1.0f};
+    bool haveLastViewProj = false;
+    /// The host's config (setColorManagement), also handed to the texture slots.
+    std::shared_ptr<const ColorManagement> colorManagement;
+
+    Scene scene;
+    bool haveScene = false;
+    const GpuEnvironment* environment = nullptr;
+
+    unsigned lastTarget = 0;
+    int lastWidth = 0, lastHeight = 0;
+    mutable FrameTimings timings;
+    double cpuMs = 0;
+    /// Uploads since construction; graphCompiles and graphValueUploads come from graph.
+    UploadStats uploads;
+
+    /// Frees the VAO and the timer queries (renderer_impl.cpp: GL stays out of this header).
+    ~Impl();
+
+    /// Builds the G-buffer and lighting programs from disk. With @p keepGoing (shader reload) a
+    /// failed program keeps its last good build, the others are still rebuilt and the errors
+    /// are joined.
+    bool buildPrograms(std::string* error, bool keepGoing = false) {
+        std::string errors;
+        if (!graph.build(&errors) && !keepGoing)
+            return fail(error, errors);
+        if (graphB) {
+            std::string messageB;
+            if (!graphB->build(&messageB))
+                errors += (errors.empty() ? "" : "\n") + messageB;
+        }
+        std::string message;
+        if (!lighting.build(&message, keepGoing))
+            errors += (errors.empty() ? "" : "\n") + message;
+        return errors.empty() || fail(error, errors);
+    }
+
+    /// The material record: parameters, then texture presence bits and the means of the slots
+    /// the G-buffer cannot carry (render/texture_set.h). Never a shader.
+    void uploadMaterial() {
+        ++uploads.materialUploads;
+        packedGraphFields = graph.writtenFields();
+        std::uint32_t overflow = 0;
+        packedA = packMaterialRecord(scene.material, textures, packedGraphFields, compactGBuffer,
+                                     &overflow);
+        warnLobeOverflow(scene.material, overflow);
+        writeMaterialTable(nullptr);
+    }
+    /// Once per change of what does not fit: the values a material varies beyond the eight
+    /// lobe channels are drawn with their texture's mean (render/lobe_channels.h).
+    void warnLobeOverflow(const Material& m, std::uint32_t overflow) {
+        if (overflow && overflow != lobeOverflow)
+            lobeWarnings.warning(
+                "", "lobes",
+                "material '" + m.name + "' varies more lobe values per pixel than the G-buffer's " +
+                    std::to_string(kLobeChannelCount) + " lobe channels hold; the viewport draws " +
+                    lobeValueNames(overflow) +
+                    " with their texture's mean (exports keep the maps)");
+        lobeOverflow = overflow;
+    }
+    /// The table: A, B (A again without a split), the plain ground and the catcher.
+    void writeMaterialTable(const GpuMaterial* b) {
+        materials.upload({packedA, b ? *b : packedA, packedGround, packedGround});
+    }
+    void uploadGround() {
+        packedGround = groundMaterial(scene.environment);
+        writeMaterialTable(nullptr);
+    }
+
+    /// A/B split: material id 1 is FrameSettings::splitMaterial with A's textures.
+    void uploadSplitMaterial(const Material& b, const MaterialGraphProgram* program) {
+        const GpuMaterial g = packMaterialRecord(
+            b, textures, (program ? *program : graph).writtenFields(), compactGBuffer);
+        writeMaterialTable(&g);
+    }
+
+    void selectMesh(Problems* problems) {
+        ++uploads.meshSelections;
+        mesh = &meshes.select(scene.mesh, problems);
+        planStage(nullptr); // the shadow maps fit the new mesh
+    }
+    /// The shadow slots for the lights and the mesh, and the local lights with their slots.
+    void planStage(Problems* problems) {
+        stage.plan(scene.lights, mesh ? mesh->bounds : MeshBounds{}, problems);
+        const std::vector<int> slots = stage.slotOfLight(scene.lights.size());
+        lights.upload(scene.lights, &slots);
+    }
+    void refreshTextureSlots(Problems* problems) {
+        ++uploads.textureSlotRefreshes;
+        textures.setMaterial(scene.material, problems);
+    }
+    /// The lights; @p problems hears of each directional light past kMaxDirectionalLights.
+    void uploadLights(Problems* problems);
+    void requestEnvironment(Problems* problems) {
+        ++uploads.environmentRequests;
+        environment = &environments.get(scene.environment, problems);
+        ibl.request(*environment);
+    }
+
+    /// The program B draws with: null when B's graph is A's (A's program, B's values in the
+    /// material table); otherwise B's own, started and built the first time (synchronously, like
+    /// the first build of A's), given B's graph when it changed, polled like A's.
+    MaterialGraphProgram* splitGraphFor(const Material& b, std::string* error) {
+        if (b.graph == scene.material.graph)
+            return nullptr;
+        if (!graphB) {
+            auto program = std::make_unique<MaterialGraphProgram>();
+            program->start(b);
+            if (!program->build(error))
+                return nullptr;
+            graphB = std::move(program);
+            graphBSource = b.graph;
+            graphB->uploadValues();
+            graphB->refreshTextures(textures.sharedCache(), nullptr);
+        } else if (!(graphBSource == b.graph)) {
+            graphB->setGraph(b, textures.sharedCache(), nullptr);
+            graphBSource = b.graph;
+        }
+        graphB->buildPending(textures.sharedCache());
+        graphB->refreshTextures(textures.sharedCache(), nullptr);
+        return graphB.get();
+    }
+
+    /// Per-frame work before drawing: texture files changed on disk, a structural graph edit
+    /// being built, the lighting variant and display path for @p fs, the environment bake's
+    /// slices, the targets' size. False + message before anything is drawn.
+    bool prepareFrame(const FrameSettings& fs, unsigned targetFbo, DisplayChoice& choice,
+                      const ShaderProgram*& surfaceProgram, std::string* error);
+    /// The point, spot and area lights, added on top by the path the frame asks for.
+    void drawLocalLights(const FrameSettings& fs);
+    /// Runs scene.post on the lit HDR target (render/post_chain.h); @p finalInput becomes its
+    /// HDR result, or @p displayed is set when the chain wrote the target itself.
+    bool runPost(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
+                 const DisplayChoice& choice, unsigned& finalInput, bool& displayed,
+                 std::string* error);
+    /// FrameSettings::renderScale in (0, 1): the frame at the smaller size into our own target,
+    /// stretched over the caller's (one linear blit).
+    bool renderScaled(Renderer& self, const FrameSettings& fs, unsigned targetFbo,
+                      std::string* error);
+    BackgroundMode stageBackground() const {
+        const BackgroundMode mode = scene.environment.background;
+        return mode == BackgroundMode::Blurred && !ibl.specularReady() ? BackgroundMode::Sharp
+                                                                       : mode;
+    }
+    void finishFrame(unsigned targetFbo, const FrameSettings& fs,
+                     std::chrono::steady_clock::time_point start) {
+        lastTarget = targetFbo;
+        lastWidth = fs.width;
+        lastHeight = fs.height;
+        cpuMs = msSince(start);
+    }
+};
+
+} // namespace velvet::render
