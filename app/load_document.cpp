@@ -21,7 +21,8 @@ std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Proble
         return loadSceneFile(file, problems);
     case DocumentKind::Material:
         if (auto material = loadMaterialFile(file, problems)) {
-            Scene scene = sceneWithMaterial(*material);
+            // The look-dev stage, as for no FILE (core/default_stage.h).
+            Scene scene = stageSceneWithMaterial(*material);
             scene.materialPreset = file.string();
             return scene;
         }

@@ -8,6 +8,7 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 namespace velvet {
@@ -154,6 +155,13 @@ Scene stageScene(Problems* problems) {
     }
     scene.environment.background = BackgroundMode::Blurred;
     scene.camera = framedCamera(scene.camera);
+    return scene;
+}
+
+Scene stageSceneWithMaterial(Material material, Problems* problems) {
+    Scene scene = stageScene(problems);
+    scene.material = std::move(material);
+    scene.materialPreset.clear();
     return scene;
 }
 

@@ -23,6 +23,9 @@ inline constexpr float kStageFill = 0.8f;
 /// with a warning in @p problems, when the HDRI cannot be read), BackgroundMode::Blurred, and
 /// framedCamera(). Never fails.
 Scene stageScene(Problems* problems = nullptr);
+/// A material preset opened on its own (the editor's File > Open, `velvet render PRESET`): the
+/// stage with @p material, so a preset is judged in the same flattering light as a new document.
+Scene stageSceneWithMaterial(Material material, Problems* problems = nullptr);
 
 /// Environment::rotationDeg (0 to 360, whole degrees) that puts the brightest part of the
 /// backdrop of @p equirect (an equirectangular radiance map, as core/spherical_harmonics.h lays

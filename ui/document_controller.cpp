@@ -216,7 +216,8 @@ bool DocumentController::openFile(const QString& path, QStringList* problems) {
     switch (kind) {
     case DocumentKind::Material:
         if (std::optional<Material> material = loadMaterialFile(file, found)) {
-            scene = sceneWithMaterial(std::move(*material));
+            // Shown on the look-dev stage, like a new document (core/default_stage.h).
+            scene = stageSceneWithMaterial(std::move(*material));
             scene->materialPreset = file.string();
         }
         break;
