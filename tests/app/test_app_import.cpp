@@ -108,6 +108,16 @@ QJsonObject validate(const QString& file) {
     return QJsonDocument::fromJson(p.readAllStandardOutput()).object();
 }
 
+/// @p m exported as @p format (with MaterialX @p shader, or none) into @p dir as "look".
+ExportOutcome exportAs(const Material& m, const QString& format, const QString& shader,
+                       const QString& dir) {
+    ExportOptions options;
+    options.format = *exportFormatFromId(format.toStdString());
+    if (!shader.isEmpty())
+        options.shader = *mtlxShaderFromId(shader.toStdString());
+    return exportMaterial(sceneWithMaterial(m), dir.toStdString(), "look", options);
+}
+
 } // namespace
 
 class TestAppImport : public QObject {
@@ -137,12 +147,7 @@ private slots:
         const QString dir = m_tmp.filePath(QFileInfo(preset).baseName() + "_" + format + shader);
         const QString source = QStringLiteral(VELVET_SOURCE_DIR "/resources/presets/") + preset;
         const Material a = load(source);
-        ExportOptions options;
-        options.format = *exportFormatFromId(format.toStdString());
-        if (!shader.isEmpty())
-            options.shader = *mtlxShaderFromId(shader.toStdString());
-        const ExportOutcome out =
-            exportMaterial(sceneWithMaterial(a), dir.toStdString(), "look", options);
+        const ExportOutcome out = exportAs(a, format, shader, dir);
         QVERIFY2(out.ok(), out.error.c_str());
         ImportOptions in;
         in.imageFolder = dir.toStdString();
@@ -178,12 +183,7 @@ private slots:
         a.setScalar(ParamId::AnisotropyStrength, 0.6f);
         a.setScalar(ParamId::AnisotropyRotation, 30.0f);
         const QString dir = m_tmp.filePath("aniso_" + format + shader);
-        ExportOptions options;
-        options.format = *exportFormatFromId(format.toStdString());
-        if (!shader.isEmpty())
-            options.shader = *mtlxShaderFromId(shader.toStdString());
-        const ExportOutcome out =
-            exportMaterial(sceneWithMaterial(a), dir.toStdString(), "look", options);
+        const ExportOutcome out = exportAs(a, format, shader, dir);
         QVERIFY2(out.ok(), out.error.c_str());
         bool rotationWarned = false;
         for (const std::string& w : out.warnings)

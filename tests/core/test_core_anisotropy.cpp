@@ -27,39 +27,34 @@ glm::vec3 dir(double theta, double phi) {
                      float(std::cos(theta)));
 }
 
-/// Integral over the hemisphere of D(h) (n.h), n = +Z, t = +X, b = +Y; theta = pi/2 u^2 puts the
-/// nodes where narrow lobes live.
-double integrateD(float at, float ab) {
-    constexpr int kU = 1500, kPhi = 360;
+/// Integral over the hemisphere around n = +Z of @p f(w) dw, with kU x kPhi nodes: theta =
+/// pi/2 u^2 puts them where narrow lobes live.
+template <class F>
+double integrateHemisphere(int kU, int kPhi, F f) {
     double sum = 0.0;
     for (int i = 0; i < kU; ++i) {
         const double u = (i + 0.5) / kU;
         const double theta = 0.5 * kPi * u * u, dTheta = kPi * u / kU;
         for (int j = 0; j < kPhi; ++j) {
             const double phi = (j + 0.5) / kPhi * 2.0 * kPi;
-            const glm::vec3 h = dir(theta, phi);
-            const double d = brdf::distributionGGXAnisotropic(h.z, h.x, h.y, at, ab);
-            sum += d * std::cos(theta) * std::sin(theta) * dTheta * (2.0 * kPi / kPhi);
+            sum += f(dir(theta, phi)) * std::sin(theta) * dTheta * (2.0 * kPi / kPhi);
         }
     }
     return sum;
 }
 
+/// Integral over the hemisphere of D(h) (n.h), n = +Z, t = +X, b = +Y.
+double integrateD(float at, float ab) {
+    return integrateHemisphere(1500, 360, [&](glm::vec3 h) {
+        return double(brdf::distributionGGXAnisotropic(h.z, h.x, h.y, at, ab)) * h.z;
+    });
+}
+
 /// Directional albedo of evalDirectional (which includes n.l) towards @p v, n = +Z.
 double albedo(const brdf::Surface& s, glm::vec3 v) {
-    constexpr int kU = 600, kPhi = 240;
-    double sum = 0.0;
-    for (int i = 0; i < kU; ++i) {
-        const double u = (i + 0.5) / kU;
-        const double theta = 0.5 * kPi * u * u, dTheta = kPi * u / kU;
-        for (int j = 0; j < kPhi; ++j) {
-            const double phi = (j + 0.5) / kPhi * 2.0 * kPi;
-            const glm::vec3 l = dir(theta, phi);
-            const glm::vec3 f = brdf::evalDirectional(s, glm::vec3(0, 0, 1), v, l);
-            sum += double(f.x) * std::sin(theta) * dTheta * (2.0 * kPi / kPhi);
-        }
-    }
-    return sum;
+    return integrateHemisphere(600, 240, [&](glm::vec3 l) {
+        return double(brdf::evalDirectional(s, glm::vec3(0, 0, 1), v, l).x);
+    });
 }
 
 /// A white metal: Fresnel 1 everywhere, so the albedo is the D V lobe's alone.

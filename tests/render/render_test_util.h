@@ -4,6 +4,8 @@
 #include "core/document_io.h"
 #include "core/scene.h"
 #include "render/headless_context.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
 
 #include <QtTest>
 #include <filesystem>
@@ -22,6 +24,45 @@ inline render::HeadlessContext* headlessContext(std::string* error) {
         *error = lastError;
     return ctx.get();
 }
+
+/// The fixture of the render tests that draw frames and read them back: a renderer and a square
+/// offscreen target on the process's headless context.
+struct OffscreenRenderer {
+    std::unique_ptr<render::Renderer> renderer;
+    std::unique_ptr<render::OffscreenTarget> target;
+    int size = 0;
+
+    /// "" when the context, the renderer and the target are up; else why not.
+    std::string start(int side) {
+        std::string error;
+        if (!headlessContext(&error))
+            return error;
+        size = side;
+        renderer = std::make_unique<render::Renderer>();
+        target = std::make_unique<render::OffscreenTarget>();
+        if (!renderer->initialize(&error) || !target->resize(side, side, &error))
+            return error;
+        return {};
+    }
+    /// Frees both while the context is still current (cleanupTestCase).
+    void stop() {
+        target.reset();
+        renderer.reset();
+    }
+    /// @p scene (when given; its problems into @p problems) drawn in @p view, linear.
+    Image draw(const Scene* scene, render::DebugView view = render::DebugView::Final,
+               Problems* problems = nullptr) {
+        if (scene)
+            renderer->setScene(*scene, problems);
+        render::FrameSettings fs;
+        fs.width = fs.height = size;
+        fs.view = view;
+        std::string error;
+        if (!renderer->render(fs, target->framebuffer(), &error))
+            qFatal("render failed: %s", error.c_str());
+        return renderer->readLinear();
+    }
+};
 
 /// The shipped default scene (core/document_io.h), loaded exactly as `velvet render` and the editor
 /// load it, so the golden image is the default scene and not a copy of it. Fails the test when the

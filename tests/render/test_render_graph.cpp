@@ -60,23 +60,14 @@ Scene withGraph(const Graph& g, glm::vec3 baseColor = glm::vec3(1.0f, 0.0f, 0.0f
 class TestRenderGraph : public QObject {
     Q_OBJECT
     QTemporaryDir m_dir;
-    std::unique_ptr<render::Renderer> m_renderer;
-    std::unique_ptr<render::OffscreenTarget> m_target;
+    test::OffscreenRenderer m_fixture;
 
     Image render(const Scene* scene, render::DebugView view = render::DebugView::Albedo) {
-        if (scene) {
-            Problems problems;
-            m_renderer->setScene(*scene, &problems);
-            for (const Problem& p : problems.items)
-                qWarning("%s", p.toString().c_str());
-        }
-        render::FrameSettings fs;
-        fs.width = fs.height = kSize;
-        fs.view = view;
-        std::string error;
-        if (!m_renderer->render(fs, m_target->framebuffer(), &error))
-            qFatal("render failed: %s", error.c_str());
-        return m_renderer->readLinear();
+        Problems problems;
+        const Image image = m_fixture.draw(scene, view, &problems);
+        for (const Problem& p : problems.items)
+            qWarning("%s", p.toString().c_str());
+        return image;
     }
 
 private slots:
@@ -113,16 +104,11 @@ private slots:
     }
 
     void initTestCase() {
-        std::string error;
-        QVERIFY2(test::headlessContext(&error), error.c_str());
-        m_renderer = std::make_unique<render::Renderer>();
-        QVERIFY2(m_renderer->initialize(&error), error.c_str());
-        m_target = std::make_unique<render::OffscreenTarget>();
-        QVERIFY2(m_target->resize(kSize, kSize, &error), error.c_str());
+        const std::string error = m_fixture.start(kSize);
+        QVERIFY2(error.empty(), error.c_str());
     }
     void cleanupTestCase() {
-        m_target.reset();
-        m_renderer.reset();
+        m_fixture.stop(); // with the context still current
     }
 
     // A constant colour into base colour gives exactly the image of a material whose base colour
@@ -134,7 +120,7 @@ private slots:
         const Image expected = render(&reference);
         const Scene graphScene = withGraph(constantIntoBaseColor(c));
         const Image got = render(&graphScene);
-        QVERIFY(m_renderer->graphError().empty());
+        QVERIFY(m_fixture.renderer->graphError().empty());
         const glm::vec3 a = centre(got);
         qInfo("albedo %.4f %.4f %.4f", a.x, a.y, a.z);
         for (int k = 0; k < 3; ++k)
@@ -148,11 +134,11 @@ private slots:
         Graph g = constantIntoBaseColor(glm::vec3(0.2f, 0.5f, 0.7f));
         Scene scene = withGraph(g);
         const Image before = render(&scene);
-        const int compiles = m_renderer->shaderCompileCount();
+        const int compiles = m_fixture.renderer->shaderCompileCount();
         QVERIFY(g.setInputValue(1, 0, glm::vec4(0.9f, 0.1f, 0.3f, 0.0f)).ok);
         scene.material.graph = SharedGraph(g);
         const Image after = render(&scene);
-        QCOMPARE(m_renderer->shaderCompileCount(), compiles);
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles);
         QVERIFY(!samePixels(before, after));
         Scene reference;
         reference.material.setColor(ParamId::BaseColor, glm::vec3(0.9f, 0.1f, 0.3f));
@@ -167,26 +153,26 @@ private slots:
         Scene scene = withGraph(g);
         scene.material.setScalar(ParamId::Roughness, 0.9f);
         render(&scene);
-        const int compiles = m_renderer->shaderCompileCount();
+        const int compiles = m_fixture.renderer->shaderCompileCount();
         const NodeId value = g.addNode("constant.float").node;
         QVERIFY(g.setInputValue(value, 0, glm::vec4(0.25f)).ok);
         QVERIFY(g.connect(link(g, value, "value", 2, "roughness")).ok);
         scene.material.graph = SharedGraph(g);
-        m_renderer->setScene(scene);
-        QVERIFY(m_renderer->graphPending());
-        QCOMPARE(m_renderer->shaderCompileCount(), compiles); // nothing built in setScene
+        m_fixture.renderer->setScene(scene);
+        QVERIFY(m_fixture.renderer->graphPending());
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles); // nothing built in setScene
         QElapsedTimer timer;
         timer.start();
         glm::vec3 r = centre(render(nullptr, render::DebugView::Roughness));
-        for (int frames = 0; m_renderer->graphPending() && frames < 20000; ++frames)
+        for (int frames = 0; m_fixture.renderer->graphPending() && frames < 20000; ++frames)
             r = centre(render(nullptr, render::DebugView::Roughness));
         const qint64 buildFrameMs = timer.restart();
-        QVERIFY(!m_renderer->graphPending());
-        QCOMPARE(m_renderer->shaderCompileCount(), compiles + 1);
+        QVERIFY(!m_fixture.renderer->graphPending());
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles + 1);
         QVERIFY2(std::abs(r.x - 0.25f) < 0.01f, qPrintable(QString::number(r.x)));
         render(nullptr, render::DebugView::Roughness);
         const qint64 nextFrameMs = timer.elapsed();
-        QCOMPARE(m_renderer->shaderCompileCount(), compiles + 1);
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles + 1);
         // Logged, never asserted (DESIGN.md: no absolute times): what a structural edit costs
         // until its first frame (glCompileShader + glLinkProgram + llvmpipe's JIT at first draw).
         qInfo("structural edit: frames until the new program drew %lld ms, next frame %lld ms",
@@ -216,12 +202,12 @@ private slots:
         const Scene greyScene = withGraph(g);
         const glm::vec3 a = centre(render(&greyScene));
         QVERIFY2(std::abs(a.x - 128.0f / 255.0f) < 0.01f, qPrintable(QString::number(a.x)));
-        const int compiles = m_renderer->shaderCompileCount();
+        const int compiles = m_fixture.renderer->shaderCompileCount();
         QVERIFY(g.setSetting(tex, "file", (dir / "white.png").string()).ok);
         const Scene whiteScene = withGraph(g);
         const glm::vec3 b = centre(render(&whiteScene));
         QVERIFY2(std::abs(b.x - 1.0f) < 0.01f, qPrintable(QString::number(b.x)));
-        QCOMPARE(m_renderer->shaderCompileCount(), compiles);
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles);
     }
 };
 

@@ -53,8 +53,7 @@ Scene litSphere() {
 class TestRenderLobeChannels : public QObject {
     Q_OBJECT
     QTemporaryDir m_dir;
-    std::unique_ptr<render::Renderer> m_renderer;
-    std::unique_ptr<render::OffscreenTarget> m_target;
+    test::OffscreenRenderer m_fixture;
 
     fs::path write(const char* name, const Image& image) {
         const fs::path file = fs::path(m_dir.path().toStdString()) / name;
@@ -66,14 +65,7 @@ class TestRenderLobeChannels : public QObject {
 
     Image render(const Scene& scene, render::DebugView view = render::DebugView::Final,
                  Problems* problems = nullptr) {
-        m_renderer->setScene(scene, problems);
-        render::FrameSettings fs;
-        fs.width = fs.height = kSize;
-        fs.view = view;
-        std::string error;
-        if (!m_renderer->render(fs, m_target->framebuffer(), &error))
-            qFatal("render failed: %s", error.c_str());
-        return m_renderer->readLinear();
+        return m_fixture.draw(&scene, view, problems);
     }
 
     static void setRaw(Material& m, TextureSlot slot, const fs::path& file) {
@@ -86,17 +78,10 @@ class TestRenderLobeChannels : public QObject {
 private slots:
     void initTestCase() {
         QVERIFY(m_dir.isValid());
-        std::string error;
-        QVERIFY2(test::headlessContext(&error), error.c_str());
-        m_renderer = std::make_unique<render::Renderer>();
-        QVERIFY2(m_renderer->initialize(&error), error.c_str());
-        m_target = std::make_unique<render::OffscreenTarget>();
-        QVERIFY2(m_target->resize(kSize, kSize, &error), error.c_str());
+        const std::string error = m_fixture.start(kSize);
+        QVERIFY2(error.empty(), error.c_str());
     }
-    void cleanupTestCase() {
-        m_target.reset();
-        m_renderer.reset();
-    }
+    void cleanupTestCase() { m_fixture.stop(); }
 
     // The layout's budget: 16 common bytes + 8 lobe channels = 24, the compact one 16.
     void budget() {
@@ -353,9 +338,9 @@ private slots:
         setRaw(scene.material, TextureSlot::SheenColor,
                write("sheen_halves.png",
                      halves(glm::vec4(1.0f, 1.0f, 1.0f, 1.0f), glm::vec4(0.2f, 0.2f, 0.2f, 1.0f))));
-        m_renderer->setCompactGBuffer(true);
+        m_fixture.renderer->setCompactGBuffer(true);
         const Image compact = render(scene, render::DebugView::Sheen);
-        m_renderer->setCompactGBuffer(false);
+        m_fixture.renderer->setCompactGBuffer(false);
         const Image full = render(scene, render::DebugView::Sheen);
         float compactMin = 1e9f, compactMax = 0.0f, fullMin = 1e9f, fullMax = 0.0f;
         for (int y = 0; y < kSize; ++y)

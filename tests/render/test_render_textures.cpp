@@ -69,8 +69,7 @@ Image flat(int w, int h, glm::vec4 value) {
 class TestRenderTextures : public QObject {
     Q_OBJECT
     QTemporaryDir m_dir;
-    std::unique_ptr<render::Renderer> m_renderer;
-    std::unique_ptr<render::OffscreenTarget> m_target;
+    test::OffscreenRenderer m_fixture;
 
     fs::path path(const char* name) const { return fs::path(m_dir.path().toStdString()) / name; }
 
@@ -81,15 +80,7 @@ class TestRenderTextures : public QObject {
 
     Image render(const Scene* scene, Problems* problems = nullptr,
                  render::DebugView view = render::DebugView::Final) {
-        if (scene)
-            m_renderer->setScene(*scene, problems);
-        render::FrameSettings fs;
-        fs.width = fs.height = kSize;
-        fs.view = view;
-        std::string error;
-        if (!m_renderer->render(fs, m_target->framebuffer(), &error))
-            qFatal("render failed: %s", error.c_str());
-        return m_renderer->readLinear();
+        return m_fixture.draw(scene, view, problems);
     }
 
     Scene textured(TextureSlot slot, const fs::path& file, const std::string& colorSpace = {}) {
@@ -103,16 +94,11 @@ class TestRenderTextures : public QObject {
 
 private slots:
     void initTestCase() {
-        std::string error;
-        QVERIFY2(test::headlessContext(&error), error.c_str());
-        m_renderer = std::make_unique<render::Renderer>();
-        QVERIFY2(m_renderer->initialize(&error), error.c_str());
-        m_target = std::make_unique<render::OffscreenTarget>();
-        QVERIFY2(m_target->resize(kSize, kSize, &error), error.c_str());
+        const std::string error = m_fixture.start(kSize);
+        QVERIFY2(error.empty(), error.c_str());
     }
     void cleanupTestCase() {
-        m_target.reset();
-        m_renderer.reset(); // with the context still current
+        m_fixture.stop(); // with the context still current
     }
 
     // A flat 8-bit 128 base-colour texture tagged "sRGB texture" is decoded to linear
@@ -311,7 +297,7 @@ private slots:
         write(file, flat(8, 8, glm::vec4(128.0f / 255.0f, 128.0f / 255.0f, 128.0f / 255.0f, 1.0f)));
         Scene scene = textured(TextureSlot::BaseColor, file, "Raw");
         const float before = centre(render(&scene)).x;
-        const int compiles = m_renderer->shaderCompileCount();
+        const int compiles = m_fixture.renderer->shaderCompileCount();
         write(file, flat(8, 8, glm::vec4(64.0f / 255.0f, 64.0f / 255.0f, 64.0f / 255.0f, 1.0f)));
         const float after = centre(render(nullptr)).x;
         qInfo("before %.4f, after %.4f", before, after);
@@ -320,7 +306,7 @@ private slots:
         scene.material.setColor(ParamId::BaseColor, glm::vec3(0.5f));
         scene.material.setTexture(TextureSlot::Occlusion, {file.string()});
         render(&scene);
-        QCOMPARE(m_renderer->shaderCompileCount(), compiles);
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles);
     }
 
     // Material textures carry core::mipChain's levels (OpenImageIO, Blackman-Harris), not the
