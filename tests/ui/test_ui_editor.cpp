@@ -80,6 +80,11 @@ private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
     /// Waits for the frame that follows an edit.
     void waitForFrame(QSignalSpy& spy);
+    /// The centre pixel once the viewport has settled: the look-dev stage converges over a few
+    /// frames (the environment is prefiltered in slices, an edit first draws at reduced
+    /// resolution), and a grab reads the last frame, so each round asks for a new one and the
+    /// pixel counts once two frames in a row agree.
+    QVector<double> settledCentrePixel();
     template <class T>
     T* find(const QString& name) {
         T* w = m_window->findChild<T*>(name);
@@ -114,6 +119,22 @@ void TestUiEditor::init() {
 void TestUiEditor::waitForFrame(QSignalSpy& spy) {
     if (spy.isEmpty())
         QVERIFY(spy.wait(kFrameTimeoutMs));
+}
+
+QVector<double> TestUiEditor::settledCentrePixel() {
+    QVector<double> pixel = centrePixel(viewportImage());
+    for (int i = 0; i < 40; ++i) {
+        QSignalSpy drawn(m_window->viewport(), &ViewportWidget::frameCompleted);
+        m_window->viewport()->requestFrame();
+        if (!drawn.wait(kFrameTimeoutMs))
+            break;
+        const QVector<double> next = centrePixel(viewportImage());
+        const bool settled = maxDifference(next, pixel) <= 0.25;
+        pixel = next;
+        if (settled && i >= 2)
+            break;
+    }
+    return pixel;
 }
 
 void TestUiEditor::panelIsGeneratedFromMetadata() {
@@ -152,7 +173,7 @@ void TestUiEditor::editRedrawUndoRedo() {
     QVERIFY(slider && spin);
     const float before = m_doc->material().scalar(ParamId::Roughness);
     QVERIFY(shows(spin, before));
-    const QVector<double> pixelBefore = centrePixel(viewportImage());
+    const QVector<double> pixelBefore = settledCentrePixel();
     const int compilesBefore = m_window->viewport()->renderer()->shaderCompileCount();
 
     // Move as far as the slider goes, away from the current value, with the keyboard.
@@ -167,7 +188,7 @@ void TestUiEditor::editRedrawUndoRedo() {
     QCOMPARE(m_doc->undoStack()->undoText(), QStringLiteral("Set Roughness"));
 
     waitForFrame(frames);
-    const QVector<double> pixelEdited = centrePixel(viewportImage());
+    const QVector<double> pixelEdited = settledCentrePixel();
     QVERIFY2(maxDifference(pixelBefore, pixelEdited) > 2.0,
              qPrintable(QStringLiteral("roughness %1 -> %2: centre pixel %3 -> %4")
                             .arg(before)
@@ -181,7 +202,7 @@ void TestUiEditor::editRedrawUndoRedo() {
     QVERIFY(shows(spin, before));
     QCOMPARE(slider->value(), int(std::lround(before * 1000)));
     waitForFrame(frames);
-    const QVector<double> pixelUndone = centrePixel(viewportImage());
+    const QVector<double> pixelUndone = settledCentrePixel();
     QVERIFY2(maxDifference(pixelBefore, pixelUndone) <= 1.0,
              qPrintable(describe(pixelBefore) + " vs " + describe(pixelUndone)));
 
@@ -191,7 +212,7 @@ void TestUiEditor::editRedrawUndoRedo() {
     QCOMPARE(m_doc->material().scalar(ParamId::Roughness), expected);
     QVERIFY(shows(spin, expected));
     waitForFrame(frames);
-    QVERIFY(maxDifference(pixelEdited, centrePixel(viewportImage())) <= 1.0);
+    QVERIFY(maxDifference(pixelEdited, settledCentrePixel()) <= 1.0);
     QCOMPARE(m_doc->undoStack()->count(), 1); // undo/redo created no new commands
     // A value edit goes to a uniform buffer: no shader was compiled for any of these frames.
     QCOMPARE(m_window->viewport()->renderer()->shaderCompileCount(), compilesBefore);
@@ -381,20 +402,8 @@ void TestUiEditor::textureDropShowsThumbnailAndUndoes() {
     QVERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());
     QVERIFY(row->thumbnail().isNull());
 
-    // The look-dev stage settles over a few frames (the environment is prefiltered in slices):
-    // the undo below must come back to the settled image, so that is the one to remember.
-    // (A grab reads the last frame; each round asks for a new one first.)
-    QVector<double> pixelBefore = centrePixel(viewportImage());
-    for (int i = 0; i < 40; ++i) {
-        QSignalSpy drawn(m_window->viewport(), &ViewportWidget::frameCompleted);
-        m_window->viewport()->requestFrame();
-        QVERIFY(drawn.wait(kFrameTimeoutMs));
-        const QVector<double> next = centrePixel(viewportImage());
-        const bool settled = maxDifference(next, pixelBefore) <= 0.25;
-        pixelBefore = next;
-        if (settled && i >= 2)
-            break;
-    }
+    // The undo below must come back to the settled image, so that is the one to remember.
+    const QVector<double> pixelBefore = settledCentrePixel();
     const Material materialBefore = m_doc->material();
     QSignalSpy frames(m_window->viewport(), &ViewportWidget::frameCompleted);
     bool entered = false;
