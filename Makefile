@@ -12,7 +12,8 @@ export CCACHE_BASEDIR ?= $(CURDIR)
 LAUNCHER := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
 endif
 
-.PHONY: all deps configure build run test test-asan fuzz format clean goldens install package
+.PHONY: all deps configure build run test test-asan fuzz format clean goldens install package \
+  bench-peers
 
 all: build
 
@@ -59,6 +60,14 @@ test-asan: deps
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --output-on-failure -j $(JOBS) -E '$(ASAN_EXCLUDE)'
+
+# Velvet's steady preview frame beside three.js's frame of the same scene on the same driver
+# (issue 16; bench/peers/three/run.mjs, BENCHMARKS.md "Peer: three.js"): installs Chromium and the
+# peer's npm packages (scripts/install-bench-peers.sh), then alternates the two renderers three
+# times. Not part of `make test`. BENCH_PEERS_ARGS passes options, e.g. "--rounds 5 --json".
+bench-peers: build
+	@scripts/install-bench-peers.sh
+	node bench/peers/three/run.mjs --velvet $(BUILD_DIR)/bin/velvet $(BENCH_PEERS_ARGS)
 
 # Installs the editor, its resources, .desktop entry and icon under PREFIX (DESTDIR for staging).
 PREFIX ?= /usr/local
