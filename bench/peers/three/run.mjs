@@ -91,15 +91,16 @@ const ms = (x) => x.toFixed(1).padStart(8);
 
 function printTable(r) {
   console.log(`Steady preview frame, 1280x720, ${r.rounds.length} alternating turns (medians, ms)`);
-  console.log(`  Velvet ${r.velvetVersion} at ${r.commit || 'an unknown commit'}: GL_RENDERER ${r.velvetRenderer}`);
-  console.log(`  three.js r${r.peer.three} (${r.velvetFrames} / ${r.threeFrames} frames a turn): ` +
-    `WebGL ${r.peer.unmaskedRenderer}, ${r.peer.version}`);
+  console.log(`  Velvet: ${r.velvetVersion} at ${r.commit || 'an unknown commit'}, ` +
+    `${r.velvetFrames} frames a turn; GL_RENDERER ${r.velvetRenderer}`);
+  console.log(`  three.js: r${r.peer.three}, ${r.threeFrames} frames a turn after ${r.warmup} unmeasured; ` +
+    `WebGL ${r.peer.unmaskedRenderer}`);
   for (const note of r.peer.notes) console.log(`  peer differs: ${note}`);
   console.log('');
-  console.log('| turn | Velvet frame_wall_ms | three.js frame ms |');
+  console.log('| turn | Velvet `frame_wall_ms` | three.js frame |');
   console.log('|---|---:|---:|');
   r.rounds.forEach((t, i) => console.log(`| ${i + 1} | ${ms(t.velvet)} | ${ms(t.three)} |`));
-  console.log(`| median of medians | ${ms(r.velvet)} | ${ms(r.three)} |`);
+  console.log(`| median of the turns | ${ms(r.velvet)} | ${ms(r.three)} |`);
   console.log('');
   console.log(`Velvet / three.js: ${r.ratio.toFixed(2)}`);
   if (r.screenshot) console.log(`three.js frame: ${r.screenshot}`);
@@ -145,7 +146,7 @@ async function main() {
     const velvetVersion = spawnSync(o.velvet, ['--version'], { encoding: 'utf8' }).stdout.trim();
     const commit = spawnSync('git', ['-C', repo, 'describe', '--always', '--dirty'], { encoding: 'utf8' }).stdout.trim();
     const result = {
-      commit, velvetVersion, velvetRenderer, velvetFrames, threeFrames: o.frames, peer: peer.info,
+      commit, velvetVersion, velvetRenderer, velvetFrames, threeFrames: o.frames, warmup: o.warmup, peer: peer.info,
       rounds, velvet, three, ratio: velvet / three, screenshot,
     };
     if (o.json) console.log(JSON.stringify(result, null, 2));
