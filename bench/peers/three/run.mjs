@@ -76,6 +76,8 @@ function velvetTurn(velvet) {
   } catch {
     throw new PeerError(`velvet bench --frame printed no JSON object:\n${run.stdout}`, 3);
   }
+  if (!Number.isFinite(result.frame_wall_ms))
+    throw new PeerError(`velvet bench --frame gave no frame_wall_ms:\n${line}`, 3);
   if (!/llvmpipe/i.test(result.gl_renderer ?? ''))
     throw new PeerError(`velvet does not run on llvmpipe but on "${result.gl_renderer}"`, 3);
   if (result.width !== 1280 || result.height !== 720)
@@ -134,7 +136,9 @@ async function main() {
       velvetRenderer = v.gl_renderer;
       velvetFrames = v.frames;
       rounds.push({ velvet: v.frame_wall_ms, three: t.median, velvetDetail: v, threeDetail: t });
-      if (!o.json) console.error(`turn ${i + 1}/${o.rounds}: velvet ${v.frame_wall_ms.toFixed(1)} ms, three.js ${t.median.toFixed(1)} ms`);
+      if (!o.json) // progress; the table comes at the end
+        console.error(`turn ${i + 1}/${o.rounds}: velvet ${v.frame_wall_ms.toFixed(1)} ms, ` +
+          `three.js ${t.median.toFixed(1)} ms`);
     }
     let screenshot = null;
     if (o.screenshot) {
@@ -144,10 +148,11 @@ async function main() {
     }
     const velvet = median(rounds.map((t) => t.velvet)), three = median(rounds.map((t) => t.three));
     const velvetVersion = spawnSync(o.velvet, ['--version'], { encoding: 'utf8' }).stdout.trim();
-    const commit = spawnSync('git', ['-C', repo, 'describe', '--always', '--dirty'], { encoding: 'utf8' }).stdout.trim();
+    const commit = spawnSync('git', ['-C', repo, 'describe', '--always', '--dirty'],
+      { encoding: 'utf8' }).stdout.trim();
     const result = {
-      commit, velvetVersion, velvetRenderer, velvetFrames, threeFrames: o.frames, warmup: o.warmup, peer: peer.info,
-      rounds, velvet, three, ratio: velvet / three, screenshot,
+      commit, velvetVersion, velvetRenderer, velvetFrames, threeFrames: o.frames,
+      warmup: o.warmup, peer: peer.info, rounds, velvet, three, ratio: velvet / three, screenshot,
     };
     if (o.json) console.log(JSON.stringify(result, null, 2));
     else printTable(result);
