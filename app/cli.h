@@ -9,6 +9,10 @@
 #include <string_view>
 #include <vector>
 
+namespace velvet {
+struct Scene;
+}
+
 namespace velvet::cli {
 
 enum ExitCode : int { Ok = 0, UsageError = 1, BadInput = 2, RenderFailure = 3 };
@@ -52,6 +56,10 @@ int runSchema(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 /// `velvet bench --textures` (app/command_bench_textures.cpp).
 int runTextureBench(bool json, bool quick);
+/// `velvet bench --frame` (app/command_bench_frame.cpp): the forward peer's scene, its frame.
+int runFrameBench(bool json, bool quick);
+/// That scene: the default scene, the key light's shadow off, the PBR Neutral tone map only.
+velvet::Scene peerFrameScene();
 /// velvet bench's G-buffer layout figures (app/command_bench_gbuffer.cpp): the 24-byte layout
 /// with lobe channels beside the compact 16-byte one, side by side. Needs a current context.
 bool gbufferLayoutFigures(int width, int height, int frames,

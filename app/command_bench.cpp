@@ -30,11 +30,14 @@ const std::vector<OptionSpec> kOptions{
     {"stage", 0, false, "", "only the look-dev stage's figures (shadows, occlusion)"},
     {"gbuffer", 0, false, "",
      "only the G-buffer layouts: 24 bytes with lobe channels beside the compact 16 bytes"},
+    {"frame", 0, false, "",
+     "only the steady preview frame of the forward peer's scene (bench/peers/three): the default "
+     "scene, key light unshadowed, PBR Neutral tone map; median of 31 frames"},
     {"help", 'h', false, "", "this text"},
 };
 
 const char* kHelp =
-    "Usage: velvet bench [--json] [--short] [--stage | --gbuffer | --textures]\n"
+    "Usage: velvet bench [--json] [--short] [--stage | --gbuffer | --textures | --frame]\n"
     "Renders the default sphere at 1280x720 (--short: 320x180) headless and measures, in one\n"
     "process, the variants side by side: the three many-light paths (light volumes, tiled\n"
     "compute, brute force) at 100 and 1,000 point lights placed in a grid around the mesh with\n"
@@ -199,6 +202,8 @@ int runBench(const std::vector<std::string>& argv) {
     const bool json = args->has("json");
     if (args->has("textures"))
         return runTextureBench(json, args->has("short"));
+    if (args->has("frame"))
+        return runFrameBench(json, args->has("short"));
     auto context = render::HeadlessContext::create(&error);
     if (!context) {
         std::cerr << "velvet bench: no headless OpenGL context: " << error << "\n";

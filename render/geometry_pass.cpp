@@ -45,7 +45,11 @@ void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh
         glClearBufferfv(GL_DEPTH, 0, &farDepth);
     };
     clearGeometry();
-    const unsigned program = graph.program();
+    auto programOf = [&](MaterialGraphProgram& p, const GpuMaterial& record) {
+        return in.specialise ? p.programFor(GeometryFeatures::of(record), in.mayBuild, in.deferred)
+                             : p.program();
+    };
+    const unsigned program = programOf(graph, in.recordA);
     glUseProgram(program);
     glProgramUniform1i(program, 0, 0); // uMaterialId: the scene's material
     textures.bind(program);
@@ -69,11 +73,13 @@ void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh
         if (in.splitGraph && in.splitGraph != &graph) {
             graph.unbind();
             bound = in.splitGraph;
-            glUseProgram(bound->program());
-            textures.bind(bound->program());
             bound->bind();
         }
-        const unsigned programB = bound->program();
+        const unsigned programB = programOf(*bound, in.recordB);
+        if (programB != program) {
+            glUseProgram(programB);
+            textures.bind(programB);
+        }
         glProgramUniform1i(programB, 0, 1);
         mesh.gpu.draw();
         glProgramUniform1i(programB, 0, 0);

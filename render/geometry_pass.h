@@ -7,6 +7,7 @@
 /// part again, scissored, from a cleared G-buffer, with material id 1.
 
 #include "core/material.h"
+#include "render/material_table.h"
 #include "render/mesh_cache.h"
 
 namespace velvet::render {
@@ -30,6 +31,16 @@ struct GeometryPassInputs {
     /// B's own G-buffer program when B's graph is not A's (null: B draws with A's program, its
     /// values differing only in the material table).
     MaterialGraphProgram* splitGraph = nullptr;
+    /// The records of A and B (B when split) as the material table holds them: each draw uses
+    /// its program specialised to its record's texture slots and lobe map
+    /// (MaterialGraphProgram::programFor), built now unless @p mayBuild is false (a value edit
+    /// this frame), when the generic program draws.
+    GpuMaterial recordA{}, recordB{};
+    bool mayBuild = true;
+    /// Set by the pass when a specialised program was wanted but not built (!mayBuild).
+    bool* deferred = nullptr;
+    /// Off: always the generic program (Renderer::setSpecialisedPrograms).
+    bool specialise = true;
 };
 
 /// Runs the pass over @p mesh (@p graph: A's program). Leaves depth testing on with writes and

@@ -1,5 +1,6 @@
 #include "render/lighting_pass.h"
 
+#include <algorithm>
 #include <epoxy/gl.h>
 #include <vector>
 
@@ -13,7 +14,7 @@ LightingPass::Variant LightingPass::variantFor(DebugView view) {
     return kGBufferViews;
 }
 
-bool LightingPass::buildVariant(Variant v, std::string* error) {
+std::vector<std::string> LightingPass::variantDefines(Variant v) {
     std::vector<std::string> defines{"FULLSCREEN_FAR_PLANE"};
     if (v == kLobeViews)
         defines.emplace_back("LIGHTING_LOBE_VIEWS");
@@ -31,7 +32,11 @@ bool LightingPass::buildVariant(Variant v, std::string* error) {
         defines.emplace_back("LIGHTING_BACKGROUND");
         defines.emplace_back("BACKGROUND_MODE " + std::to_string(v - kBackground));
     }
-    if (!m_programs[v].build("fullscreen.vert", "lighting.frag", defines, error))
+    return defines;
+}
+
+bool LightingPass::buildVariant(Variant v, std::string* error) {
+    if (!m_programs[v].build("fullscreen.vert", "lighting.frag", variantDefines(v), error))
         return false;
     ++m_compileCount;
     return true;
@@ -39,6 +44,7 @@ bool LightingPass::buildVariant(Variant v, std::string* error) {
 
 bool LightingPass::build(std::string* error, bool keepGoing) {
     std::string errors;
+    m_specialised.clear(); // rebuilt from the new sources when next drawn
     for (int v = 0; v < kCount && (keepGoing || errors.empty()); ++v) {
         // The debug families and the stage's variants only once they have been used.
         if (v != kFinal && v < kBackground && m_programs[v].id() == 0)
@@ -65,13 +71,53 @@ int modeIndex(BackgroundMode mode) {
 } // namespace
 
 const ShaderProgram* LightingPass::surfaceProgram(DebugView view, std::string* error,
-                                                  GroundMode ground, BackgroundMode background) {
+                                                  GroundMode ground, BackgroundMode background,
+                                                  const LightingFeatures& features, bool mayBuild) {
     Variant v = variantFor(view);
     if (v == kFinal && ground == GroundMode::ShadowCatcher)
         v = kFinalCatcherGround;
     else if (v == kFinal && ground == GroundMode::Plain)
         v = Variant(kFinalPlainGround + modeIndex(background));
+    m_lastSpecialised = m_lastDeferred = false;
+    const bool finalImage =
+        v == kFinal || v == kFinalCatcherGround || (v >= kFinalPlainGround && v < kCatcher);
+    if (finalImage && !features.isGeneric())
+        if (const ShaderProgram* p = specialised(v, features, mayBuild)) {
+            m_lastSpecialised = true;
+            return p;
+        }
     return variant(v, error);
+}
+
+const ShaderProgram* LightingPass::specialised(Variant v, const LightingFeatures& features,
+                                               bool mayBuild) {
+    auto key = std::make_pair(int(v), features.defines());
+    auto it = m_specialised.find(key);
+    if (it == m_specialised.end()) {
+        if (!mayBuild) {
+            m_lastDeferred = true;
+            return nullptr;
+        }
+        if (m_specialised.size() >= kMaxSpecialised) // evict the least recently used
+            m_specialised.erase(std::min_element(
+                m_specialised.begin(), m_specialised.end(),
+                [](const auto& a, const auto& b) { return a.second.lastUse < b.second.lastUse; }));
+        // The variant's own defines, then the features'.
+        std::vector<std::string> defines = variantDefines(v);
+        defines.insert(defines.end(), key.second.begin(), key.second.end());
+        auto program = std::make_unique<ShaderProgram>();
+        std::string message;
+        if (program->build("fullscreen.vert", "lighting.frag", defines, &message)) {
+            ++m_compileCount;
+        } else {
+            program.reset(); // remembered as failed: not retried every frame
+            ++m_specialisationFailures;
+            m_specialisationError = message;
+        }
+        it = m_specialised.emplace(std::move(key), Specialised{std::move(program), 0}).first;
+    }
+    it->second.lastUse = ++m_useClock;
+    return it->second.program.get();
 }
 
 bool LightingPass::drawCatcher(bool emission, BackgroundMode background, std::string* error) {

@@ -8,11 +8,16 @@
 /// for the other.
 
 #include "core/scene.h"
+#include "render/lighting_features.h"
 #include "render/render_interface.h"
 #include "render/renderer.h"
 #include "render/shader_program.h"
 
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace velvet::render {
 
@@ -28,9 +33,16 @@ public:
     /// In the final image a ground adds its own code (docs/shadows.md): the shadow catcher's
     /// pixels are discarded (drawCatcher() shades them), the plain ground fades into the
     /// @p background (built per mode, as llvmpipe runs every branch of a runtime switch).
-    const ShaderProgram* surfaceProgram(DebugView view, std::string* error,
-                                        GroundMode ground = GroundMode::Off,
-                                        BackgroundMode background = BackgroundMode::Sharp);
+    /// The final image's program is specialised to @p features (render/lighting_features.h):
+    /// built now when @p mayBuild, otherwise (a value edit this frame: it must not compile) the
+    /// generic program draws until a frame may build it. A specialised build that fails (a bug,
+    /// the generic one being good) keeps the generic program for those features and is counted
+    /// in specialisationFailures() with its message.
+    const ShaderProgram*
+    surfaceProgram(DebugView view, std::string* error, GroundMode ground = GroundMode::Off,
+                   BackgroundMode background = BackgroundMode::Sharp,
+                   const LightingFeatures& features = LightingFeatures::generic(),
+                   bool mayBuild = true);
 
     /// The background (FrameSettings::view Final only: debug views leave the HDR target black).
     /// Blurred falls back to Sharp (the same lookup) until the prefiltered cube is ready.
@@ -47,6 +59,13 @@ public:
 
     /// Programs built since construction.
     int compileCount() const { return m_compileCount; }
+    /// Whether the last surfaceProgram() call returned a specialised program.
+    bool lastWasSpecialised() const { return m_lastSpecialised; }
+    /// Whether it wanted one it was not allowed to build (a value edit that frame).
+    bool lastDeferred() const { return m_lastDeferred; }
+    /// Specialised builds that failed, and the last one's message.
+    int specialisationFailures() const { return m_specialisationFailures; }
+    const std::string& lastSpecialisationError() const { return m_specialisationError; }
 
 private:
     /// lighting.frag's variants (its header): the surfaces per debug-view family, and the
@@ -62,10 +81,27 @@ private:
         kCount = kBackground + 4
     };
     static Variant variantFor(DebugView view);
+    static std::vector<std::string> variantDefines(Variant v);
     bool buildVariant(Variant v, std::string* error);
     const ShaderProgram* variant(Variant v, std::string* error);
 
+    /// The specialised program of @p v for @p features, built when @p mayBuild; null: use the
+    /// generic one.
+    const ShaderProgram* specialised(Variant v, const LightingFeatures& features, bool mayBuild);
+
     ShaderProgram m_programs[kCount];
+    /// Specialised surface programs by (variant, defines); null after a failed build. At most
+    /// kMaxSpecialised are kept, the least recently used evicted.
+    struct Specialised {
+        std::unique_ptr<ShaderProgram> program;
+        long lastUse = 0;
+    };
+    static constexpr size_t kMaxSpecialised = 12;
+    std::map<std::pair<int, std::vector<std::string>>, Specialised> m_specialised;
+    long m_useClock = 0;
+    bool m_lastSpecialised = false, m_lastDeferred = false;
+    int m_specialisationFailures = 0;
+    std::string m_specialisationError;
     int m_compileCount = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include "core/texture_cache.h"
 #include "render/graph_texture.h"
+#include "render/material_table.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -51,13 +52,46 @@ void MaterialGraphProgram::start(const Material& material) {
     }
 }
 
+GeometryFeatures GeometryFeatures::of(const GpuMaterial& record) {
+    return {record.terms2.y, record.terms2.z, record.terms2.w};
+}
+
+std::vector<std::string> GeometryFeatures::defines() const {
+    return {"FIXED_TEXTURE_SLOTS " + std::to_string(textureSlots),
+            "FIXED_ATLAS_SLOTS " + std::to_string(atlasSlots),
+            "FIXED_LOBE_MAP (" + std::to_string(lobeMap) + ")"};
+}
+
 bool MaterialGraphProgram::build(std::string* error) {
     m_build.abandon(); // a structure in flight restarts next frame, from the files on disk
     if (!m_program.build("gbuffer.vert", "gbuffer.frag", {}, {{kGraphInclude, m_linked.glsl}},
                          error))
         return false;
+    m_specialised.clear();
     ++m_compileCount;
     return true;
+}
+
+unsigned MaterialGraphProgram::programFor(const GeometryFeatures& features, bool mayBuild,
+                                          bool* deferred) {
+    auto it = m_specialised.find(features);
+    if (it == m_specialised.end()) {
+        if (deferred && !mayBuild)
+            *deferred = true;
+        if (!mayBuild || m_program.id() == 0)
+            return m_program.id();
+        if (m_specialised.size() >= 8) // a handful of structures per graph; start afresh
+            m_specialised.clear();
+        auto program = std::make_unique<ShaderProgram>();
+        std::string ignored; // the generic program built from the same text: a failure is a bug
+        if (program->build("gbuffer.vert", "gbuffer.frag", features.defines(),
+                           {{kGraphInclude, m_linked.glsl}}, &ignored))
+            ++m_compileCount;
+        else
+            program.reset();
+        it = m_specialised.emplace(features, std::move(program)).first;
+    }
+    return it->second ? it->second->id() : m_program.id();
 }
 
 void MaterialGraphProgram::uploadValues() {
@@ -173,6 +207,7 @@ void MaterialGraphProgram::buildPending(TextureCache& cache, bool wait) {
         return;
     }
     ++m_compileCount;
+    m_specialised.clear(); // built from the old graph
     m_error.clear();
     m_linked = std::move(m_pending);
     m_pending = {};

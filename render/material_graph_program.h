@@ -12,6 +12,8 @@
 #include "render/shader_program.h"
 
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,21 @@ class TextureCache;
 } // namespace velvet
 
 namespace velvet::render {
+
+struct GpuMaterial;
+
+/// What a G-buffer program can be specialised to (issue 16): the record's texture slots, atlas
+/// slots and lobe-channel map (GpuMaterial::terms2.y, .z, .w), all fixed by the material's
+/// structure (which slots hold a texture, what the graph writes), never by a value. Compiled in,
+/// the slots the material leaves empty cost nothing and the lobe channels are written at constant
+/// indices (llvmpipe runs both sides of every branch and indexes local arrays slowly).
+struct GeometryFeatures {
+    int textureSlots = 0, atlasSlots = 0, lobeMap = -1;
+    static GeometryFeatures of(const GpuMaterial& record);
+    /// gbuffer.frag's defines (FIXED_TEXTURE_SLOTS, FIXED_ATLAS_SLOTS, FIXED_LOBE_MAP).
+    std::vector<std::string> defines() const;
+    auto operator<=>(const GeometryFeatures&) const = default;
+};
 
 class MaterialGraphProgram {
 public:
@@ -54,7 +71,12 @@ public:
     void bind();
     void unbind() const;
 
+    /// The generic program: every texture slot and lobe map at run time.
     unsigned program() const { return m_program.id(); }
+    /// The program specialised to @p features (with the linked graph), built now when
+    /// @p mayBuild and not built yet; otherwise, or if that build fails, program().
+    /// @p deferred (optional) is set when the specialised program was wanted but not built.
+    unsigned programFor(const GeometryFeatures& features, bool mayBuild, bool* deferred = nullptr);
     /// Why the last graph was not compiled, or "" when the drawn program matches the scene.
     const std::string& error() const { return m_error; }
     /// A structural change is waiting for its program.
@@ -81,6 +103,9 @@ private:
     void release();
 
     ShaderProgram m_program;
+    /// Specialisations of m_program (same graph); null after a failed build. Dropped whenever
+    /// m_program is rebuilt or replaced.
+    std::map<GeometryFeatures, std::unique_ptr<ShaderProgram>> m_specialised;
     graph::CompiledGraph m_linked;  ///< what m_program was built from
     graph::CompiledGraph m_pending; ///< a new structure, started at the next buildPending()
     bool m_hasPending = false;      ///< m_pending is waiting to start or being built

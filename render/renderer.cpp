@@ -102,9 +102,12 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
         d.selectMesh(problems);
     if (touches(parts, ScenePart::MaterialStructure))
         d.refreshTextureSlots(problems);
-    // Numbers only: rewrite the material table (never a shader).
+    // Numbers only: rewrite the material table (never a shader; the next frame builds no
+    // lighting variant either: LightingPass::surfaceProgram).
     if (touches(parts, ScenePart::MaterialStructure | ScenePart::MaterialValues))
         d.uploadMaterial();
+    if (touches(parts, ScenePart::MaterialValues) && !touches(parts, ScenePart::MaterialStructure))
+        d.valueEditSinceFrame = true; // a structural change (setScene) may compile
     // The graph: values and textures now, a new structure at the next render().
     if (touches(parts, ScenePart::Graph))
         d.graph.setGraph(d.scene.material, d.textures.sharedCache(), problems);
@@ -140,6 +143,26 @@ void Renderer::setCompactGBuffer(bool compact) {
 
 bool Renderer::compactGBuffer() const {
     return m_impl->compactGBuffer;
+}
+
+void Renderer::setSpecialisedPrograms(bool on) {
+    m_impl->specialisedPrograms = on;
+}
+
+bool Renderer::lastFrameSpecialised() const {
+    return m_impl->lighting.lastWasSpecialised();
+}
+
+int Renderer::lightingSpecialisationFailures() const {
+    return m_impl->lighting.specialisationFailures();
+}
+
+bool Renderer::specialisationPending() const {
+    return m_impl->lighting.lastDeferred() || m_impl->geometryDeferred;
+}
+
+std::string Renderer::lightingSpecialisationError() const {
+    return m_impl->lighting.lastSpecialisationError();
 }
 
 void Renderer::setAsyncTextures(bool async) {
@@ -245,6 +268,23 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         // B's record, its lobe map following the program B draws with (A's without its own).
         d.uploadSplitMaterial(*fs.splitMaterial, geometry.splitGraph);
     }
+    // The final image's lighting program specialised to what this frame draws (built at a frame
+    // that follows no value edit; the generic one meanwhile).
+    if (fs.view == DebugView::Final && d.specialisedPrograms) {
+        surfaceProgram = d.lighting.surfaceProgram(fs.view, error, d.scene.environment.ground,
+                                                   d.stageBackground(), d.frameFeatures(fs),
+                                                   !d.valueEditSinceFrame);
+        if (!surfaceProgram)
+            return false;
+    }
+    // The G-buffer programs specialised to A's and B's records, under the same rule.
+    geometry.recordA = d.packedA;
+    geometry.recordB = fs.splitMaterial ? d.packedB : d.packedA;
+    geometry.mayBuild = !d.valueEditSinceFrame;
+    geometry.specialise = d.specialisedPrograms;
+    d.geometryDeferred = false;
+    geometry.deferred = &d.geometryDeferred;
+    d.valueEditSinceFrame = false;
     drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);

@@ -310,6 +310,25 @@ public:
     std::uint64_t textureCacheHits() const;
     /// @}
 
+    /// @name Specialised programs (render/lighting_features.h, GeometryFeatures)
+    /// The final image's lighting pass is built specialised to what the frame draws: the term
+    /// choices every material shares, the lobes some material has, shadows, occlusion, the IBL
+    /// bake's state; the G-buffer program to each material's texture slots and lobe map. A new
+    /// set of features compiles once, at a frame that follows no value edit; until then (and,
+    /// for lighting, while the environment bakes) the generic programs draw.
+    /// Off: always the generic programs (velvet bench's comparison, the tests' reference).
+    /// @{
+    void setSpecialisedPrograms(bool on);
+    /// Whether the last frame's surfaces were drawn by a specialised program.
+    bool lastFrameSpecialised() const;
+    /// The last frame drew a generic program where a specialised one is due (a value edit
+    /// forbade its build): a host should draw once more when the edits pause.
+    bool specialisationPending() const;
+    /// Specialised builds that failed (the generic program drew instead), and the last message.
+    int lightingSpecialisationFailures() const;
+    std::string lightingSpecialisationError() const;
+    /// @}
+
     /// @name Environment bake (render/ibl_bake.h)
     /// A new HDRI is prefiltered in slices of a few milliseconds at the start of each render()
     /// (at most about 12 ms a frame), so a window never freezes; until the bake completes the

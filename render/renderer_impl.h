@@ -73,6 +73,12 @@ struct Renderer::Impl {
     std::uint32_t lobeOverflow = 0; ///< lobe values last warned about as kept per material
     Problems lobeWarnings;
     GpuMaterial packedGround{}; ///< the ground's record (ids 2 and 3, render/stage_interface.h)
+    GpuMaterial packedB{};      ///< the A/B split's B as last packed (material id 1)
+    /// Lighting variants (render/lighting_features.h): on unless the bench or a test compares
+    /// against the generic program; a value edit since the last frame forbids a build.
+    bool specialisedPrograms = true;
+    bool valueEditSinceFrame = false;
+    bool geometryDeferred = false; ///< the last frame's G-buffer wanted an unbuilt specialisation
     EnvironmentCache environments;
     IblBaker ibl; ///< prefiltered cube, DFG LUT, sheen tables
     unsigned emptyVao = 0;
@@ -150,9 +156,24 @@ struct Renderer::Impl {
 
     /// A/B split: material id 1 is FrameSettings::splitMaterial with A's textures.
     void uploadSplitMaterial(const Material& b, const MaterialGraphProgram* program) {
-        const GpuMaterial g = packMaterialRecord(
-            b, textures, (program ? *program : graph).writtenFields(), compactGBuffer);
-        writeMaterialTable(&g);
+        packedB = packMaterialRecord(b, textures, (program ? *program : graph).writtenFields(),
+                                     compactGBuffer);
+        writeMaterialTable(&packedB);
+    }
+    /// The features of the records this frame draws (A, B when split, the ground when shown) with
+    /// the lights' shadows, the occlusion switch and the bake. While the environment bakes the
+    /// generic program draws (no variant is built for the few frames of a bake).
+    LightingFeatures frameFeatures(const FrameSettings& fs) const {
+        if (!specialisedPrograms || !ibl.specularReady() || !ibl.dfgReady())
+            return LightingFeatures::generic();
+        std::vector<GpuMaterial> records{packedA};
+        if (fs.splitMaterial)
+            records.push_back(packedB);
+        if (scene.environment.ground != GroundMode::Off)
+            records.push_back(packedGround);
+        return lightingFeaturesOf(records, stage.shadowsDirectionalLight(scene.lights),
+                                  scene.environment.ambientOcclusion, true,
+                                  fs.specularMultiScatter);
     }
 
     void selectMesh(Problems* problems) {

@@ -81,6 +81,15 @@ void Stage::annotate(FrameBlock& block, const std::vector<Light>& lights) const 
             block.lightDirection[directional++].w = float(slots[i]);
 }
 
+bool Stage::shadowsDirectionalLight(const std::vector<Light>& lights) const {
+    const std::vector<int> slots = m_shadows.slotOfLight(lights.size());
+    int directional = 0;
+    for (size_t i = 0; i < lights.size() && directional < kMaxDirectionalLights; ++i)
+        if (lights[i].type == LightType::Directional && ++directional && slots[i] > 0)
+            return true;
+    return false;
+}
+
 void Stage::drawShadows(const GpuMesh& mesh) {
     glQueryCounter(m_queries[0], GL_TIMESTAMP);
     m_shadowTimed = m_shadows.draw(mesh);

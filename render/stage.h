@@ -48,6 +48,8 @@ public:
     }
     /// Marks each shadowed directional light of @p block (lightDirection[i].w = slot + 1).
     void annotate(FrameBlock& block, const std::vector<Light>& lights) const;
+    /// Whether a directional light the frame block carries has a shadow map (annotate()).
+    bool shadowsDirectionalLight(const std::vector<Light>& lights) const;
 
     /// Before the geometry pass: the shadow maps, when the lights or the mesh changed (timed).
     void drawShadows(const GpuMesh& mesh);

@@ -122,7 +122,7 @@ ViewportWidget::ViewportWidget(QWidget* parent)
     connect(m_refineTimer, &QTimer::timeout, this, [this] {
         // Idle: draw once more at full size.
         m_interacting = false;
-        if (m_lastRenderScale < 1.0f)
+        if (m_lastRenderScale < 1.0f || (m_renderer && m_renderer->specialisationPending()))
             requestFrame();
     });
     // A timer rather than a request after every frame: a steady rate that leaves the event loop
@@ -550,6 +550,10 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     // Textures loading or uploading: frames keep coming until every one is complete.
     if (m_renderer->textureProgress().loading > 0)
         QTimer::singleShot(kGraphPollMs, this, &ViewportWidget::requestFrame);
+    // A value edit drew with a generic program: once the edits pause, one more frame builds the
+    // specialised one (render/lighting_features.h), so no compile ever lands inside a drag.
+    if (m_renderer->specialisationPending())
+        m_refineTimer->start();
     updateOverlay();
     emit frameCompleted(static_cast<double>(timer.nsecsElapsed()) / 1.0e6);
     return true;

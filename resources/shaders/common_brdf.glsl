@@ -8,6 +8,23 @@
 #include "common_math.glsl"
 #include "render_bindings.glsl"
 
+// ---- Specialisation (render/lighting_features.h) ----
+// The lighting pass is built per set of features the frame draws. FIXED_<TERM> n compiles one term
+// choice in (the dispatch below folds to it); WITH_<LOBE> 0 compiles a lobe out. Undefined: every
+// choice at run time and every lobe, the generic program every other pass uses.
+#ifndef WITH_SHEEN
+#define WITH_SHEEN 1
+#endif
+#ifndef WITH_CLEARCOAT
+#define WITH_CLEARCOAT 1
+#endif
+#ifndef WITH_ANISOTROPY
+#define WITH_ANISOTROPY 1
+#endif
+#ifndef WITH_LOBE_CHANNELS
+#define WITH_LOBE_CHANNELS 1
+#endif
+
 #define MIN_ROUGHNESS 0.045
 #define MIN_SHEEN_ROUGHNESS 0.07
 #define SHEEN_LUT_SIZE 32.0
@@ -226,6 +243,9 @@ vec2 envBrdfApprox(float roughness, float NdotV) {
 float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, int model) {
     vec2 uv = (vec2(saturate(NdotV), saturate(sheenRoughness)) * (SHEEN_LUT_SIZE - 1.0) + 0.5) /
               SHEEN_LUT_SIZE;
+#ifdef FIXED_SHEEN_MODEL
+    model = FIXED_SHEEN_MODEL;
+#endif
     return textureLod(uSheenLut, uv, 0.0)[clamp(model, 0, 2)];
 }
 
@@ -237,6 +257,9 @@ float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, int model) {
 
 // Normal distribution D(h), alpha = roughness^2, sin2H = sinSquared(n, h).
 float distribution(int which, float NdotH, float sin2H, float alpha) {
+#ifdef FIXED_DISTRIBUTION
+    which = FIXED_DISTRIBUTION;
+#endif
     if (which == DISTRIBUTION_BECKMANN)
         return distributionBeckmann(NdotH, sin2H, alpha);
     if (which == DISTRIBUTION_BLINN_PHONG)
@@ -249,6 +272,9 @@ float distribution(int which, float NdotH, float alpha) {
 
 // Visibility V = G / (4 n.l n.v), for every choice.
 float visibility(int which, float NdotL, float NdotV, float NdotH, float VdotH, float alpha) {
+#ifdef FIXED_VISIBILITY
+    which = FIXED_VISIBILITY;
+#endif
     if (which == VISIBILITY_SMITH_GGX_CORRELATED)
         return visibilitySmithGGXCorrelated(NdotL, NdotV, alpha);
     if (which == VISIBILITY_SCHLICK_GGX)
@@ -268,6 +294,9 @@ float visibility(int which, float NdotL, float NdotV, float NdotH, float VdotH, 
 // rescaling its angular shape: F = f0 + (1 - f0) (Fexact - F0exact) / (1 - F0exact), which is
 // exactly Fexact(IOR) when the specular colour is white.
 vec3 fresnelDielectric(int which, vec3 f0, float ior, float VdotH) {
+#ifdef FIXED_FRESNEL
+    which = FIXED_FRESNEL;
+#endif
     if (which == FRESNEL_SCHLICK_SPHERICAL_GAUSSIAN)
         return fresnelSchlickSphericalGaussian(f0, vec3(1.0), VdotH);
     if (which == FRESNEL_EXACT_DIELECTRIC) {
@@ -281,6 +310,9 @@ vec3 fresnelDielectric(int which, vec3 f0, float ior, float VdotH) {
 // Conductor Fresnel, F0 = base colour. Metals have no real IOR here, so the exact dielectric
 // choice keeps Schlick for them (a complex-IOR conductor Fresnel would need n and k).
 vec3 fresnelConductor(int which, vec3 f0, float VdotH) {
+#ifdef FIXED_FRESNEL
+    which = FIXED_FRESNEL;
+#endif
     if (which == FRESNEL_SCHLICK_SPHERICAL_GAUSSIAN)
         return fresnelSchlickSphericalGaussian(f0, vec3(1.0), VdotH);
     return fresnelSchlick(f0, vec3(1.0), VdotH);
@@ -288,6 +320,9 @@ vec3 fresnelConductor(int which, vec3 f0, float VdotH) {
 
 vec3 diffuse(int which, vec3 diffuseColor, float roughness, float NdotL, float NdotV,
              float LdotH) {
+#ifdef FIXED_DIFFUSE
+    which = FIXED_DIFFUSE;
+#endif
     if (which == DIFFUSE_BURLEY)
         return diffuseBurley(diffuseColor, roughness, NdotL, NdotV, LdotH);
     return diffuseLambert(diffuseColor);
@@ -296,6 +331,9 @@ vec3 diffuse(int which, vec3 diffuseColor, float roughness, float NdotL, float N
 // Sheen visibility paired with Charlie D. Ashikhmin and Neubelt are the same function (see
 // visibilityNeubelt); both enum values are kept because the seed documents name both.
 float visibilitySheen(int which, float NdotL, float NdotV, float sheenRoughness) {
+#ifdef FIXED_SHEEN_MODEL
+    which = FIXED_SHEEN_MODEL;
+#endif
     if (which == SHEEN_CHARLIE_ASHIKHMIN)
         return visibilityAshikhmin(NdotL, NdotV);
     if (which == SHEEN_CHARLIE_NEUBELT)
@@ -352,6 +390,9 @@ float visibilitySmithGGXCorrelatedAnisotropic(float NdotL, float NdotV, float Td
     return saturate(0.5 / (ggxV + ggxL));
 }
 bool usesAnisotropy(Surface s) {
+#if !WITH_ANISOTROPY
+    return false;
+#endif
     return s.anisotropyStrength > 0.0 && s.terms.x == 0; // GGX only (core/material.h)
 }
 // The base specular lobe's D x V: the anisotropic pair when the surface is anisotropic (the
@@ -412,6 +453,7 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
     vec3 metal = fMetal * specular;
     vec3 f = mix(dielectric, metal, s.metallic);
 
+#if WITH_SHEEN
     if (max3(s.sheenColor) > 0.0) {
         // The albedo scaling uses the table of the sheen model drawn; see
         // velvet::brdf::sheenDirectionalAlbedo().
@@ -422,8 +464,10 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
                 1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness, s.sheenModel));
         f = f * scaling + s.sheenColor * sheen;
     }
+#endif
 
     f *= NdotL;
+#if WITH_CLEARCOAT
     if (s.clearcoat > 0.0) {
         // The coat through its own normal (the base's unless a coat normal is given); with
         // nc = n this is the twin's f (1 - c Fc) + c coat, times n.l.
@@ -431,5 +475,6 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
         f = f * (1.0 - s.clearcoat * fc) +
             s.clearcoat * clearcoatLobe(s, s.clearcoatNormal, v, l, 1.0);
     }
+#endif
     return f;
 }

@@ -61,8 +61,15 @@ float specularLod(float perceptualRoughness) {
 // Split-sum prefiltered radiance (Karis 2013, "Real Shading in Unreal Engine 4") at reflection
 // direction r for a perceptual roughness: the GGX-prefiltered cube, level = r (levels - 1)
 // (velvet::ibl::lodOfRoughness); intensity applied.
+// FIXED_IBL_BAKED (render/lighting_features.h) compiles the approximate path out once the bake
+// is ready, or the baked one out before.
 vec3 specularRadiance(vec3 r, float perceptualRoughness) {
-    if (ibl.state.x < 0.5)
+#ifdef FIXED_IBL_BAKED
+    const bool baked = FIXED_IBL_BAKED == 1;
+#else
+    bool baked = ibl.state.x > 0.5;
+#endif
+    if (!baked)
         return environmentRadiance(r, specularLod(perceptualRoughness));
     return textureLod(uSpecularCube, toEnvironment(r), perceptualRoughness * ibl.state.y).rgb *
                frame.envParams.z +
@@ -72,7 +79,12 @@ vec3 specularRadiance(vec3 r, float perceptualRoughness) {
 // (A, B) of the split-sum environment BRDF, E = f0 A + B: the DFG LUT (texel centres at
 // (i + 0.5) / N, velvet::ibl::dfgTexelParams), or Karis 2014's fit until the LUT is made.
 vec2 environmentDfg(float NdotV, float perceptualRoughness) {
-    if (ibl.state.z < 0.5)
+#ifdef FIXED_IBL_BAKED
+    const bool baked = FIXED_IBL_BAKED == 1;
+#else
+    bool baked = ibl.state.z > 0.5;
+#endif
+    if (!baked)
         return envBrdfApprox(perceptualRoughness, NdotV);
     return textureLod(uDfgLut, vec2(NdotV, perceptualRoughness), 0.0).rg;
 }
@@ -82,7 +94,12 @@ vec2 environmentDfg(float NdotV, float perceptualRoughness) {
 // Lighting" (eq. 16) when enabled. Mirrors velvet::ibl::specularAlbedo().
 vec3 specularAlbedo(vec3 f0, vec2 dfg) {
     vec3 single = f0 * dfg.x + dfg.y;
-    if (ibl.state.w < 0.5)
+#ifdef FIXED_MULTIPLE_SCATTERING
+    const bool multiple = FIXED_MULTIPLE_SCATTERING == 1;
+#else
+    bool multiple = ibl.state.w > 0.5;
+#endif
+    if (!multiple)
         return single;
     float ems = 1.0 - (dfg.x + dfg.y);
     vec3 favg = f0 + (1.0 - f0) / 21.0;

@@ -14,7 +14,22 @@ layout(location = 1) uniform vec4 uTexRegion[TEX_SLOT_COUNT];
 layout(location = TEX_UV_LINEAR_LOCATION) uniform vec4 uTexUvLinear[TEX_SLOT_COUNT];
 layout(location = TEX_UV_OFFSET_LOCATION) uniform vec2 uTexUvOffset[TEX_SLOT_COUNT];
 
-bool hasTexture(GpuMaterial m, int slot) { return (m.terms2.y & (1 << slot)) != 0; }
+// FIXED_TEXTURE_SLOTS / FIXED_ATLAS_SLOTS (render/material_graph_program.h, GeometryFeatures):
+// the G-buffer program specialised to the material's slots, the record's bits compiled in.
+bool hasTexture(GpuMaterial m, int slot) {
+#ifdef FIXED_TEXTURE_SLOTS
+    return (FIXED_TEXTURE_SLOTS & (1 << slot)) != 0;
+#else
+    return (m.terms2.y & (1 << slot)) != 0;
+#endif
+}
+bool usesAtlasRegion(GpuMaterial m, int slot) {
+#ifdef FIXED_ATLAS_SLOTS
+    return (FIXED_ATLAS_SLOTS & (1 << slot)) != 0;
+#else
+    return (m.terms2.z & (1 << slot)) != 0;
+#endif
+}
 
 // The slot's texel at uv. In an atlas region the seeds added the element's offset in the vertex
 // shader; here it happens per fragment so that tiling UVs wrap inside the region (fract) and the
@@ -25,7 +40,7 @@ bool hasTexture(GpuMaterial m, int slot) { return (m.terms2.y & (1 << slot)) != 
 vec4 sampleSlot(GpuMaterial m, int slot, vec2 uv) {
     vec4 l = uTexUvLinear[slot];
     uv = mat2(l.xy, l.zw) * uv + uTexUvOffset[slot];
-    if ((m.terms2.z & (1 << slot)) == 0)
+    if (!usesAtlasRegion(m, slot))
         return texture(uMaterialTex[slot], uv);
     vec4 r = uTexRegion[slot];
     vec2 inset = 0.5 / vec2(textureSize(uMaterialTex[slot], 0));

@@ -54,6 +54,9 @@ void readLobeInputs(GpuMaterial m, inout MaterialInputs inputs) {
 // decoded by gbuffer_read.glsl's readLobeChannels). @p tbn: the tangent frame on the geometric
 // normal @p ng; @p n: the shading normal as the G-buffer stores it.
 void writeLobeChannels(int map, MaterialInputs inputs, mat3 tbn, vec3 ng, vec3 n) {
+#ifdef FIXED_LOBE_MAP // specialised (GeometryFeatures): every channel index a constant
+    map = FIXED_LOBE_MAP;
+#endif
     float ch[LOBE_CHANNEL_COUNT] = float[](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     int c = lobeChannel(map, LOBE_ANISOTROPY);
     if (c != LOBE_PER_MATERIAL) {

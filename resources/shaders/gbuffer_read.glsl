@@ -31,6 +31,9 @@ int readMaterialId(ivec2 pixel) {
 // The lobe values the material's map (render/lobe_channels.h) puts in the lobe channels, over the
 // material table's values in @p s. Encodings: gbuffer.frag.
 void readLobeChannels(ivec2 pixel, int map, vec3 n, inout Surface s) {
+#if !WITH_LOBE_CHANNELS
+    return; // no drawn material has a lobe map (render/lighting_features.h)
+#endif
     if (map == -1) // every entry LOBE_PER_MATERIAL (15): nothing per pixel
         return;
     vec4 l0 = texelFetch(gLobes0Tex, pixel, 0);
@@ -96,5 +99,15 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     p.n = octDecodeUnorm16(rt1);
     setIsotropicSingleNormal(p.s, p.n);
     readLobeChannels(pixel, m.terms2.w, p.n, p.s);
+    // Lobes no drawn material has are constants, so the code that shades them folds away.
+#if !WITH_SHEEN
+    p.s.sheenColor = vec3(0.0);
+#endif
+#if !WITH_CLEARCOAT
+    p.s.clearcoat = 0.0;
+#endif
+#if !WITH_ANISOTROPY
+    p.s.anisotropyStrength = 0.0;
+#endif
     return p;
 }

@@ -12,6 +12,8 @@
 //   STAGE_GROUND_CATCHER    (with the final image) discards the catcher's pixels
 //   STAGE_GROUND_PLAIN      (with the final image and BACKGROUND_MODE) the plain ground's fade
 //   (none of them)          surfaces, the final image
+// Each surface variant of the final image is also built specialised to the frame's features
+// (FIXED_<TERM>, WITH_<LOBE>, FIXED_IBL_BAKED...: render/lighting_features.h).
 // The surface variants are drawn only where there is geometry (depth test against the G-buffer
 // depth, the full-screen triangle at the far plane: fullscreen.vert's FULLSCREEN_FAR_PLANE).
 // Emission is already in the HDR target (gbuffer.frag writes it per pixel): the surface variants
@@ -128,6 +130,7 @@ void main() {
     vec3 ambient = mix((1.0 - max3(specDielectric)) * s.baseColor * irradiance +
                            specDielectric * prefiltered,
                        specMetal * prefiltered, s.metallic);
+#if WITH_SHEEN // (common_brdf.glsl's specialisation)
     if (max3(s.sheenColor) > 0.0) {
         // The sheen model's own albedo for both the scaling and the sheen lobe, lit by the
         // prefiltered radiance at the sheen roughness (as Filament's evaluateSheenIBL).
@@ -135,7 +138,9 @@ void main() {
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
                   s.sheenColor * e * specularRadiance(r, s.sheenRoughness);
     }
+#endif
     float keepEmission = 1.0; // KHR_materials_clearcoat: emission seen through the coat's Fresnel
+#if WITH_CLEARCOAT
     if (s.clearcoat > 0.0) {
         // Through the coat's own normal (KHR_materials_clearcoat; the base's unless it has one).
         vec3 nc = s.clearcoatNormal;
@@ -147,6 +152,7 @@ void main() {
                   s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(reflect(-v, nc), cr);
         keepEmission = 1.0 - fc;
     }
+#endif
     color += ambient * occlusion * ssao;
 #if defined(STAGE_GROUND_PLAIN)
     if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher

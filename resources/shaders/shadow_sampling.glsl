@@ -97,7 +97,14 @@ float shadowVisibility(int s, vec3 posWorld, vec3 n, vec3 l, float noise) {
 }
 
 // Directional light i of the frame block: its shadow, 1 when it casts none.
+// WITH_DIRECTIONAL_SHADOWS 0 (render/lighting_features.h): no directional light has a map.
+#ifndef WITH_DIRECTIONAL_SHADOWS
+#define WITH_DIRECTIONAL_SHADOWS 1
+#endif
 float directionalShadow(int i, vec3 posWorld, vec3 n, float noise) {
+#if !WITH_DIRECTIONAL_SHADOWS
+    return 1.0;
+#endif
     int s = int(frame.lightDirection[i].w) - 1;
     return s < 0 ? 1.0 : shadowVisibility(s, posWorld, n, frame.lightDirection[i].xyz, noise);
 }

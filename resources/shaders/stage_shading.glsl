@@ -10,7 +10,14 @@ layout(binding = BINDING_OCCLUSION_TEX) uniform sampler2D uOcclusion;
 // The occlusion of full-resolution pixel `pixel` at view depth `viewDepth` (m, positive): 1 when
 // the term is off. The four half-resolution neighbours weigh by bilinear position times depth
 // likeness, so occlusion does not bleed across silhouettes.
+// WITH_OCCLUSION 0 (render/lighting_features.h): the term is off, a constant 1.
+#ifndef WITH_OCCLUSION
+#define WITH_OCCLUSION 1
+#endif
 float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
+#if !WITH_OCCLUSION
+    return 1.0;
+#endif
     if (stage.occlusion.x < 0.5)
         return 1.0;
     ivec2 size = ivec2(stage.occlusion.zw);

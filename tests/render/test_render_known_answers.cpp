@@ -391,6 +391,11 @@ private slots:
         scene.material.setScalar(ParamId::SheenWeight, 0.0f);
         render::FrameSettings fs;
         fs.width = fs.height = 64;
+        // The first frame builds the lighting variant of the scene's features
+        // (render/lighting_features.h); then roughness edits change none of them.
+        renderer.setScene(scene);
+        renderer.finishEnvironment(); // a bake completing mid-loop would build its variant
+        QVERIFY2(renderer.render(fs, target.framebuffer(), &error), error.c_str());
         const int compiles = renderer.shaderCompileCount();
         QVERIFY(compiles > 0);
         glm::vec4 first{}, last{};

@@ -255,6 +255,9 @@ void TestUiGraph::nodeInputsInPropertiesAreUniformEdits() {
                              kFrameTimeoutMs);
     QVERIFY2(viewport->renderer()->graphError().empty(),
              viewport->renderer()->graphError().c_str());
+    // The new structure's specialised programs are built once the edits pause (the viewport
+    // draws again by itself: render/lighting_features.h); only then count.
+    QTRY_VERIFY_WITH_TIMEOUT(!viewport->renderer()->specialisationPending(), kFrameTimeoutMs);
     const QVector<double> pixelBefore = centrePixel(viewportImage());
     const int compiles = viewport->renderer()->shaderCompileCount();
 

@@ -1,0 +1,128 @@
+// velvet bench --frame: the steady preview frame of the scene the forward peer draws (issue 16,
+// bench/peers/three): Velvet's default scene — the unit sphere, the default camera, crimson
+// velvet, the studio HDRI for light and background, the key light (its shadow off: the peer casts
+// none) — with a post chain of the PBR Neutral tone map only. The figure is the median wall-clock
+// time of a frame to its last timer query (the frame has finished on the GPU), the same method as
+// `velvet bench`'s frame_nolights_wall_ms; the passes are GPU timer queries. Beside it, in
+// alternate frames, the same frame with the generic lighting program (every term and lobe at run
+// time), so the specialisation's gain is measured on the same machine state.
+#include "app/cli.h"
+#include "core/document_io.h"
+#include "core/post_effects.h"
+#include "render/headless_context.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+
+namespace velvet::cli {
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty())
+        return NAN;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+} // namespace
+
+Scene peerFrameScene() {
+    Scene scene = defaultScene();
+    for (Light& light : scene.lights)
+        light.castShadows = false;
+    scene.post = PostChain{};
+    EffectInstance tonemap = makeEffect("tonemap");
+    tonemap.params["operator"] = {float(toneMapOperatorIndex("pbr-neutral"))};
+    scene.post.effects.push_back(tonemap);
+    return scene;
+}
+
+int runFrameBench(bool json, bool quick) {
+    std::string error;
+    auto context = render::HeadlessContext::create(&error);
+    if (!context) {
+        std::cerr << "velvet bench: no headless OpenGL context: " << error << "\n";
+        return RenderFailure;
+    }
+    const int width = quick ? 320 : 1280, height = quick ? 180 : 720, frames = quick ? 5 : 21;
+    // Two renderers, alternate frames: the lighting pass specialised to the frame (the default)
+    // and the generic one, so both see the same machine state (render/lighting_features.h).
+    struct Variant {
+        const char* name;
+        bool specialised;
+        render::Renderer renderer;
+        std::vector<double> wall, gbuffer, lighting, post;
+    };
+    Variant variants[2] = {{"", true, {}, {}, {}, {}, {}}, {"generic_", false, {}, {}, {}, {}, {}}};
+    render::OffscreenTarget target;
+    if (!target.resize(width, height, &error)) {
+        std::cerr << "velvet bench: " << error << "\n";
+        return RenderFailure;
+    }
+    for (Variant& v : variants) {
+        if (!v.renderer.initialize(&error)) {
+            std::cerr << "velvet bench: renderer initialisation failed: " << error << "\n";
+            return RenderFailure;
+        }
+        v.renderer.setSpecialisedPrograms(v.specialised);
+        v.renderer.setScene(peerFrameScene());
+        v.renderer.finishEnvironment(); // the bake runs in slices across frames: not measured
+        v.renderer.finishGraph();
+    }
+    render::FrameSettings fs;
+    fs.width = width;
+    fs.height = height;
+    for (int i = 0; i < frames + 2; ++i)
+        for (Variant& v : variants) {
+            const auto start = std::chrono::steady_clock::now();
+            if (!v.renderer.render(fs, target.framebuffer(), &error)) {
+                std::cerr << "velvet bench: rendering failed: " << error << "\n";
+                return RenderFailure;
+            }
+            const render::FrameTimings t = v.renderer.lastTimings(); // waits: frame finished
+            const double ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+            if (i < 2) // warm-up: llvmpipe compiles a program's machine code at its first draw
+                continue;
+            v.wall.push_back(ms);
+            v.gbuffer.push_back(t.gbufferMs);
+            v.lighting.push_back(t.lightingMs);
+            v.post.push_back(t.postMs);
+        }
+    std::vector<std::pair<std::string, double>> figures{
+        {"width", width}, {"height", height}, {"frames", frames}};
+    for (Variant& v : variants) {
+        const std::string p = v.name;
+        figures.emplace_back(p + "frame_wall_ms", median(v.wall));
+        figures.emplace_back(p + "gbuffer_ms", median(v.gbuffer));
+        figures.emplace_back(p + "lighting_ms", median(v.lighting));
+        figures.emplace_back(p + "post_ms", median(v.post));
+    }
+    figures.emplace_back("specialised_lighting_speedup",
+                         median(variants[1].lighting) / median(variants[0].lighting));
+    figures.emplace_back("specialised_frame_speedup",
+                         median(variants[1].wall) / median(variants[0].wall));
+    figures.emplace_back("specialised_frames",
+                         variants[0].renderer.lastFrameSpecialised() ? 1.0 : 0.0);
+    if (json) {
+        std::cout << "{\"gl_renderer\": \"" << context->renderer() << "\"";
+        for (const auto& [k, v] : figures)
+            std::cout << ", \"" << k << "\": " << v;
+        std::cout << "}\n";
+    } else {
+        std::cout << "velvet bench --frame on " << context->renderer() << "\n";
+        for (const auto& [k, v] : figures)
+            std::cout << "  " << std::left << std::setw(24) << k << std::right << std::setw(10)
+                      << std::fixed << std::setprecision(2) << v << "\n";
+    }
+    return Ok;
+}
+
+} // namespace velvet::cli

@@ -1,0 +1,65 @@
+#pragma once
+/// @file lighting_features.h
+/// What the full-screen lighting pass must be able to shade this frame, so that its program can
+/// be specialised to it (issue 16, docs/architecture.md "Lighting variants").
+///
+/// llvmpipe (and any SIMD shader core when lanes disagree) runs both sides of every branch, so a
+/// lighting shader that can shade every BRDF term choice, every lobe, shadows and occlusion pays
+/// for all of them at every pixel even when the frame's one material is a plain GGX velvet. The
+/// features are read off what the frame really draws — the material records in the table (their
+/// term choices, lobe weights and lobe-channel maps), the lights' shadow slots, the occlusion
+/// switch, the IBL bake's state — and become preprocessor defines of lighting.frag: a term fixed
+/// by every material is compiled in as a constant, a lobe no material has is compiled out.
+///
+/// A value edit must never compile (issue 5): when an edit needs a variant not built yet, the
+/// frame draws with the generic program (every feature, run-time switches, always built) and the
+/// specialised one is built at the next frame that follows no value edit (LightingPass).
+/// No GL here: the derivation is pure and tested on its own (test_render_lighting_features).
+
+#include "render/material_table.h"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace velvet::render {
+
+struct LightingFeatures {
+    /// The term every drawn material uses (core/material.h's enums), or kAnyTerm: chosen per
+    /// material at run time.
+    static constexpr int kAnyTerm = -1;
+    int distribution = kAnyTerm;
+    int visibility = kAnyTerm;
+    int fresnel = kAnyTerm;
+    int diffuse = kAnyTerm;
+    int sheenModel = kAnyTerm;
+    /// Lobes some drawn material has (a weight above zero or a per-pixel channel for it).
+    bool sheen = true;
+    bool clearcoat = true;
+    bool anisotropy = true;
+    /// Some drawn material varies a lobe value per pixel (its lobe-channel map is not empty).
+    bool lobeChannels = true;
+    /// Some directional light has a shadow map.
+    bool directionalShadows = true;
+    /// Screen-space ambient occlusion is on.
+    bool occlusion = true;
+    /// The baked IBL (prefiltered cube and DFG LUT) is ready: the approximate path compiles out.
+    /// Unknown (-1), 0 or 1; the same for the multiple-scattering energy switch.
+    int iblBaked = -1;
+    int multipleScattering = -1;
+
+    /// The generic program's features: everything, every choice at run time.
+    static LightingFeatures generic() { return {}; }
+    bool isGeneric() const { return *this == generic(); }
+    /// lighting.frag's defines for these features (none for the generic program); also the key
+    /// of a built variant.
+    std::vector<std::string> defines() const;
+    bool operator==(const LightingFeatures&) const = default;
+};
+
+/// The features needed to draw @p records (the material table's records in use this frame),
+/// with the frame's shadow, occlusion and IBL state.
+LightingFeatures lightingFeaturesOf(std::span<const GpuMaterial> records, bool directionalShadows,
+                                    bool occlusion, bool iblBaked, bool multipleScattering);
+
+} // namespace velvet::render

@@ -1,0 +1,238 @@
+// Lighting variants (render/lighting_features.h, issue 16): the features read off the material
+// records, and the specialised lighting programs drawing the same image as the generic one for
+// materials that exercise every specialisation (fixed terms, lobes compiled out, shadows and
+// occlusion off or on), with the compile rules: a value edit never compiles, a new set of
+// features compiles once at the next frame without an edit.
+#include "core/resources.h"
+#include "render/lighting_features.h"
+#include "render/lobe_channels.h"
+#include "render_test_util.h"
+
+#include <QTemporaryDir>
+#include <QtTest>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+using namespace velvet;
+using render::GpuMaterial;
+using render::LightingFeatures;
+
+namespace {
+
+Material preset(const char* name) {
+    Problems problems;
+    auto m = loadMaterialFile(resources::path(std::string("presets/") + name + ".json"), problems);
+    if (!m)
+        qFatal("cannot load preset %s", name);
+    return *m;
+}
+
+/// Largest difference of any channel over the two images, relative to the larger value (with a
+/// floor so black pixels compare absolutely).
+double maxRelativeDifference(const Image& a, const Image& b) {
+    double worst = 0.0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const double p = a.rgba(x, y)[c], q = b.rgba(x, y)[c];
+                worst =
+                    std::max(worst, std::abs(p - q) / std::max({std::abs(p), std::abs(q), 0.05}));
+            }
+    return worst;
+}
+
+/// A 64x64 checker of @p a and @p b written to @p file.
+std::string writeChecker(const QTemporaryDir& dir, const char* name, glm::vec4 a, glm::vec4 b) {
+    Image img(64, 64, 4);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const glm::vec4 c = ((x / 8 + y / 8) % 2) ? a : b;
+            for (int k = 0; k < 4; ++k)
+                img.at(x, y)[k] = c[k];
+        }
+    const std::string file = dir.filePath(name).toStdString();
+    std::string error;
+    if (!writeImage(file, img, PixelFormat::UInt8, &error))
+        qFatal("%s", error.c_str());
+    return file;
+}
+
+} // namespace
+
+class TestRenderLightingFeatures : public QObject {
+    Q_OBJECT
+    test::OffscreenRenderer m_fx;
+
+    /// The scene drawn by the specialised and by the generic program (one renderer, switched).
+    /// With @p b, the A/B split (B right of the centre).
+    std::pair<Image, Image> drawBoth(const Scene& scene, const Material* b = nullptr) {
+        render::FrameSettings fs;
+        fs.width = fs.height = m_fx.size;
+        if (b)
+            fs.splitMaterial = *b;
+        auto draw = [&] {
+            std::string error;
+            if (!m_fx.renderer->render(fs, m_fx.target->framebuffer(), &error))
+                qFatal("render failed: %s", error.c_str());
+            return m_fx.renderer->readLinear();
+        };
+        m_fx.renderer->setSpecialisedPrograms(true);
+        m_fx.renderer->setScene(scene);
+        m_fx.renderer->finishEnvironment();
+        m_fx.renderer->finishTextures();
+        const Image specialised = draw();
+        if (!m_fx.renderer->lastFrameSpecialised())
+            QTest::qFail("the frame was not drawn by a specialised program", __FILE__, __LINE__);
+        m_fx.renderer->setSpecialisedPrograms(false);
+        const Image generic = draw();
+        m_fx.renderer->setSpecialisedPrograms(true);
+        return {specialised, generic};
+    }
+
+private slots:
+    void initTestCase() {
+        const std::string error = m_fx.start(96);
+        if (!error.empty())
+            QSKIP(qPrintable(QString::fromStdString("no headless OpenGL: " + error)));
+    }
+    void cleanupTestCase() { m_fx.stop(); }
+
+    void featuresFollowTheRecords() {
+        GpuMaterial velvet = render::packMaterial(preset("crimson_velvet"));
+        LightingFeatures f = render::lightingFeaturesOf({&velvet, 1}, false, false, true, true);
+        QCOMPARE(f.distribution, int(Distribution::GGX));
+        QCOMPARE(f.sheenModel, velvet.terms2.x);
+        QVERIFY(f.sheen);
+        QVERIFY(!f.clearcoat);
+        QVERIFY(!f.anisotropy);
+        QVERIFY(!f.directionalShadows && !f.occlusion);
+        QCOMPARE(f.iblBaked, 1);
+
+        // Two materials that disagree on a term leave it to run time; a coat on one compiles it in.
+        Material beckmann = preset("car_paint");
+        beckmann.setChoice(ParamId::Distribution, int(Distribution::Beckmann));
+        const GpuMaterial two[] = {velvet, render::packMaterial(beckmann)};
+        f = render::lightingFeaturesOf(two, true, true, true, true);
+        QCOMPARE(f.distribution, LightingFeatures::kAnyTerm);
+        QVERIFY(f.clearcoat);
+        QVERIFY(f.directionalShadows && f.occlusion);
+
+        // A lobe that varies per pixel counts even at a zero weight: the channel carries it.
+        GpuMaterial plain = render::packMaterial(preset("plastic"));
+        plain.clearcoat.x = 0.0f;
+        plain.sheenWeightAnisotropy = glm::vec4(0.0f);
+        QVERIFY(!render::lightingFeaturesOf({&plain, 1}, false, false, true, true).clearcoat);
+        render::LobeChannelMap map =
+            render::assignLobeChannels(render::lobeBit(render::LobeValue::Clearcoat));
+        plain.terms2.w = map.packed();
+        f = render::lightingFeaturesOf({&plain, 1}, false, false, true, true);
+        QVERIFY(f.clearcoat && f.lobeChannels);
+        // Anisotropy needs GGX (common_brdf.glsl's usesAnisotropy).
+        plain.sheenWeightAnisotropy.y = 0.5f;
+        QVERIFY(render::lightingFeaturesOf({&plain, 1}, false, false, true, true).anisotropy);
+        plain.terms.x = int(Distribution::Beckmann);
+        QVERIFY(!render::lightingFeaturesOf({&plain, 1}, false, false, true, true).anisotropy);
+
+        QVERIFY(LightingFeatures::generic().defines().empty());
+        QVERIFY(LightingFeatures::generic().isGeneric());
+    }
+
+    /// Every specialisation draws what the generic program draws.
+    void specialisedDrawsTheGenericImage_data() {
+        QTest::addColumn<QString>("name");
+        QTest::addColumn<bool>("shadowsAndOcclusion");
+        QTest::newRow("velvet (sheen, GGX terms)") << "crimson_velvet" << false;
+        QTest::newRow("car paint (clearcoat)") << "car_paint" << true;
+        QTest::newRow("brushed aluminium (anisotropy)") << "brushed_aluminium" << false;
+        QTest::newRow("other terms") << "other-terms" << true;
+        QTest::newRow("textured (slots, atlas, lobe channels), split") << "textured" << false;
+    }
+    void specialisedDrawsTheGenericImage() {
+        QFETCH(QString, name);
+        QFETCH(bool, shadowsAndOcclusion);
+        Scene scene = test::shippedDefaultScene();
+        if (name == "other-terms") { // every term away from its default
+            scene.material = preset("leather");
+            scene.material.setChoice(ParamId::Distribution, int(Distribution::Beckmann));
+            scene.material.setChoice(ParamId::Visibility, int(Visibility::SmithGGXCorrelated));
+            scene.material.setChoice(ParamId::Fresnel, int(Fresnel::ExactDielectric));
+            scene.material.setChoice(ParamId::Diffuse, int(Diffuse::Burley));
+            scene.material.setScalar(ParamId::SheenWeight, 0.5f);
+            scene.material.setChoice(ParamId::SheenModel, int(SheenModel::CharlieAshikhmin));
+        }
+        QTemporaryDir dir;
+        std::optional<Material> b;
+        if (name == "textured") { // G-buffer specialisations: slots, an atlas region, a lobe map
+            scene.material = preset("crimson_velvet");
+            TextureRef base;
+            base.file = writeChecker(dir, "base.png", {1, 1, 1, 1}, {0.3f, 0.5f, 0.9f, 1});
+            scene.material.setTexture(TextureSlot::BaseColor, base);
+            TextureRef sheen;
+            sheen.file = writeChecker(dir, "sheen.png", {1, 0.8f, 0.2f, 1}, {0.1f, 0.1f, 0.1f, 1});
+            sheen.useRegion = true; // its top-left quarter, as an atlas region
+            sheen.region = {0, 0, 32, 32};
+            scene.material.setTexture(TextureSlot::SheenColor, sheen);
+            b = preset("car_paint"); // B: other values, a coat, A's textures
+        } else if (name != "other-terms") {
+            scene.material = preset(name.toUtf8().constData());
+        }
+        for (Light& light : scene.lights)
+            light.castShadows = shadowsAndOcclusion;
+        scene.environment.ambientOcclusion = shadowsAndOcclusion;
+        scene.environment.ground =
+            shadowsAndOcclusion ? GroundMode::Plain : GroundMode::Off; // its own variant
+        const auto [specialised, generic] = drawBoth(scene, b ? &*b : nullptr);
+        QCOMPARE(m_fx.renderer->lightingSpecialisationFailures(), 0);
+        const double difference = maxRelativeDifference(specialised, generic);
+        qInfo("%s: largest relative difference %.2e", qPrintable(name), difference);
+        QVERIFY2(difference < 2e-3, qPrintable(QString::number(difference)));
+    }
+
+    /// A value edit compiles nothing, even one that turns a lobe on: that frame the generic
+    /// program draws it; the next frame without an edit builds the variant, once.
+    void valueEditsNeverCompile() {
+        Scene scene = test::shippedDefaultScene();
+        scene.material = preset("plastic");
+        scene.material.setScalar(ParamId::ClearcoatWeight, 0.0f);
+        for (Light& light : scene.lights)
+            light.castShadows = false;
+        m_fx.renderer->setScene(scene);
+        m_fx.renderer->finishEnvironment();
+        m_fx.draw(nullptr);
+        m_fx.draw(nullptr);
+        QVERIFY(m_fx.renderer->lastFrameSpecialised());
+        const int compiles = m_fx.renderer->shaderCompileCount();
+
+        // Roughness: the same features, the same program.
+        scene.material.setScalar(ParamId::Roughness, 0.3f);
+        m_fx.renderer->update(scene, ScenePart::MaterialValues);
+        m_fx.draw(nullptr);
+        QVERIFY(m_fx.renderer->lastFrameSpecialised());
+        QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles);
+
+        // A coat appears: drawn at once by the generic program, no compile.
+        scene.material.setScalar(ParamId::ClearcoatWeight, 1.0f);
+        m_fx.renderer->update(scene, ScenePart::MaterialValues);
+        const Image duringEdit = m_fx.draw(nullptr);
+        QVERIFY(!m_fx.renderer->lastFrameSpecialised());
+        QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles);
+        // The next frame without an edit builds the coat's variant, once, and draws the same.
+        const Image after = m_fx.draw(nullptr);
+        QVERIFY(m_fx.renderer->lastFrameSpecialised());
+        QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles + 1);
+        QVERIFY(maxRelativeDifference(duringEdit, after) < 2e-3);
+        m_fx.draw(nullptr);
+        QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles + 1);
+
+        // Back to no coat: that variant is still built, nothing compiles.
+        scene.material.setScalar(ParamId::ClearcoatWeight, 0.0f);
+        m_fx.renderer->update(scene, ScenePart::MaterialValues);
+        m_fx.draw(nullptr);
+        QVERIFY(m_fx.renderer->lastFrameSpecialised());
+        QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles + 1);
+    }
+};
+
+QTEST_MAIN(TestRenderLightingFeatures)
+#include "test_render_lighting_features.moc"
