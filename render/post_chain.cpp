@@ -27,13 +27,18 @@ struct PostChainRenderer::Impl {
         std::vector<const FusableEffect*> effects;
         bool encodes = false;
         std::string encodingId;
+        int toneMapOperator = -1;
     };
     /// The display encoding of the current run (null: the hand-written sRGB fallback).
     const DisplayEncoding* encoding = nullptr;
 
     GeneratedSources fusedSources(const std::vector<const FusableEffect*>& effects, bool encodes,
-                                  const std::string& encodingId) const {
-        GeneratedSources sources{{"post_fused.frag", fusedPassSource(effects)}};
+                                  const std::string& encodingId, int toneMapOperator) const {
+        std::string main = fusedPassSource(effects);
+        if (toneMapOperator >= 0) // post_tonemap.glsl's operator compiled in
+            main.insert(main.find('\n') + 1,
+                        "#define TONEMAP_OPERATOR_FIXED " + std::to_string(toneMapOperator) + "\n");
+        GeneratedSources sources{{"post_fused.frag", std::move(main)}};
         if (encodes && encoding)
             for (auto& s : encoding->sources(encodingId))
                 sources.push_back(std::move(s));
@@ -123,17 +128,23 @@ struct PostChainRenderer::Impl {
     }
 
     /// The program of fused step @p step, whose effects' classes are @p classes.
+    /// @p toneMapOperator: the operator every tone map of the step uses, compiled in
+    /// (TONEMAP_OPERATOR_FIXED), or -1.
     ShaderProgram* fused(const PostPlanStep& step, const std::vector<const FusableEffect*>& classes,
-                         const std::string& encodingId, std::string* error) {
+                         const std::string& encodingId, int toneMapOperator, std::string* error) {
         const bool encodes = step.encodes;
         // One program per display encoding for passes that tone map (switching display compiles
-        // once per encoding; exposure is a uniform and compiles nothing).
-        const std::string key = step.name + (encodes ? "@" + encodingId : "");
+        // once per encoding; exposure is a uniform and compiles nothing), and per tone-map
+        // operator: llvmpipe runs every operator of a run-time switch, so an operator is a choice
+        // like a BRDF term (switching compiles once; built programs are kept).
+        const std::string key = step.name + (encodes ? "@" + encodingId : "") +
+                                (toneMapOperator >= 0 ? "#" + std::to_string(toneMapOperator) : "");
         if (auto it = fusedPrograms.find(key); it != fusedPrograms.end())
             return it->second.program.get();
         auto program = std::make_unique<ShaderProgram>();
         if (!buildPostProgram(*program, "post_fused.frag",
-                              fusedSources(classes, encodes, encodingId), error, &compiles))
+                              fusedSources(classes, encodes, encodingId, toneMapOperator), error,
+                              &compiles))
             return nullptr;
         if (encodes && encoding)
             encoding->setUniforms(program->id(), encodingId);
@@ -142,6 +153,7 @@ struct PostChainRenderer::Impl {
         f.effects = classes;
         f.encodes = encodes;
         f.encodingId = encodingId;
+        f.toneMapOperator = toneMapOperator;
         return f.program.get();
     }
 
@@ -159,9 +171,10 @@ struct PostChainRenderer::Impl {
         }
         for (auto& [key, f] : fusedPrograms) {
             std::string message;
-            const bool ok = buildPostProgram(*f.program, "post_fused.frag",
-                                             fusedSources(f.effects, f.encodes, f.encodingId),
-                                             &message, &compiles);
+            const bool ok = buildPostProgram(
+                *f.program, "post_fused.frag",
+                fusedSources(f.effects, f.encodes, f.encodingId, f.toneMapOperator), &message,
+                &compiles);
             if (ok && f.encodes && encoding)
                 encoding->setUniforms(f.program->id(), f.encodingId);
             collect(ok, message);
@@ -217,7 +230,17 @@ struct PostChainRenderer::Impl {
             }
             classes.push_back(renderer->fusable());
         }
-        ShaderProgram* program = fused(step, classes, encodingId, error);
+        // The step's tone-map operator when its tone maps agree (the usual one tone map).
+        int toneMapOperator = -1;
+        for (int index : step.effects) {
+            const EffectInstance& e = plan.effect(chain, index);
+            if (e.type != "tonemap")
+                continue;
+            const int op = int(std::lround(effectFloat(e, "operator")));
+            toneMapOperator = toneMapOperator == -1 || toneMapOperator == op ? op : -2;
+        }
+        ShaderProgram* program =
+            fused(step, classes, encodingId, std::max(toneMapOperator, -1), error);
         if (!program)
             return false;
         int base = 0;

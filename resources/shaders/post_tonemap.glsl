@@ -36,7 +36,11 @@ vec3 toneMapAgx(vec3 c) {
 
 vec4 post_tonemap(vec4 color, ivec2 px, int b) {
     vec3 c = max(color.rgb, vec3(0.0)) * exp2(PARAM(b, TONEMAP_EXPOSURE).x) * post.misc.y;
+#ifdef TONEMAP_OPERATOR_FIXED // the pass built for one operator (render/post_chain.cpp)
+    const int op = TONEMAP_OPERATOR_FIXED;
+#else
     int op = int(PARAM(b, TONEMAP_OPERATOR).x + 0.5);
+#endif
     if (op == TONEMAP_OPERATOR_PBR_NEUTRAL)
         c = toneMap(c, TONEMAP_PBR_NEUTRAL);
     else if (op == TONEMAP_OPERATOR_ACES)
