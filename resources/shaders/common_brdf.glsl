@@ -202,17 +202,22 @@ float sheenLambdaHelper(float x, float alphaG) {
     float e = mix(-4.32054, -4.85967, t);
     return a / (1.0 + b * pow(x, c)) + d * x + e;
 }
-float sheenLambda(float cosTheta, float alphaG) {
-    if (abs(cosTheta) < 0.5)
-        return exp(sheenLambdaHelper(cosTheta, alphaG));
-    return exp(2.0 * sheenLambdaHelper(0.5, alphaG) - sheenLambdaHelper(1.0 - cosTheta, alphaG));
+// Lambda(cos) = exp(L(cos)) below cos 0.5, exp(2 L(0.5) - L(1 - cos)) above (the twin's two
+// branches), written with one L per call and L(0.5) (@p helperHalf) computed once per pair:
+// llvmpipe runs both sides of a branch, so the branchy form cost three L's (each a pow) per call.
+float sheenLambda(float cosTheta, float alphaG, float helperHalf) {
+    bool below = abs(cosTheta) < 0.5;
+    float h = sheenLambdaHelper(below ? cosTheta : 1.0 - cosTheta, alphaG);
+    return exp(below ? h : 2.0 * helperHalf - h);
 }
 
 // Conty & Kulla 2017, "Revisiting Physically Based Shading at Imageworks" (sheen visibility)
 float visibilitySheenContyKulla(float NdotL, float NdotV, float sheenRoughness) {
     float r = max(sheenRoughness, MIN_SHEEN_ROUGHNESS);
     float alphaG = r * r;
-    return saturate(1.0 / ((1.0 + sheenLambda(NdotV, alphaG) + sheenLambda(NdotL, alphaG)) *
+    float half_ = sheenLambdaHelper(0.5, alphaG);
+    return saturate(1.0 / ((1.0 + sheenLambda(NdotV, alphaG, half_) +
+                            sheenLambda(NdotL, alphaG, half_)) *
                            (4.0 * NdotV * NdotL)));
 }
 
