@@ -106,8 +106,9 @@ const std::array<Subcommand, 12> kSubcommands{{
 }};
 /// Left out of --help: `import-mesh IN OUT` is the child process of the crash-isolated mesh
 /// import (core/mesh_import.h); `post-catalogue` prints the effect table of
-/// docs/post-effects.md.
-const std::array<Subcommand, 2> kHiddenSubcommands{{
+/// docs/post-effects.md; `sheen-table` regenerates core/sheen_albedo_table.inc.
+const std::array<Subcommand, 3> kHiddenSubcommands{{
+    {"sheen-table", "print core/sheen_albedo_table.inc (the sheen albedo tables)", runSheenTable},
     {"import-mesh", "import a mesh file into a mesh cache (internal)", runImportMesh},
     {"post-catalogue", "print the post-effect catalogue as Markdown (docs)", runPostCatalogue},
 }};

@@ -76,5 +76,7 @@ int runImportMesh(const std::vector<std::string>& args);
 /// Hidden: prints the post-effect catalogue as Markdown for docs/post-effects.md
 /// (command_schema.cpp).
 int runPostCatalogue(const std::vector<std::string>& args);
+/// Hidden: prints core/sheen_albedo_table.inc (command_schema.cpp).
+int runSheenTable(const std::vector<std::string>& args);
 
 } // namespace velvet::cli

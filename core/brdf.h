@@ -146,6 +146,9 @@ float visibilitySmithGGXCorrelatedAnisotropic(float NdotL, float NdotV, float Td
 /// bilinearly, exactly as the GPU samples the same tables (channel = model; texel centres at
 /// (i + 0.5) / size, clamped).
 inline constexpr int kSheenLutSize = 32;
+/// The table of @p model integrated now (sheenAlbedoLut() returns the shipped copy of it,
+/// core/sheen_albedo_table.inc; `velvet sheen-table` writes that file).
+std::vector<float> integrateSheenAlbedo(SheenModel model);
 /// The table of @p model, row-major: index = roughnessIndex * size + NdotVIndex; cell i holds the
 /// value at NdotV = i / (size - 1) (likewise roughness).
 const std::vector<float>& sheenAlbedoLut(SheenModel model = SheenModel::CharlieContyKulla);

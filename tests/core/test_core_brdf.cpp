@@ -251,6 +251,24 @@ private slots:
 
     // The term dispatch picks the named function; with every choice at its default the model is
     // glTF Appendix B (the golden image guards the GPU side).
+    /// The shipped sheen albedo tables (core/sheen_albedo_table.inc, issue 16) are the
+    /// integration's: regenerate them with `velvet sheen-table` when the sheen terms change.
+    void shippedSheenTablesMatchTheIntegration() {
+        for (SheenModel model : {SheenModel::CharlieContyKulla, SheenModel::CharlieAshikhmin,
+                                 SheenModel::CharlieNeubelt}) {
+            const std::vector<float> integrated = brdf::integrateSheenAlbedo(model);
+            const std::vector<float>& shipped = brdf::sheenAlbedoLut(model);
+            QCOMPARE(shipped.size(), integrated.size());
+            float worst = 0.0f;
+            for (size_t i = 0; i < shipped.size(); ++i)
+                worst = std::max(worst, std::abs(shipped[i] - integrated[i]));
+            QVERIFY2(worst < 1e-6f, qPrintable(QString("shipped table off by %1; run `velvet "
+                                                       "sheen-table > core/sheen_albedo_table.inc`")
+                                                   .arg(worst)));
+            QVERIFY(*std::max_element(shipped.begin(), shipped.end()) > 0.1f); // not empty
+        }
+    }
+
     void dispatch() {
         const float NdotH = 0.9f, NdotL = 0.6f, NdotV = 0.7f, VdotH = 0.8f, alpha = 0.2f;
         QCOMPARE(brdf::distribution(Distribution::GGX, NdotH, alpha),
