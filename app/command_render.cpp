@@ -15,12 +15,16 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <sstream>
+#include <unistd.h>
 
 namespace velvet::cli {
 namespace {
@@ -44,6 +48,9 @@ const std::vector<OptionSpec> kOptions{
     {"light-rig", 0, true, "ID",
      "replace the scene's lights with a rig: key, three-point, softboxes, sun, stage-spot, "
      "coloured-points or environment (the HDRI alone)"},
+    {"timings", 0, false, "",
+     "print where the time went on stderr: start-up, scene load, renderer, environment bake, "
+     "frame, read back, write (milliseconds)"},
     {"time", 0, true, "SECONDS",
      "animation time in seconds, >= 0 (default 0): film grain, night-vision grain, vaporwave "
      "static, paintbrush strokes and the procedural FBM background; the same time gives the same "
@@ -221,7 +228,60 @@ int resolveColorManagement(const Arguments& args, render::FrameSettings& setting
 
 } // namespace
 
+namespace {
+
+/// Milliseconds from the process's start to now (Linux: /proc/self/stat's start time against
+/// /proc/uptime, in clock ticks of 10 ms), or -1 where that cannot be read.
+double msSinceProcessStart() {
+    std::ifstream stat("/proc/self/stat"), uptime("/proc/uptime");
+    std::string text((std::istreambuf_iterator<char>(stat)), {});
+    const size_t paren = text.rfind(')'); // the command name may hold spaces
+    double upSeconds = 0;
+    if (paren == std::string::npos || !(uptime >> upSeconds))
+        return -1;
+    std::istringstream fields(text.substr(paren + 2));
+    std::string field;
+    for (int i = 3; i <= 22 && fields >> field; ++i)
+        if (i == 22) // starttime, in clock ticks since boot
+            return 1000.0 * (upSeconds - std::stod(field) / double(sysconf(_SC_CLK_TCK)));
+    return -1;
+}
+
+struct RenderTimings {
+    double beforeMainMs = -1;
+    double sceneLoadMs = 0;
+    std::chrono::steady_clock::time_point mainStart = std::chrono::steady_clock::now();
+};
+
+double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+/// `--timings`: one line per phase on stderr, then the whole process's time.
+void printRenderTimings(const RenderTimings& t, const render::RenderJobTimings& job) {
+    std::vector<std::pair<std::string, double>> phases;
+    if (t.beforeMainMs >= 0)
+        phases.emplace_back("start-up (to main)", t.beforeMainMs);
+    phases.emplace_back("arguments, scene load", t.sceneLoadMs);
+    phases.insert(phases.end(), job.phases.begin(), job.phases.end());
+    const double inMain = msBetween(t.mainStart, std::chrono::steady_clock::now());
+    std::cerr << "velvet render: timings (ms, wall clock)\n";
+    for (const auto& [name, ms] : phases) {
+        char line[96];
+        std::snprintf(line, sizeof line, "  %-24s %8.1f\n", name.c_str(), ms);
+        std::cerr << line;
+    }
+    char line[96];
+    std::snprintf(line, sizeof line, "  %-24s %8.1f\n", "total",
+                  inMain + std::max(t.beforeMainMs, 0.0));
+    std::cerr << line;
+}
+
+} // namespace
+
 int runRender(const std::vector<std::string>& argv) {
+    RenderTimings timings; // --timings
+    timings.beforeMainMs = msSinceProcessStart();
     std::string error;
     auto args = parseArguments(argv, kOptions, &error);
     if (!args)
@@ -356,8 +416,13 @@ int runRender(const std::vector<std::string>& argv) {
         std::cerr << line << std::flush;
         return true;
     };
-    const render::RenderJobStatus status =
-        render::runRenderJob(*scene, job, progress, &error, &problems);
+    render::RenderJobTimings jobTimings;
+    const bool timed = args->has("timings");
+    timings.sceneLoadMs = msBetween(timings.mainStart, std::chrono::steady_clock::now());
+    const render::RenderJobStatus status = render::runRenderJob(
+        *scene, job, progress, &error, &problems, timed ? &jobTimings : nullptr);
+    if (timed)
+        printRenderTimings(timings, jobTimings);
     printProblems(problems); // warnings only (missing textures or HDRI fell back)
     if (status != render::RenderJobStatus::Done) {
         std::cerr << "velvet render: " << error << "\n";

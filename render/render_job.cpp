@@ -152,9 +152,31 @@ RenderJobCheck checkRenderJob(const RenderJob& job, std::string* message) {
     return RenderJobCheck::Ok;
 }
 
+void RenderJobTimings::add(const std::string& phase, double ms) {
+    for (auto& [name, total] : phases)
+        if (name == phase) {
+            total += ms;
+            return;
+        }
+    phases.emplace_back(phase, ms);
+}
+
 RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
                              const std::function<bool(const RenderJobProgress&)>& progress,
-                             std::string* error, Problems* problems) {
+                             std::string* error, Problems* problems, RenderJobTimings* timings) {
+    // Each phase's wall-clock time since the last lap (finish() waits for the GPU where a
+    // phase's work would otherwise spill into the next).
+    auto lapStart = std::chrono::steady_clock::now();
+    const auto lap = [&](const char* phase) {
+        const auto now = std::chrono::steady_clock::now();
+        if (timings) {
+            glFinish();
+            timings->add(phase, std::chrono::duration<double, std::milli>(
+                                    std::chrono::steady_clock::now() - lapStart)
+                                    .count());
+        }
+        lapStart = timings ? std::chrono::steady_clock::now() : now;
+    };
     std::string ignored;
     std::string& why = error ? *error : ignored;
     if (checkRenderJob(job, &why) != RenderJobCheck::Ok)
@@ -191,6 +213,7 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
             return RenderJobStatus::Failed;
         }
     }
+    lap("context");
     RenderJobStatus status = RenderJobStatus::Done;
     {
         // Renderer and target die inside this scope, with the context still current.
@@ -203,9 +226,12 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
             return renderFailed();
         if (job.colorManagement)
             renderer.setColorManagement(job.colorManagement);
+        lap("renderer");
         renderer.setScene(scene, problems);
+        lap("scene upload");
         renderer.finishEnvironment(); // one bake for every frame
         renderer.finishGraph();
+        lap("environment bake");
         ColorTarget target;
         if (!target.resize(settings.width, settings.height, GL_RGBA8, &why))
             return renderFailed();
@@ -225,6 +251,7 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
             }
             if (!renderer.render(settings, target.framebuffer(), &why))
                 return renderFailed();
+            lap("frame");
             // The scene-linear image is always read: it is where a NaN or an infinity shows (the
             // 8-bit display image has already turned them into 0 or 1).
             const Image linear = renderer.readLinear();
@@ -236,9 +263,12 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
             }
             const std::string file = still ? job.output : framePath(*frames, i);
             const bool linearFile = still ? lowerExtension(job.output) == ".exr" : exr;
-            if (!writeImage(file, toRgb(linearFile ? linear : renderer.readDisplay()),
-                            linearFile ? PixelFormat::Half : PixelFormat::UInt8, &why))
+            const Image written = toRgb(linearFile ? linear : renderer.readDisplay());
+            lap("read back");
+            if (!writeImage(file, written, linearFile ? PixelFormat::Half : PixelFormat::UInt8,
+                            &why))
                 return RenderJobStatus::Failed;
+            lap("write");
             if (progress) {
                 RenderJobProgress p;
                 p.done = i + 1;

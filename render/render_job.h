@@ -13,6 +13,8 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace velvet {
 class ColorManagement;
@@ -63,6 +65,14 @@ struct RenderJobProgress {
 
 enum class RenderJobStatus { Done, Cancelled, Failed };
 
+/// Where a job's time went (`velvet render --timings`): wall-clock milliseconds per phase, in
+/// order ("context", "renderer", "scene upload", "environment bake", "frame", "read back",
+/// "write"); a turntable adds its frames' time to the same phases.
+struct RenderJobTimings {
+    std::vector<std::pair<std::string, double>> phases;
+    void add(const std::string& phase, double ms);
+};
+
 /// Renders and writes @p job (checked or not: it runs checkRenderJob first and fails with its
 /// message). @p progress, when set, is called after each frame (and once before the video is
 /// encoded); returning false cancels: the frames written so far stay, no video is made. Needs no
@@ -72,7 +82,8 @@ enum class RenderJobStatus { Done, Cancelled, Failed };
 /// the encode fails.
 RenderJobStatus runRenderJob(const Scene& scene, const RenderJob& job,
                              const std::function<bool(const RenderJobProgress&)>& progress,
-                             std::string* error, Problems* problems = nullptr);
+                             std::string* error, Problems* problems = nullptr,
+                             RenderJobTimings* timings = nullptr);
 
 /// "" when every value of @p image is finite; else how many are not and where the first is.
 std::string nonFiniteReason(const Image& image);
