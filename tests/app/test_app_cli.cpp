@@ -135,6 +135,32 @@ private slots:
         QVERIFY2(QDir(dir.path()).isEmpty(), "bad input must write nothing");
     }
 
+    /// --timings (issue 16): every phase of the render on stderr, in milliseconds, each below the
+    /// total, and the image still written.
+    void renderTimingsNameEveryPhase() {
+        QTemporaryDir dir;
+        const QString out = dir.filePath("t.png");
+        Result r = runVelvet({"render", "-o", out, "--size", "32x32", "--timings"});
+        QCOMPARE(r.exitCode, 0);
+        QVERIFY(QFileInfo::exists(out));
+        QVERIFY2(r.out.isEmpty(), qPrintable(r.out)); // stdout stays clean for scripts
+        double total = -1;
+        QMap<QString, double> phases;
+        for (const QString& line : r.err.split('\n')) {
+            const int at = line.lastIndexOf(' ');
+            if (!line.startsWith("  ") || at < 0)
+                continue;
+            phases[line.left(at).trimmed()] = line.mid(at + 1).toDouble();
+        }
+        total = phases.value("total", -1);
+        QVERIFY2(total > 0, qPrintable(r.err));
+        for (const char* phase : {"start-up (to main)", "context", "renderer", "scene upload",
+                                  "environment bake", "frame", "read back", "write"}) {
+            QVERIFY2(phases.contains(phase), qPrintable(QString(phase) + " missing:\n" + r.err));
+            QVERIFY(phases[phase] >= 0 && phases[phase] <= total);
+        }
+    }
+
     void outputFolderMissingIsBadInput() {
         Result r = runVelvet({"render", "-o", "/nonexistent-velvet-dir/out.png", "--size", "8x8"});
         QCOMPARE(r.exitCode, 2);
