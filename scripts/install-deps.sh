@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev
   libglm-dev libepoxy-dev libegl-dev libgl1-mesa-dri libegl-mesa0
   libassimp-dev libopenimageio-dev libopencolorio-dev nlohmann-json3-dev
