@@ -56,6 +56,9 @@ int runSchema(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 /// `velvet bench --textures` (app/command_bench_textures.cpp).
 int runTextureBench(bool json, bool quick);
+/// The median of @p values (the mean of the two middle ones for an even count; NaN when empty):
+/// every velvet bench figure (command_bench.cpp).
+double median(std::vector<double> values);
 /// `velvet bench --frame` (app/command_bench_frame.cpp): the forward peer's scene, its frame.
 int runFrameBench(bool json, bool quick);
 /// That scene: the default scene, the key light's shadow off, the PBR Neutral tone map only.

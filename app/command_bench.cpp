@@ -52,14 +52,6 @@ const char* kHelp =
     "velvet and for a velvet with four lobe maps (which the compact layout draws as means).\n"
     "Ratios compare variants of the same process; absolute times are machine-specific.\n\n";
 
-double median(std::vector<double> v) {
-    if (v.empty())
-        return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /// @p count point lights on a regular grid filling the box [-1.6, 1.6]^3 around the unit sphere,
 /// each with radius @p radius; colours vary so the image is not flat.
 std::vector<Light> lightGrid(int count, float radius) {
@@ -186,6 +178,14 @@ bool stageFigures(int width, int height, int frames,
 }
 
 } // namespace
+
+double median(std::vector<double> v) {
+    if (v.empty())
+        return NAN;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
 
 int runBench(const std::vector<std::string>& argv) {
     std::string error;

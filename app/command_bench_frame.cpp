@@ -20,18 +20,6 @@
 #include <iostream>
 
 namespace velvet::cli {
-namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty())
-        return NAN;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-} // namespace
-
 Scene peerFrameScene() {
     Scene scene = defaultScene();
     for (Light& light : scene.lights)

@@ -23,13 +23,6 @@
 namespace velvet::cli {
 namespace {
 
-double median(std::vector<double> v) {
-    if (v.empty())
-        return NAN;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
 /// A 256x256 noise-like map (values in [0.2, 1]) in @p dir: texture work that cannot be cached
 /// away as one texel.
 std::filesystem::path writeMap(const std::filesystem::path& dir, const char* name,
