@@ -83,12 +83,17 @@ unsigned MaterialGraphProgram::programFor(const GeometryFeatures& features, bool
         if (m_specialised.size() >= 8) // a handful of structures per graph; start afresh
             m_specialised.clear();
         auto program = std::make_unique<ShaderProgram>();
-        std::string ignored; // the generic program built from the same text: a failure is a bug
+        // The generic program built from the same text: a failure is a bug (or a shader edited
+        // under the reload), reported by the renderer as a warning; the generic one draws.
+        std::string message;
         if (program->build("gbuffer.vert", "gbuffer.frag", features.defines(),
-                           {{kGraphInclude, m_linked.glsl}}, &ignored))
+                           {{kGraphInclude, m_linked.glsl}}, &message)) {
             ++m_compileCount;
-        else
+        } else {
             program.reset();
+            ++m_specialisationFailures;
+            m_specialisationError = message;
+        }
         it = m_specialised.emplace(features, std::move(program)).first;
     }
     return it->second ? it->second->id() : m_program.id();

@@ -86,6 +86,9 @@ public:
     /// them: render/lobe_channels.h).
     const std::vector<std::string>& writtenFields() const { return m_linked.writtenFields; }
 
+    /// Specialised builds that failed (program() drew instead), and the last one's message.
+    int specialisationFailures() const { return m_specialisationFailures; }
+    const std::string& lastSpecialisationError() const { return m_specialisationError; }
     /// G-buffer programs built (GL compiles) since construction.
     int compileCount() const { return m_compileCount; }
     /// Graph-to-GLSL compiles (start() and setGraph()) since construction.
@@ -116,6 +119,8 @@ private:
     std::vector<Texture> m_textures; ///< one per m_linked.samplers entry
     unsigned m_fallback = 0;         ///< 1x1 white for a texture node without an image
     int m_compileCount = 0, m_graphCompiles = 0, m_valueUploads = 0;
+    int m_specialisationFailures = 0;
+    std::string m_specialisationError;
 };
 
 } // namespace velvet::render

@@ -286,6 +286,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     geometry.deferred = &d.geometryDeferred;
     d.valueEditSinceFrame = false;
     drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
+    d.warnSpecialisationFailures();
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
     // Screen-space occlusion of the G-buffer, at half resolution (off: nothing runs).

@@ -79,6 +79,26 @@ struct Renderer::Impl {
     bool specialisedPrograms = true;
     bool valueEditSinceFrame = false;
     bool geometryDeferred = false; ///< the last frame's G-buffer wanted an unbuilt specialisation
+    /// Specialised builds that failed, lighting and G-buffer, already warned about.
+    int reportedLightingFailures = 0, reportedGeometryFailures = 0;
+    /// A specialised program that failed to build is a warning (once each): the generic one
+    /// draws the same image, more slowly.
+    void warnSpecialisationFailures() {
+        const int lightingFailures = lighting.specialisationFailures();
+        const int geometryFailures = graph.specialisationFailures();
+        if (lightingFailures == reportedLightingFailures &&
+            geometryFailures == reportedGeometryFailures)
+            return;
+        const std::string& message = lightingFailures != reportedLightingFailures
+                                         ? lighting.lastSpecialisationError()
+                                         : graph.lastSpecialisationError();
+        reportedLightingFailures = lightingFailures;
+        reportedGeometryFailures = geometryFailures;
+        lobeWarnings.warning("", "shaders",
+                             "a program specialised to this frame's features failed to build; "
+                             "the generic program draws instead (the same image, slower): " +
+                                 message);
+    }
     EnvironmentCache environments;
     IblBaker ibl; ///< prefiltered cube, DFG LUT, sheen tables
     unsigned emptyVao = 0;

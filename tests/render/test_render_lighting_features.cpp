@@ -232,6 +232,39 @@ private slots:
         QVERIFY(m_fx.renderer->lastFrameSpecialised());
         QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles + 1);
     }
+
+    /// A specialised program that fails to build (here: lighting.frag broken only where a lobe is
+    /// compiled out, in a copy of the shaders) is a warning naming the file, and the generic
+    /// program draws the frame. Last: the process keeps the shader copy.
+    void aFailedSpecialisationWarnsAndDrawsGeneric() {
+        QTemporaryDir dir;
+        const std::filesystem::path shaders = test::useShaderCopy(dir.path().toStdString());
+        const std::filesystem::path file = shaders / "lighting.frag";
+        std::string text = test::readText(file);
+        const size_t main = text.rfind("void main()");
+        QVERIFY(main != std::string::npos);
+        text.insert(main, "#if !WITH_CLEARCOAT\nthis is not glsl;\n#endif\n");
+        test::writeText(file, text);
+
+        test::OffscreenRenderer fx;
+        QCOMPARE(QString::fromStdString(fx.start(48)), QString());
+        Scene scene = test::shippedDefaultScene(); // velvet: no clear coat, the broken branch
+        fx.renderer->setScene(scene);
+        fx.renderer->finishEnvironment();
+        const Image drawn = fx.draw(nullptr);
+        QVERIFY(!fx.renderer->lastFrameSpecialised());
+        QCOMPARE(fx.renderer->lightingSpecialisationFailures(), 1);
+        const Problems warnings = fx.renderer->takeWarnings();
+        bool named = false;
+        for (const Problem& p : warnings.items)
+            named = named || p.toString().find("lighting.frag") != std::string::npos;
+        QVERIFY2(named, "no warning names lighting.frag");
+        fx.draw(nullptr);
+        QCOMPARE(fx.renderer->lightingSpecialisationFailures(), 1); // not retried every frame
+        fx.renderer->setSpecialisedPrograms(false);
+        QCOMPARE(maxRelativeDifference(drawn, fx.draw(nullptr)), 0.0);
+        fx.stop();
+    }
 };
 
 QTEST_MAIN(TestRenderLightingFeatures)
