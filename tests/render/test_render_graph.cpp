@@ -10,6 +10,7 @@
 #include "tests/core/graph_test_util.h"
 
 #include <QElapsedTimer>
+#include <QScopeGuard>
 #include <QTemporaryDir>
 #include <QtTest>
 #include <cmath>
@@ -149,6 +150,10 @@ private slots:
     // after graphPending() clears shows the new graph (roughness from a constant). Frames while
     // it is pending (drivers that compile on threads) are test_render_graph_async's subject.
     void structuralEditCompilesOnce() {
+        // The graph's G-buffer program alone: its specialisation to the record (one more build
+        // per structure) is test_render_lighting_features' subject.
+        m_fixture.renderer->setSpecialisedPrograms(false);
+        const auto restore = qScopeGuard([&] { m_fixture.renderer->setSpecialisedPrograms(true); });
         Graph g = constantIntoBaseColor(glm::vec3(0.2f, 0.5f, 0.7f));
         Scene scene = withGraph(g);
         scene.material.setScalar(ParamId::Roughness, 0.9f);

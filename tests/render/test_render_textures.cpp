@@ -303,10 +303,17 @@ private slots:
         qInfo("before %.4f, after %.4f", before, after);
         QVERIFY(std::abs(before - 128.0f / 255.0f) < 0.005f);
         QVERIFY(std::abs(after - 64.0f / 255.0f) < 0.005f);
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles);
         scene.material.setColor(ParamId::BaseColor, glm::vec3(0.5f));
+        m_fixture.renderer->update(scene, ScenePart::MaterialValues);
+        render(nullptr);
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles);
+        // A slot newly filled is structure: the G-buffer program specialised to the material's
+        // slots is built once for it (render/material_graph_program.h, GeometryFeatures).
         scene.material.setTexture(TextureSlot::Occlusion, {file.string()});
         render(&scene);
-        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles);
+        render(nullptr);
+        QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles + 1);
     }
 
     // Material textures carry core::mipChain's levels (OpenImageIO, Blackman-Harris), not the
