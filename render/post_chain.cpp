@@ -12,6 +12,7 @@
 #include <epoxy/gl.h>
 #include <glm/matrix.hpp>
 #include <map>
+#include <optional>
 
 namespace velvet::render {
 namespace {} // namespace
@@ -47,6 +48,7 @@ struct PostChainRenderer::Impl {
     std::map<std::string, FusedProgram> fusedPrograms;
     PostPlanCache plans; ///< the chain's plan, kept until the chain changes
     int compiles = 0;
+    bool specialiseOperators = true; ///< PostChainRenderer::setSpecialiseOperators
     GLuint ubo = 0, vao = 0, sampler = 0;
     std::vector<PostTarget> held; ///< targets owned by the last run until endFrame()
     /// Last frame's input of each effect that reads the previous frame, keyed by its position
@@ -230,17 +232,20 @@ struct PostChainRenderer::Impl {
             }
             classes.push_back(renderer->fusable());
         }
-        // The step's tone-map operator when its tone maps agree (the usual one tone map).
-        int toneMapOperator = -1;
+        // The step's tone-map operator when its tone maps agree (the usual one tone map), rounded
+        // as post_tonemap.glsl rounds it; none (-1) when they differ or specialising is off.
+        std::optional<int> toneMapOperator;
+        bool agree = specialiseOperators;
         for (int index : step.effects) {
             const EffectInstance& e = plan.effect(chain, index);
             if (e.type != "tonemap")
                 continue;
-            const int op = int(std::lround(effectFloat(e, "operator")));
-            toneMapOperator = toneMapOperator == -1 || toneMapOperator == op ? op : -2;
+            const int op = int(effectFloat(e, "operator") + 0.5f);
+            agree = agree && op >= 0 && (!toneMapOperator || *toneMapOperator == op);
+            toneMapOperator = op;
         }
-        ShaderProgram* program =
-            fused(step, classes, encodingId, std::max(toneMapOperator, -1), error);
+        ShaderProgram* program = fused(step, classes, encodingId,
+                                       agree && toneMapOperator ? *toneMapOperator : -1, error);
         if (!program)
             return false;
         int base = 0;
@@ -352,6 +357,10 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
     result.displayEncoded = hasToneMap && !steps.empty();
     result.hdrTexture = result.displayEncoded ? 0 : current.texture;
     return true;
+}
+
+void PostChainRenderer::setSpecialiseOperators(bool on) {
+    m_impl->specialiseOperators = on;
 }
 
 bool PostChainRenderer::reload(std::string* error) {

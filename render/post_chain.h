@@ -75,9 +75,15 @@ public:
     /// Whether @p chain has an enabled effect (else the renderer skips the chain entirely).
     static bool hasEnabledEffects(const PostChain& chain);
 
+    /// Tone-map passes built per operator (on, the default: an operator switch compiles once, as
+    /// a BRDF term switch does) or with the operator chosen at run time (the generic reference,
+    /// Renderer::setSpecialisedPrograms(false)).
+    void setSpecialiseOperators(bool on);
+
     /// Runs the enabled effects of @p chain. Programs are compiled on first use (a parameter
-    /// change never compiles). False + message on a compile error or a failing display
-    /// transform. The result's hdrTexture stays valid until endFrame().
+    /// change never compiles; a tone-map operator switch compiles once, see above). False + message
+    /// on a compile error or a failing display transform. The result's hdrTexture stays valid until
+    /// endFrame().
     bool run(const PostChain& chain, const PostRunInputs& inputs, PostRunResult& result,
              std::string* error);
     /// Hands the run's targets back to the pool and trims targets unused for a while.

@@ -147,6 +147,7 @@ bool Renderer::compactGBuffer() const {
 
 void Renderer::setSpecialisedPrograms(bool on) {
     m_impl->specialisedPrograms = on;
+    m_impl->post.setSpecialiseOperators(on);
 }
 
 bool Renderer::lastFrameSpecialised() const {
@@ -273,14 +274,14 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     if (fs.view == DebugView::Final && d.specialisedPrograms) {
         surfaceProgram = d.lighting.surfaceProgram(fs.view, error, d.scene.environment.ground,
                                                    d.stageBackground(), d.frameFeatures(fs),
-                                                   !d.valueEditSinceFrame);
+                                                   d.mayBuildSpecialised());
         if (!surfaceProgram)
             return false;
     }
     // The G-buffer programs specialised to A's and B's records, under the same rule.
     geometry.recordA = d.packedA;
     geometry.recordB = fs.splitMaterial ? d.packedB : d.packedA;
-    geometry.mayBuild = !d.valueEditSinceFrame;
+    geometry.mayBuild = d.mayBuildSpecialised();
     geometry.specialise = d.specialisedPrograms;
     d.geometryDeferred = false;
     geometry.deferred = &d.geometryDeferred;

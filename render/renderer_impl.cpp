@@ -33,7 +33,9 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     // draws the old program, so the window never waits for a compile. Without the extension the
     // build completes here (the frame waits, as before). A failure keeps the old program
     // (graphError()).
+    const int graphBuilds = graph.compileCount();
     graph.buildPending(textures.sharedCache());
+    structureAdoptedThisFrame = graph.compileCount() != graphBuilds;
     if (graph.writtenFields() != packedGraphFields)
         uploadMaterial(); // the program now drawing writes other fields: a new lobe map
     graph.refreshTextures(textures.sharedCache(), nullptr); // files changed on disk re-upload

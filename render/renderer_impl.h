@@ -78,6 +78,16 @@ struct Renderer::Impl {
     /// against the generic program; a value edit since the last frame forbids a build.
     bool specialisedPrograms = true;
     bool valueEditSinceFrame = false;
+    /// prepareFrame adopted a new graph structure (its build ran on the driver's threads: this
+    /// frame must not then stall on a specialised build).
+    bool structureAdoptedThisFrame = false;
+    /// Whether this frame may build a specialised program: not after a value edit, not the
+    /// frame that adopts a graph built asynchronously, not while textures stream in (each
+    /// arrival changes the record's slots). The viewport draws once more when they pause.
+    bool mayBuildSpecialised() const {
+        return !valueEditSinceFrame && !structureAdoptedThisFrame &&
+               textures.progress().loading == 0;
+    }
     bool geometryDeferred = false; ///< the last frame's G-buffer wanted an unbuilt specialisation
     /// Specialised builds that failed, lighting and G-buffer, already warned about.
     int reportedLightingFailures = 0, reportedGeometryFailures = 0;
@@ -85,13 +95,15 @@ struct Renderer::Impl {
     /// draws the same image, more slowly.
     void warnSpecialisationFailures() {
         const int lightingFailures = lighting.specialisationFailures();
-        const int geometryFailures = graph.specialisationFailures();
+        const int geometryFailures =
+            graph.specialisationFailures() + (graphB ? graphB->specialisationFailures() : 0);
         if (lightingFailures == reportedLightingFailures &&
             geometryFailures == reportedGeometryFailures)
             return;
-        const std::string& message = lightingFailures != reportedLightingFailures
-                                         ? lighting.lastSpecialisationError()
-                                         : graph.lastSpecialisationError();
+        const std::string& message =
+            lightingFailures != reportedLightingFailures ? lighting.lastSpecialisationError()
+            : graphB && graphB->specialisationFailures() ? graphB->lastSpecialisationError()
+                                                         : graph.lastSpecialisationError();
         reportedLightingFailures = lightingFailures;
         reportedGeometryFailures = geometryFailures;
         lobeWarnings.warning("", "shaders",
@@ -238,7 +250,9 @@ struct Renderer::Impl {
             graphB->setGraph(b, textures.sharedCache(), nullptr);
             graphBSource = b.graph;
         }
+        const int builds = graphB->compileCount();
         graphB->buildPending(textures.sharedCache());
+        structureAdoptedThisFrame = structureAdoptedThisFrame || graphB->compileCount() != builds;
         graphB->refreshTextures(textures.sharedCache(), nullptr);
         return graphB.get();
     }
