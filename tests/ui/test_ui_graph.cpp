@@ -256,8 +256,11 @@ void TestUiGraph::nodeInputsInPropertiesAreUniformEdits() {
     QVERIFY2(viewport->renderer()->graphError().empty(),
              viewport->renderer()->graphError().c_str());
     // The new structure's specialised programs are built once the edits pause (the viewport
-    // draws again by itself: render/lighting_features.h); only then count.
-    QTRY_VERIFY_WITH_TIMEOUT(!viewport->renderer()->specialisationPending(), kFrameTimeoutMs);
+    // draws again by itself: render/lighting_features.h), and the lighting's once the
+    // environment bake completes (the generic program draws while it bakes); only then count.
+    QTRY_VERIFY_WITH_TIMEOUT(viewport->environmentProgress() >= 1.0 &&
+                                 !viewport->renderer()->specialisationPending(),
+                             kFrameTimeoutMs);
     const QVector<double> pixelBefore = centrePixel(viewportImage());
     const int compiles = viewport->renderer()->shaderCompileCount();
 
