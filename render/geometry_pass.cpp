@@ -76,10 +76,12 @@ void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh
             bound->bind();
         }
         const unsigned programB = programOf(*bound, in.recordB);
-        if (programB != program) {
+        if (programB != program)
             glUseProgram(programB);
-            textures.bind(programB);
-        }
+        // B's own slots (their units and per-program uniforms); A's when the caller has none.
+        const TextureSet& slotsB = in.texturesB ? *in.texturesB : textures;
+        if (programB != program || &slotsB != &textures)
+            slotsB.bind(programB);
         glProgramUniform1i(programB, 0, 1);
         mesh.gpu.draw();
         glProgramUniform1i(programB, 0, 0);

@@ -31,6 +31,8 @@ struct GeometryPassInputs {
     /// B's own G-buffer program when B's graph is not A's (null: B draws with A's program, its
     /// values differing only in the material table).
     MaterialGraphProgram* splitGraph = nullptr;
+    /// B's texture slots (split only): B draws its own files, not A's.
+    const TextureSet* texturesB = nullptr;
     /// The records of A and B (B when split) as the material table holds them: each draw uses
     /// its program specialised to its record's texture slots and lobe map
     /// (MaterialGraphProgram::programFor), built now unless @p mayBuild is false (a value edit

@@ -82,6 +82,7 @@ void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorMa
     // display's default, loaded once by the display at initialize()).
     d.textures.setColorManagement(d.colorManagement || !d.initialized ? d.colorManagement
                                                                       : d.display.sharedConfig());
+    d.dropSplitTextures(); // made again in the new config by the next split frame
     if (d.initialized) {
         d.refreshTextureSlots(nullptr);
         d.uploadMaterial();
@@ -171,6 +172,7 @@ void Renderer::setAsyncTextures(bool async) {
     if (async == d.textures.async())
         return;
     d.textures.setAsync(async);
+    d.dropSplitTextures();
     if (d.initialized) {
         d.refreshTextureSlots(nullptr);
         d.uploadMaterial();
@@ -182,7 +184,14 @@ void Renderer::setTextureUploadBudget(std::uint64_t bytes) {
 }
 
 TextureLoadProgress Renderer::textureProgress() const {
-    return m_impl->textures.progress();
+    TextureLoadProgress p = m_impl->textures.progress();
+    if (m_impl->texturesB) { // the A/B split's B loads its own files
+        const TextureLoadProgress b = m_impl->texturesB->progress();
+        p.loading += b.loading;
+        p.total += b.total;
+        p.fraction = std::min(p.fraction, b.fraction);
+    }
+    return p;
 }
 
 void Renderer::finishTextures() {
@@ -266,8 +275,12 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         geometry.splitGraph = d.splitGraphFor(*fs.splitMaterial, &splitError);
         if (!splitError.empty())
             return fail(error, "A/B split: B's material graph: " + splitError);
-        // B's record, its lobe map following the program B draws with (A's without its own).
+        // B's own texture slots, then B's record: its lobe map following the program B draws
+        // with (A's without its own), its presence bits following B's files.
+        geometry.texturesB = &d.splitTextures(*fs.splitMaterial);
         d.uploadSplitMaterial(*fs.splitMaterial, geometry.splitGraph);
+    } else if (d.texturesB) {
+        d.dropSplitTextures();
     }
     // The final image's lighting program specialised to what this frame draws (built at a frame
     // that follows no value edit; the generic one meanwhile).

@@ -133,8 +133,9 @@ struct FrameSettings {
     /// @name A/B split (the editor's viewport toolbar)
     /// Set: the same scene is drawn with the scene's material left of splitPosition (A) and this
     /// material right of it (B) in one frame: one G-buffer with a second, scissored draw of the
-    /// mesh with material id 1, then one lighting and post pass over both halves. B shares A's
-    /// texture files (its texture slots are ignored); any parameter or BRDF term may differ.
+    /// mesh with material id 1, then one lighting and post pass over both halves. B draws its
+    /// own texture files (slots of its own, loaded like A's); any parameter or BRDF term may
+    /// differ.
     /// Uploading B rewrites the material table only, unless B's graph is not A's: then B draws
     /// with a G-buffer program of its own (compiled the first time, rebuilt when B's graph
     /// changes structure).

@@ -20,6 +20,29 @@ Renderer::Impl::~Impl() {
         glDeleteQueries(1, &lightsQuery);
 }
 
+TextureSet& Renderer::Impl::splitTextures(const Material& b) {
+    Problems problems;
+    if (!texturesB) {
+        texturesB = std::make_unique<TextureSet>();
+        texturesB->setColorManagement(colorManagement ? colorManagement : display.sharedConfig());
+        texturesB->setAsync(textures.async());
+        texturesB->setUploadBudget(textures.uploadBudget());
+    }
+    std::array<TextureRef, kTextureSlotCount> refs;
+    for (int i = 0; i < kTextureSlotCount; ++i)
+        refs[size_t(i)] = b.texture(TextureSlot(i));
+    if (refs != texturesBRefs) {
+        texturesB->setMaterial(b, &problems);
+        texturesBRefs = std::move(refs);
+    }
+    texturesB->poll();
+    for (Problem& p : problems.items)
+        lobeWarnings.items.push_back(std::move(p));
+    for (Problem& p : texturesB->takeProblems().items)
+        lobeWarnings.items.push_back(std::move(p));
+    return *texturesB;
+}
+
 bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
                                   DisplayChoice& choice, const ShaderProgram*& surfaceProgram,
                                   std::string* error) {

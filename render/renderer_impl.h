@@ -74,6 +74,10 @@ struct Renderer::Impl {
     Problems lobeWarnings;
     GpuMaterial packedGround{}; ///< the ground's record (ids 2 and 3, render/stage_interface.h)
     GpuMaterial packedB{};      ///< the A/B split's B as last packed (material id 1)
+    /// The A/B split's B's own texture slots (made when a split frame first draws, dropped by
+    /// the first frame without a split): B is B, files and all, not B's values over A's maps.
+    std::unique_ptr<TextureSet> texturesB;
+    std::array<TextureRef, kTextureSlotCount> texturesBRefs{}; ///< what texturesB was given
     /// Lighting variants (render/lighting_features.h): on unless the bench or a test compares
     /// against the generic program; a value edit since the last frame forbids a build.
     bool specialisedPrograms = true;
@@ -86,7 +90,8 @@ struct Renderer::Impl {
     /// arrival changes the record's slots). The viewport draws once more when they pause.
     bool mayBuildSpecialised() const {
         return !valueEditSinceFrame && !structureAdoptedThisFrame &&
-               textures.progress().loading == 0;
+               textures.progress().loading == 0 &&
+               (!texturesB || texturesB->progress().loading == 0);
     }
     bool geometryDeferred = false; ///< the last frame's G-buffer wanted an unbuilt specialisation
     /// Specialised builds that failed, lighting and G-buffer, already warned about.
@@ -186,11 +191,21 @@ struct Renderer::Impl {
         writeMaterialTable(nullptr);
     }
 
-    /// A/B split: material id 1 is FrameSettings::splitMaterial with A's textures.
+    /// A/B split: material id 1 is FrameSettings::splitMaterial with its own texture slots
+    /// (splitTextures).
     void uploadSplitMaterial(const Material& b, const MaterialGraphProgram* program) {
-        packedB = packMaterialRecord(b, textures, (program ? *program : graph).writtenFields(),
+        packedB = packMaterialRecord(b, *texturesB, (program ? *program : graph).writtenFields(),
                                      compactGBuffer);
         writeMaterialTable(&packedB);
+    }
+    /// B's texture slots for this frame: made like A's the first time (same colour config,
+    /// loading mode and budget), given B's files when they changed, polled every frame (a file
+    /// changed on disk, a load finished). Problems with B's files join the warnings.
+    TextureSet& splitTextures(const Material& b);
+    /// The first frame without a split lets B's textures go.
+    void dropSplitTextures() {
+        texturesB.reset();
+        texturesBRefs = {};
     }
     /// The features of the records this frame draws (A, B when split, the ground when shown) with
     /// the lights' shadows, the occlusion switch and the bake. While the environment bakes the

@@ -3,6 +3,8 @@
 // - "B from preset…" opens the Library's folder, and B draws with B's own material graph: with a
 //   graph on A and a plain preset as B (and the other way round), B's half of the split is the
 //   image B gives alone, not B's values under A's graph;
+// - B draws its own texture files: a plain B over a textured A shows no texture, a textured B
+//   over a plain A shows its texture (before, B drew with A's texture slots);
 // - the split draws a divider and A / B labels, the toolbar says what B is, a drag on the
 //   divider moves the seam (and does not orbit), X swaps the sides;
 // - a preset dragged from the Library onto the viewport is applied as one undo step; dropped on
@@ -14,6 +16,7 @@
 #include "ui/main_window.h"
 #include "ui/viewport_widget.h"
 #include "ui_test_modal.h"
+#include "ui_test_util.h"
 #include "ui_test_window.h"
 
 #include <QAbstractItemModel>
@@ -28,6 +31,7 @@
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
+#include <QTemporaryDir>
 #include <QTest>
 #include <QToolButton>
 #include <QUndoStack>
@@ -86,6 +90,7 @@ private slots:
     void init();
 
     void bFromPresetOpensTheLibraryAndDrawsBsOwnGraph();
+    void bDrawsItsOwnTextures();
     void dividerLabelsDragAndSwap();
     void libraryDropOnViewportAppliesOrSetsB();
 
@@ -134,8 +139,11 @@ QImage TestUiAbSplit::settledFrame() {
     QImage image = viewport->grabFramebuffer();
     QElapsedTimer clock;
     clock.start();
-    while (viewport->renderer() && viewport->renderer()->graphPending() &&
-           clock.elapsed() < kFrameTimeoutMs) {
+    const auto busy = [viewport] {
+        const render::Renderer* r = viewport->renderer();
+        return r && (r->graphPending() || r->textureProgress().loading > 0);
+    };
+    while (busy() && clock.elapsed() < kFrameTimeoutMs) {
         QTest::qWait(20);
         image = viewport->grabFramebuffer();
     }
@@ -187,6 +195,56 @@ void TestUiAbSplit::bFromPresetOpensTheLibraryAndDrawsBsOwnGraph() {
         reversedError <= 2,
         qPrintable(
             QStringLiteral("B's half must draw denim's graph (off by %1)").arg(reversedError)));
+}
+
+void TestUiAbSplit::bDrawsItsOwnTextures() {
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    // A flat blue base-colour map: unmistakable against gold.
+    const QString png = dir.filePath(QStringLiteral("blue.png"));
+    QImage blue(16, 16, QImage::Format_RGB32);
+    blue.fill(QColor(30, 60, 220));
+    QVERIFY(blue.save(png));
+
+    LibraryPanel* library = m_window->libraryPanel();
+    QString error;
+    QVERIFY2(library->applyPreset(preset("gold.json"), &error), qPrintable(error));
+    const QImage gold = settledFrame();
+    // The image dropped on the window fills A's base colour (one undo step).
+    QVERIFY(test::dropFile(m_window.get(), m_window->rect().center(), png));
+    QCOMPARE(QString::fromStdString(m_doc->material().texture(TextureSlot::BaseColor).file),
+             QFileInfo(png).absoluteFilePath());
+    QTRY_VERIFY_WITH_TIMEOUT(maxDiff(gold, settledFrame(), 0, gold.width()) > 40, kFrameTimeoutMs);
+    const QImage blueGold = settledFrame();
+    const int w = gold.width(), half = w / 2;
+    QVERIFY2(maxDiff(gold, blueGold, half + 2, w) > 40, "the map must show on A");
+    // The textured material as a preset of its own, for the reverse case.
+    const QString texturedPreset = dir.filePath(QStringLiteral("blue_gold.json"));
+    std::string saveError;
+    QVERIFY2(saveMaterialFile(m_doc->material(), texturedPreset.toStdString(), &saveError),
+             saveError.c_str());
+
+    // A textured, B = plain gold: B's half is gold alone, not gold's values over A's map.
+    QVERIFY(m_window->setAbSplitPreset(preset("gold.json")));
+    const QImage split = settledFrame();
+    QVERIFY2(maxDiff(blueGold, split, 0, half - 2) <= 2, "the left half must stay A (textured)");
+    const int plainError = maxDiff(gold, split, half + 2, w);
+    QVERIFY2(plainError <= 2,
+             qPrintable(QStringLiteral("B has no texture: its half must be plain gold (off by %1)")
+                            .arg(plainError)));
+
+    // A plain (the drop undone), B = the textured preset: B's half shows B's map.
+    m_window->setAbSplit(false);
+    QVERIFY(focusViewport());
+    QTest::keyClick(glWindow(), Qt::Key_Z, Qt::ControlModifier);
+    QTRY_VERIFY(m_doc->material().texture(TextureSlot::BaseColor).empty());
+    QVERIFY(m_window->setAbSplitPreset(texturedPreset));
+    const QImage reversed = settledFrame();
+    QVERIFY2(maxDiff(gold, reversed, 0, half - 2) <= 2, "the left half must stay A (plain gold)");
+    const int texturedError = maxDiff(blueGold, reversed, half + 2, w);
+    QVERIFY2(texturedError <= 2,
+             qPrintable(
+                 QStringLiteral("B's half must show B's own map (off by %1)").arg(texturedError)));
 }
 
 void TestUiAbSplit::dividerLabelsDragAndSwap() {
