@@ -397,8 +397,8 @@ std::filesystem::path meshImportHelper() {
     return g_helper;
 }
 
-bool importMesh(const std::filesystem::path& file, MeshData& out, std::string* error,
-                const MeshImportOptions& options, bool* isolated) {
+bool importMeshUncached(const std::filesystem::path& file, MeshData& out, std::string* error,
+                        const MeshImportOptions& options, bool* isolated) {
     if (isolated)
         *isolated = false;
     const std::filesystem::path helper =

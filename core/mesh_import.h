@@ -89,7 +89,17 @@ std::filesystem::path meshImportHelper();
 /// imports in this process. A crash, a timeout or a non-zero exit gives false and one line
 /// naming the file and what happened (the child's own message when it printed one).
 /// @p isolated, when given, says whether a child process did the work.
+///
+/// The last few successful imports are remembered (core/mesh_import_memo.cpp), keyed by the
+/// file's path, size and modification time and the limits: the editor checks a mesh before the
+/// edit and the renderer draws it right after, and a file imported once is not imported again
+/// until it changes on disk (@p isolated is then false: no child ran).
 bool importMesh(const std::filesystem::path& file, MeshData& out, std::string* error,
                 const MeshImportOptions& options = {}, bool* isolated = nullptr);
+/// importMesh without the memo: always a child process (or in process without a helper).
+bool importMeshUncached(const std::filesystem::path& file, MeshData& out, std::string* error,
+                        const MeshImportOptions& options = {}, bool* isolated = nullptr);
+/// Imports importMesh really ran (not answered from the memo) since start, in this process.
+std::uint64_t meshImportCount();
 
 } // namespace velvet

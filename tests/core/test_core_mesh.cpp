@@ -13,6 +13,7 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -492,6 +493,35 @@ private slots:
         QVERIFY(back.vertices.empty()); // nothing half-read
     }
 
+    // importMesh remembers its last successes (the editor checks a mesh, then draws it): the
+    // same unchanged file is imported once; rewritten on disk, it is imported again; a failure
+    // is never remembered.
+    void importMemoImportsAnUnchangedFileOnce() {
+        const fs::path file = path("memo.obj");
+        writeText(file, kCubeObj);
+        MeshData first, second;
+        std::string error;
+        const std::uint64_t before = meshImportCount();
+        QVERIFY2(importMesh(file, first, &error), error.c_str());
+        QVERIFY2(importMesh(file, second, &error), error.c_str());
+        QCOMPARE(meshImportCount(), before + 1);
+        QCOMPARE(second.indices, first.indices);
+        QCOMPARE(second.vertices.size(), first.vertices.size());
+        // A different triangle (a new size, a new time stamp): imported again, the new content.
+        writeText(file, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(2));
+        MeshData changed;
+        QVERIFY2(importMesh(file, changed, &error), error.c_str());
+        QCOMPARE(meshImportCount(), before + 2);
+        QCOMPARE(changed.triangleCount(), size_t(1));
+        // A failure is imported (and refused) each time.
+        writeText(path("memo_broken.obj"), "o empty\n"); // no triangles
+        MeshData broken;
+        QVERIFY(!importMesh(path("memo_broken.obj"), broken, &error));
+        QVERIFY(!importMesh(path("memo_broken.obj"), broken, &error));
+        QCOMPARE(meshImportCount(), before + 4);
+    }
+
     // The child-process importer (`velvet import-mesh`): gives the same mesh as in process;
     // survives a garbage file, a crash and a hang with one clear line naming the file.
     void childProcessImport() {
@@ -521,7 +551,8 @@ private slots:
         QVERIFY(error.find('\n') == std::string::npos);
 
         qputenv("VELVET_IMPORT_MESH_SIMULATE_CRASH", "1");
-        const bool crashed = importMesh(path("box.obj"), mesh, &error, options);
+        // importMeshUncached: box.obj imported above is in importMesh's memo.
+        const bool crashed = importMeshUncached(path("box.obj"), mesh, &error, options);
         qunsetenv("VELVET_IMPORT_MESH_SIMULATE_CRASH");
         QVERIFY(!crashed);
         qInfo("crash: %s", error.c_str());
@@ -531,7 +562,7 @@ private slots:
 
         qputenv("VELVET_IMPORT_MESH_SIMULATE_HANG", "1");
         options.timeoutMs = 400;
-        const bool hung = importMesh(path("box.obj"), mesh, &error, options);
+        const bool hung = importMeshUncached(path("box.obj"), mesh, &error, options);
         qunsetenv("VELVET_IMPORT_MESH_SIMULATE_HANG");
         QVERIFY(!hung);
         QVERIFY2(error.find("timed out after 0.4 s") != std::string::npos, error.c_str());

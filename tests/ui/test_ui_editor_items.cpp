@@ -5,8 +5,10 @@
 // - a garbage mesh file, dropped on the viewport or chosen in the Scene panel, is refused: no
 //   History step, the document keeps its mesh, the reason stays in the Log and in the Scene panel;
 // - F frames an imported cube by its bounds (its corners are sqrt 3 from the centre after the
-//   fit into [-1, 1]^3), and the built-in sphere as before.
+//   fit into [-1, 1]^3), and the built-in sphere as before; the cube is imported once, not once
+//   to check it and again to draw it.
 #include "core/graph/graph.h"
+#include "core/mesh_import.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_panel.h"
 #include "ui/graph/graph_scene.h"
@@ -199,9 +201,13 @@ void TestUiEditorItems::frameFitsACustomMeshByItsBounds() {
     // A cube: fitted into [-1, 1]^3, its corners sqrt 3 away, so F backs off by sqrt 3.
     const QString cube = m_dir.filePath(QStringLiteral("frame_cube.obj"));
     QVERIFY(writeFile(cube, kCube));
+    const std::uint64_t imports = meshImportCount();
     QVERIFY(m_window->openDroppedFile(cube));
     QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
     QVERIFY(frames.wait(kFrameTimeoutMs)); // the renderer takes the mesh at its next frame
+    // Checked before the edit and drawn after it: one import (a child process each, seconds for
+    // a large file), the renderer's answered from importMesh's memo.
+    QCOMPARE(meshImportCount(), imports + 1);
     QVERIFY(focusViewport());
     QTest::keyClick(glWindow(), Qt::Key_F);
     const float expected = framing.distance * std::sqrt(3.0f);
