@@ -1,10 +1,13 @@
 // The viewport's navigation (ViewportWidget's input half): orbit, pan, look and HDRI rotation
 // drags, fly keys, the wheel's zoom. Each move is a per-frame camera (setViewCamera), never a
-// scene edit; only Shift + right drag edits the document (the environment's rotation).
+// scene edit; only Shift + right drag edits the document (the environment's rotation). And the
+// drags of files and presets over the native GL window, handed to the widget that takes drops.
 #include "render/camera.h"
 #include "ui/commands/set_scene_command.h"
 #include "ui/viewport_widget.h"
 
+#include <QCoreApplication>
+#include <QDropEvent>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLWindow>
@@ -235,6 +238,68 @@ bool ViewportWidget::wheel(QWheelEvent* event) {
     setViewCamera(camera);
     event->accept();
     return true;
+}
+
+void ViewportWidget::forwardDrag(QEvent* event) {
+    // What QWidgetWindow does for widgets: the nearest ancestor accepting drops gets the drag,
+    // enter, moves and drop, in its own coordinates.
+    if (event->type() == QEvent::DragEnter) {
+        m_dragTarget = nullptr;
+        for (QWidget* w = this; w; w = w->isWindow() ? nullptr : w->parentWidget())
+            if (w->acceptDrops() && w->isEnabled()) {
+                m_dragTarget = w;
+                break;
+            }
+    }
+    QWidget* target = m_dragTarget;
+    if (!target) {
+        event->ignore();
+        return;
+    }
+    if (event->type() == QEvent::DragLeave) {
+        QDragLeaveEvent leave;
+        QCoreApplication::sendEvent(target, &leave);
+        m_dragTarget = nullptr;
+        return;
+    }
+    auto* drop = static_cast<QDropEvent*>(event); // QDragEnterEvent and QDragMoveEvent derive
+    const QPoint pos = m_container->mapTo(target, drop->position().toPoint());
+    switch (event->type()) {
+    case QEvent::DragEnter: {
+        QDragEnterEvent enter(pos, drop->possibleActions(), drop->mimeData(), drop->buttons(),
+                              drop->modifiers());
+        enter.setAccepted(false);
+        QCoreApplication::sendEvent(target, &enter);
+        drop->setDropAction(enter.dropAction());
+        drop->setAccepted(enter.isAccepted());
+        if (!enter.isAccepted())
+            m_dragTarget = nullptr; // refused at the door: no moves, no drop
+        break;
+    }
+    case QEvent::DragMove: {
+        QDragMoveEvent move(pos, drop->possibleActions(), drop->mimeData(), drop->buttons(),
+                            drop->modifiers());
+        move.setDropAction(drop->dropAction());
+        move.setAccepted(drop->isAccepted());
+        QCoreApplication::sendEvent(target, &move);
+        drop->setDropAction(move.dropAction());
+        drop->setAccepted(move.isAccepted());
+        break;
+    }
+    case QEvent::Drop: {
+        QDropEvent dropped(QPointF(pos), drop->possibleActions(), drop->mimeData(), drop->buttons(),
+                           drop->modifiers());
+        dropped.setDropAction(drop->dropAction());
+        dropped.setAccepted(false);
+        QCoreApplication::sendEvent(target, &dropped);
+        drop->setDropAction(dropped.dropAction());
+        drop->setAccepted(dropped.isAccepted());
+        m_dragTarget = nullptr;
+        break;
+    }
+    default:
+        break;
+    }
 }
 
 } // namespace velvet::ui
