@@ -16,6 +16,43 @@ layout(location = 0) out vec4 outBaseColor; // rgb scene-linear base colour, a t
 layout(location = 1) out vec4 outNormal;    // xyz unit tangent-space normal (OpenGL, +Y up)
 layout(location = 2) out vec4 outOrm;       // occlusion (strength applied), roughness, metallic
 layout(location = 3) out vec4 outEmission;  // rgb emission (colour x strength), scene-linear
+layout(location = 4) out vec4 outCoat;      // clearcoat weight, clearcoat roughness
+layout(location = 5) out vec4 outSheen;     // rgb sheen weight x colour (linear), a roughness
+layout(location = 6) out vec4 outSpecular;  // rgb specular colour (linear), a specular weight
+layout(location = 7) out vec4 outAnisotropy; // xy direction (rotation applied), z strength
+
+// The lobe values before the graph, as gbuffer.frag's readLobeInputs reads them (parameter x
+// texture, KHR_materials_* channels).
+void readLobeInputs(GpuMaterial m, vec2 uv, inout MaterialInputs inputs) {
+    inputs.sheenWeight = m.sheenWeightAnisotropy.x;
+    inputs.sheenColor = m.sheenColorRoughness.rgb;
+    if (hasTexture(m, TEX_SHEEN_COLOR))
+        inputs.sheenColor *= sampleSlot(m, TEX_SHEEN_COLOR, uv).rgb;
+    inputs.sheenRoughness = m.sheenColorRoughness.a;
+    if (hasTexture(m, TEX_SHEEN_ROUGHNESS))
+        inputs.sheenRoughness *= sampleSlot(m, TEX_SHEEN_ROUGHNESS, uv).a;
+    inputs.clearcoatWeight = m.clearcoat.x;
+    if (hasTexture(m, TEX_CLEARCOAT))
+        inputs.clearcoatWeight *= sampleSlot(m, TEX_CLEARCOAT, uv).r;
+    inputs.clearcoatRoughness = m.clearcoat.y;
+    if (hasTexture(m, TEX_CLEARCOAT_ROUGHNESS))
+        inputs.clearcoatRoughness *= sampleSlot(m, TEX_CLEARCOAT_ROUGHNESS, uv).g;
+    inputs.specularWeight = m.specularColorWeight.a;
+    if (hasTexture(m, TEX_SPECULAR))
+        inputs.specularWeight *= sampleSlot(m, TEX_SPECULAR, uv).a;
+    if (hasTexture(m, TEX_SPEC_ROUGH_METAL))
+        inputs.specularWeight *= sampleSlot(m, TEX_SPEC_ROUGH_METAL, uv).r;
+    inputs.specularColor = m.specularColorWeight.rgb;
+    if (hasTexture(m, TEX_SPECULAR_COLOR))
+        inputs.specularColor *= sampleSlot(m, TEX_SPECULAR_COLOR, uv).rgb;
+    inputs.anisotropyStrength = m.sheenWeightAnisotropy.y;
+    inputs.anisotropyRotation = degrees(m.sheenWeightAnisotropy.z);
+    if (hasTexture(m, TEX_ANISOTROPY)) {
+        vec3 a = sampleSlot(m, TEX_ANISOTROPY, uv).rgb;
+        inputs.anisotropyDirection = a.rg * 2.0 - 1.0;
+        inputs.anisotropyStrength *= a.b;
+    }
+}
 
 void main() {
     // Texel centres; row 0 of the target (read back first) is v = 0.5 / height, the image's top
@@ -53,6 +90,7 @@ void main() {
     inputs.emissionStrength = m.emissive.a;
     if (hasTexture(m, TEX_NORMAL))
         inputs.normal = sampleSlot(m, TEX_NORMAL, uv).xyz * 2.0 - 1.0;
+    readLobeInputs(m, uv, inputs);
     velvetGraph(uv, inputs);
     // glTF's scaled normal, normalize((t * 2 - 1) * (s, s, 1)), as the G-buffer pass applies it.
     vec3 tn = inputs.normal;
@@ -64,4 +102,15 @@ void main() {
     outOrm = vec4(clamp(occlusion, 0.0, 1.0), clamp(inputs.roughness, 0.0, 1.0),
                   clamp(inputs.metallic, 0.0, 1.0), 1.0);
     outEmission = vec4(max(inputs.emissionColor * inputs.emissionStrength, vec3(0.0)), 1.0);
+    outCoat = vec4(clamp(inputs.clearcoatWeight, 0.0, 1.0), clamp(inputs.clearcoatRoughness, 0.0, 1.0),
+                   0.0, 1.0);
+    outSheen = vec4(clamp(inputs.sheenWeight * inputs.sheenColor, 0.0, 1.0),
+                    clamp(inputs.sheenRoughness, 0.0, 1.0));
+    outSpecular = vec4(max(inputs.specularColor, vec3(0.0)), clamp(inputs.specularWeight, 0.0, 1.0));
+    // KHR_materials_anisotropy's direction turned by the rotation (counter-clockwise, tangent
+    // towards bitangent), as gbuffer.frag turns it; a texture set carries no separate rotation.
+    float r = radians(inputs.anisotropyRotation);
+    vec2 d = mat2(cos(r), sin(r), -sin(r), cos(r)) * inputs.anisotropyDirection;
+    d = dot(d, d) > 1e-12 ? normalize(d) : vec2(1.0, 0.0);
+    outAnisotropy = vec4(d, clamp(inputs.anisotropyStrength, 0.0, 1.0), 1.0);
 }
