@@ -4,11 +4,12 @@
 // for a surface point with that uv — parameters times their texture slots (atlas regions
 // included, through sampleSlot), then the material graph over them — written before lighting,
 // as maps. Keep in step with gbuffer.frag (the texture-set tests compare both with the same
-// material's known texels).
+// material's known texels); the lobe values come from the same material_lobe_inputs.glsl.
 #include "common_material.glsl"
 #include "common_material_textures.glsl"
 // Generated from the material's node graph (core/graph/graph_compiler.h).
 #include "material_graph.glsl"
+#include "material_lobe_inputs.glsl"
 
 layout(location = 0) uniform vec2 uSize; // the target's size in texels (uTexRegion is 1..13)
 
@@ -20,39 +21,6 @@ layout(location = 4) out vec4 outCoat;      // clearcoat weight, clearcoat rough
 layout(location = 5) out vec4 outSheen;     // rgb sheen weight x colour (linear), a roughness
 layout(location = 6) out vec4 outSpecular;  // rgb specular colour (linear), a specular weight
 layout(location = 7) out vec4 outAnisotropy; // xy direction (rotation applied), z strength
-
-// The lobe values before the graph, as gbuffer.frag's readLobeInputs reads them (parameter x
-// texture, KHR_materials_* channels).
-void readLobeInputs(GpuMaterial m, vec2 uv, inout MaterialInputs inputs) {
-    inputs.sheenWeight = m.sheenWeightAnisotropy.x;
-    inputs.sheenColor = m.sheenColorRoughness.rgb;
-    if (hasTexture(m, TEX_SHEEN_COLOR))
-        inputs.sheenColor *= sampleSlot(m, TEX_SHEEN_COLOR, uv).rgb;
-    inputs.sheenRoughness = m.sheenColorRoughness.a;
-    if (hasTexture(m, TEX_SHEEN_ROUGHNESS))
-        inputs.sheenRoughness *= sampleSlot(m, TEX_SHEEN_ROUGHNESS, uv).a;
-    inputs.clearcoatWeight = m.clearcoat.x;
-    if (hasTexture(m, TEX_CLEARCOAT))
-        inputs.clearcoatWeight *= sampleSlot(m, TEX_CLEARCOAT, uv).r;
-    inputs.clearcoatRoughness = m.clearcoat.y;
-    if (hasTexture(m, TEX_CLEARCOAT_ROUGHNESS))
-        inputs.clearcoatRoughness *= sampleSlot(m, TEX_CLEARCOAT_ROUGHNESS, uv).g;
-    inputs.specularWeight = m.specularColorWeight.a;
-    if (hasTexture(m, TEX_SPECULAR))
-        inputs.specularWeight *= sampleSlot(m, TEX_SPECULAR, uv).a;
-    if (hasTexture(m, TEX_SPEC_ROUGH_METAL))
-        inputs.specularWeight *= sampleSlot(m, TEX_SPEC_ROUGH_METAL, uv).r;
-    inputs.specularColor = m.specularColorWeight.rgb;
-    if (hasTexture(m, TEX_SPECULAR_COLOR))
-        inputs.specularColor *= sampleSlot(m, TEX_SPECULAR_COLOR, uv).rgb;
-    inputs.anisotropyStrength = m.sheenWeightAnisotropy.y;
-    inputs.anisotropyRotation = degrees(m.sheenWeightAnisotropy.z);
-    if (hasTexture(m, TEX_ANISOTROPY)) {
-        vec3 a = sampleSlot(m, TEX_ANISOTROPY, uv).rgb;
-        inputs.anisotropyDirection = a.rg * 2.0 - 1.0;
-        inputs.anisotropyStrength *= a.b;
-    }
-}
 
 void main() {
     // Texel centres; row 0 of the target (read back first) is v = 0.5 / height, the image's top
