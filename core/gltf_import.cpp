@@ -5,23 +5,15 @@
 // tabled in docs/interchange.md ("Import").
 #include "core/gltf_import.h"
 
-#include "core/atomic_file.h"
+#include "core/gltf_asset_files.h"
 #include "core/gltf_spec_gloss.h"
-#include "core/image.h"
 #include "core/import_text.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <cstring>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
-#include <set>
-#include <unistd.h>
 
 namespace velvet {
 namespace {
@@ -29,68 +21,22 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(2) << 30; // 2 GiB: a .glb, a .bin
+using gltf::at;
+using gltf::fail;
+using gltf::Failure;
+using gltf::formatValue;
+using gltf::wrapName;
+
 constexpr double kPi = 3.14159265358979323846;
-
-/// Thrown inside this file only; importGltfMaterial turns it into an ImportProblem.
-struct Failure {
-    ImportProblem problem;
-};
-[[noreturn]] void fail(std::string place, std::string message,
-                       ImportProblem::Kind kind = ImportProblem::Kind::Malformed) {
-    throw Failure{{kind, std::move(place), std::move(message)}};
-}
-
-std::string at(const std::string& place, std::string_view key) {
-    return place.empty() ? std::string(key) : place + "." + std::string(key);
-}
-std::string at(const std::string& place, size_t index) {
-    return place + "[" + std::to_string(index) + "]";
-}
-
-std::string extensionForMime(std::string_view mime) {
-    if (mime == "image/png")
-        return ".png";
-    if (mime == "image/jpeg")
-        return ".jpg";
-    return {};
-}
-
-const char* wrapName(int mode) {
-    switch (mode) {
-    case 33071:
-        return "CLAMP_TO_EDGE";
-    case 33648:
-        return "MIRRORED_REPEAT";
-    default:
-        return "REPEAT";
-    }
-}
 
 class Reader {
 public:
     Reader(fs::path file, fs::path imageFolder, std::string imageStem)
-        : m_file(std::move(file)), m_imageFolder(std::move(imageFolder)),
-          m_stem(std::move(imageStem)) {}
+        : m_files(std::move(file), std::move(imageFolder), std::move(imageStem)) {}
 
     /// Reads the container (glTF 2.0 section 4.4 for GLB) and the JSON, checks the asset.
     void load() {
-        std::string reason;
-        auto bytes = readFileWithLimit(m_file, kMaxFileBytes, &reason);
-        if (!bytes)
-            fail("", reason);
-        std::string text;
-        if (isGlb(*bytes)) {
-            GlbChunks chunks;
-            std::string place, message;
-            if (!splitGlb(*bytes, chunks, place, message))
-                fail(place, message);
-            text = std::move(chunks.json);
-            m_bin = std::move(chunks.bin);
-            m_hasBin = chunks.hasBin;
-        } else {
-            text = std::move(*bytes);
-        }
+        const std::string text = m_files.load();
         // A hostile file nested a million deep must not exhaust the stack: glTF needs a few
         // levels (extensions inside textureInfos inside materials), 64 is plenty.
         struct TooDeep {};
@@ -269,155 +215,63 @@ private:
 
     // ---- Values into the material (clamped to Velvet's ranges, said when clamped) -------------
     void setScalar(ParamId id, double v, const std::string& place) {
-        const ParamMeta& meta = paramMeta(id);
-        const float f = float(v);
-        if (f < meta.min || f > meta.max)
-            warn(place + ": " + formatValue(f) + " is outside Velvet's range of " +
-                 std::string(meta.id) + " [" + formatValue(meta.min) + ", " +
-                 formatValue(meta.max) + "]; clamped");
-        m_out->material.setScalar(id, f);
+        gltf::setScalar(m_out->material, id, v, place, m_warnings);
     }
     void setColor(ParamId id, glm::vec3 c, const std::string& place) {
-        const ParamMeta& meta = paramMeta(id);
-        for (int i = 0; i < 3; ++i)
-            if (c[i] < meta.min || c[i] > meta.max) {
-                warn(place + ": a component outside Velvet's range of " + std::string(meta.id) +
-                     " [" + formatValue(meta.min) + ", " + formatValue(meta.max) + "]; clamped");
-                break;
-            }
-        m_out->material.setColor(id, c);
-    }
-    static std::string formatValue(float v) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%g", double(v));
-        return text;
+        gltf::setColor(m_out->material, id, c, place, m_warnings);
     }
 
     // ---- Buffers and images -------------------------------------------------------------------
-    /// Every buffer is there and as long as it says (glTF 2.0 section 3.6.1), every buffer view
-    /// lies inside its buffer: a missing .bin is malformed, not a quiet empty mesh.
+    /// The buffers and views as gltf::AssetFiles checks them (glTF 2.0 sections 5.10, 5.11).
     void checkBuffers() {
         const Json& buffers = arrayOf(m_doc, "buffers", "buffers");
-        m_bufferSizes.assign(buffers.size(), 0);
         for (size_t i = 0; i < buffers.size(); ++i) {
             const std::string p = at("buffers", i);
             const Json& b = buffers[i];
-            const double length = number(b, "byteLength", p, 1, 1e15, -1);
-            if (length < 0)
+            gltf::BufferDesc buffer;
+            buffer.byteLength = number(b, "byteLength", p, 1, 1e15, -1);
+            if (buffer.byteLength < 0)
                 fail(at(p, "byteLength"), "required number is missing");
-            const Json* uri = find(b, "uri");
-            std::uintmax_t have = 0;
-            if (!uri) {
-                if (i != 0 || !m_hasBin)
-                    fail(p, "has no uri and is not the GLB's binary chunk");
-                have = m_bin.size();
-            } else if (!uri->is_string()) {
-                fail(at(p, "uri"), "expected a string");
-            } else if (uri->get<std::string>().rfind("data:", 0) == 0) {
-                have = dataUri(uri->get<std::string>(), at(p, "uri")).size();
-            } else {
-                const fs::path f = resolve(uri->get<std::string>());
-                std::error_code ec;
-                if (!fs::is_regular_file(f, ec))
-                    fail(at(p, "uri"), "missing buffer file " + f.string());
-                have = fs::file_size(f, ec);
+            if (const Json* uri = find(b, "uri")) {
+                if (!uri->is_string())
+                    fail(at(p, "uri"), "expected a string");
+                buffer.uri = uri->get<std::string>();
             }
-            if (have < std::uintmax_t(length))
-                fail(p, "holds " + std::to_string(have) + " bytes, byteLength says " +
-                            std::to_string(std::uintmax_t(length)));
-            m_bufferSizes[i] = std::uintmax_t(length);
+            m_files.addBuffer(i, std::move(buffer));
         }
         const Json& views = arrayOf(m_doc, "bufferViews", "bufferViews");
         for (size_t i = 0; i < views.size(); ++i) {
             const std::string p = at("bufferViews", i);
-            const size_t buffer = index(views[i], "buffer", p, "buffers");
-            const double offset = number(views[i], "byteOffset", p, 0, 1e15, 0);
-            const double length = number(views[i], "byteLength", p, 1, 1e15, -1);
-            if (length < 0)
+            gltf::ViewDesc view;
+            view.buffer = index(views[i], "buffer", p, "buffers");
+            view.byteOffset = number(views[i], "byteOffset", p, 0, 1e15, 0);
+            view.byteLength = number(views[i], "byteLength", p, 1, 1e15, -1);
+            if (view.byteLength < 0)
                 fail(at(p, "byteLength"), "required number is missing");
-            if (offset + length > double(m_bufferSizes[buffer]))
-                fail(p, "bytes " + std::to_string(std::uintmax_t(offset)) + " to " +
-                            std::to_string(std::uintmax_t(offset + length)) +
-                            " lie outside buffers[" + std::to_string(buffer) + "] (" +
-                            std::to_string(m_bufferSizes[buffer]) + " bytes)");
+            m_files.addView(i, view);
         }
     }
-    std::string dataUri(const std::string& uri, const std::string& place) const {
-        const size_t comma = uri.find(',');
-        if (comma == std::string::npos || uri.find(";base64") > comma)
-            fail(place, "a data: URI must be base64 (glTF 2.0 section 3.6.1.2)");
-        auto bytes = decodeBase64(std::string_view(uri).substr(comma + 1));
-        if (!bytes)
-            fail(place, "broken base64 in the data: URI");
-        return *bytes;
-    }
-    fs::path resolve(const std::string& uri) const {
-        return (m_file.parent_path() / percentDecode(uri)).lexically_normal();
-    }
-    std::string bufferBytes(size_t buffer) {
-        if (auto it = m_loaded.find(buffer); it != m_loaded.end())
-            return it->second;
-        const Json& b = m_doc["buffers"][buffer];
-        std::string bytes;
-        if (!b.contains("uri")) {
-            bytes = m_bin;
-        } else if (b["uri"].get<std::string>().rfind("data:", 0) == 0) {
-            bytes = dataUri(b["uri"].get<std::string>(), at(at("buffers", buffer), "uri"));
-        } else {
-            std::string reason;
-            auto read =
-                readFileWithLimit(resolve(b["uri"].get<std::string>()), kMaxFileBytes, &reason);
-            if (!read)
-                fail(at(at("buffers", buffer), "uri"), reason);
-            bytes = std::move(*read);
-        }
-        return m_loaded[buffer] = std::move(bytes);
-    }
-    /// The file a slot reads for images[@p i]: an external file as it is, an embedded image as
-    /// a file planned in the image folder (written once, whatever the number of slots).
-    std::string imageFile(size_t i) {
-        if (auto it = m_imageFiles.find(i); it != m_imageFiles.end())
-            return it->second;
+    /// images[@p i] as gltf::AssetFiles reads it.
+    gltf::ImageDesc imageDesc(size_t i) const {
         const std::string p = at("images", i);
         const Json& image = m_doc["images"][i];
-        const Json* uri = find(image, "uri");
-        std::string bytes, ext;
-        if (uri && uri->is_string() && uri->get<std::string>().rfind("data:", 0) != 0) {
-            const fs::path f = resolve(uri->get<std::string>());
-            std::error_code ec;
-            if (!fs::is_regular_file(f, ec))
-                fail(at(p, "uri"), "missing image file " + f.string());
-            return m_imageFiles[i] = f.string();
-        }
-        if (uri && uri->is_string()) {
-            const std::string u = uri->get<std::string>();
-            bytes = dataUri(u, at(p, "uri"));
-            ext = extensionForMime(u.substr(5, u.find(';') - 5));
+        gltf::ImageDesc desc;
+        if (const Json* uri = find(image, "uri"); uri && uri->is_string()) {
+            desc.uri = uri->get<std::string>();
         } else if (find(image, "bufferView")) {
-            const size_t view = index(image, "bufferView", p, "bufferViews");
-            const Json& v = m_doc["bufferViews"][view];
-            const std::string buffer = bufferBytes(v["buffer"].get<size_t>());
-            bytes = buffer.substr(v.value("byteOffset", size_t(0)), v["byteLength"].get<size_t>());
-            const Json* mime = find(image, "mimeType");
-            if (!mime || !mime->is_string())
-                fail(at(p, "mimeType"), "required with a bufferView (glTF 2.0 section 5.18)");
-            ext = extensionForMime(mime->get<std::string>());
-        } else {
-            fail(p, "has neither uri nor bufferView");
+            desc.bufferView = index(image, "bufferView", p, "bufferViews");
+            if (const Json* mime = find(image, "mimeType"); mime && mime->is_string())
+                desc.mimeType = mime->get<std::string>();
         }
-        if (ext.empty())
-            fail(p, "an image type glTF 2.0 does not define (image/png and image/jpeg only)");
-        // STEM_<image name or index>.<ext>: a sanitised stem, never a path from the file.
-        const std::string label =
-            image.contains("name") && image["name"].is_string()
-                ? sanitizeFileStem(image["name"].get<std::string>(), "image" + std::to_string(i))
-                : "image" + std::to_string(i);
-        std::string name = m_stem + "_" + label + ext;
-        for (int n = 2; m_usedNames.count(name); ++n)
-            name = m_stem + "_" + label + "_" + std::to_string(n) + ext;
-        m_usedNames.insert(name);
-        m_out->images.push_back({name, std::move(bytes)});
-        return m_imageFiles[i] = (m_imageFolder / name).lexically_normal().string();
+        if (image.contains("name") && image["name"].is_string())
+            desc.name = image["name"].get<std::string>();
+        return desc;
+    }
+    /// The file a slot reads for images[@p i] (embedded ones planned in the image folder).
+    std::string imageFile(size_t i) {
+        if (const std::string* planned = m_files.plannedImageFile(i))
+            return *planned;
+        return m_files.imageFile(i, imageDesc(i), m_out->images);
     }
 
     /// A textureInfo (section 5.22) into @p slot: texture, image, sampler, texCoord and
@@ -548,19 +402,9 @@ private:
                  formatValue(m_baseAlpha) + " is not mapped (Velvet has no opacity factor)");
     }
 
-    /// Whether the base colour image has an alpha channel: an embedded PNG's colour type (grey
-    /// or RGB with alpha, PNG specification 11.2.2), else the file's header.
     bool baseTextureHasAlpha() const {
-        const std::string& file = m_out->material.texture(TextureSlot::BaseColor).file;
-        if (file.empty())
-            return false;
-        for (const ExportFile& f : m_out->images)
-            if ((m_imageFolder / f.name).lexically_normal().string() == file)
-                return f.bytes.size() > 25 && f.bytes.compare(1, 3, "PNG") == 0 &&
-                       (f.bytes[25] == 4 || f.bytes[25] == 6);
-        ImageInfo info;
-        std::string error;
-        return readImageInfo(file, info, &error) && (info.channels == 2 || info.channels == 4);
+        return m_files.hasAlpha(m_out->material.texture(TextureSlot::BaseColor).file,
+                                m_out->images);
     }
 
     void readSpecGloss(const Json& sg, const std::string& p, bool hasPbr) {
@@ -606,7 +450,6 @@ private:
             loadImage(*st, at(p, "specularGlossinessTexture"), specGloss);
         Image base, mr;
         specGlossImages(diffuse, specGloss, f, alpha, base, mr);
-        std::string png, error;
         struct Converted {
             const Image* image;
             const char* label;
@@ -615,12 +458,8 @@ private:
         const Converted converted[] = {{&base, "baseColor", TextureSlot::BaseColor},
                                        {&mr, "metallicRoughness", TextureSlot::MetallicRoughness}};
         for (const auto& [image, label, slot] : converted) {
-            if (!encodeImage(*image, ".png", PixelFormat::UInt8, png, &error))
-                fail(p, "cannot encode the converted " + std::string(label) + " image: " + error);
-            const std::string name = m_stem + "_" + label + "_converted.png";
-            m_out->images.push_back({name, png});
             TextureRef ref;
-            ref.file = (m_imageFolder / name).lexically_normal().string();
+            ref.file = m_files.addConvertedImage(*image, label, p, m_out->images);
             mat.setTexture(slot, ref);
         }
         mat.setColor(ParamId::BaseColor, glm::vec3(1.0f));
@@ -634,27 +473,7 @@ private:
         const size_t t = index(info, "index", place, "textures");
         const Json& tex = m_doc["textures"][t];
         const size_t i = index(tex, "source", at("textures", t), "images");
-        const size_t before = m_out->images.size();
-        const std::string file = imageFile(i);
-        std::string error;
-        if (m_out->images.size() > before) { // embedded: decode from a private temporary
-            const ExportFile embedded = m_out->images.back();
-            m_out->images.pop_back();
-            m_imageFiles.erase(i);
-            m_usedNames.erase(embedded.name);
-            const fs::path tmp = fs::temp_directory_path() /
-                                 ("velvet-import-" + std::to_string(::getpid()) + "-" +
-                                  std::to_string(i) + fs::path(embedded.name).extension().string());
-            if (!writeFileAtomically(tmp, embedded.bytes, &error))
-                fail(place, error);
-            const bool ok = readImage(tmp, out, &error);
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            if (!ok)
-                fail(at("images", i), "cannot be decoded: " + error);
-        } else if (!readImage(file, out, &error)) {
-            fail(at("images", i), "cannot be decoded: " + error);
-        }
+        m_files.decodeImage(i, imageDesc(i), place, m_out->images, out);
         if (number(info, "texCoord", place, 0, 1e6, 0) != 0 || find(info, "extensions"))
             warn(place + ": texCoord and extensions are not read for converted textures");
     }
@@ -746,15 +565,8 @@ private:
         }
     }
 
-    fs::path m_file, m_imageFolder;
-    std::string m_stem;
+    gltf::AssetFiles m_files;
     Json m_doc;
-    std::string m_bin;
-    bool m_hasBin = false;
-    std::vector<std::uintmax_t> m_bufferSizes;
-    std::map<size_t, std::string> m_loaded;
-    std::map<size_t, std::string> m_imageFiles;
-    std::set<std::string> m_usedNames;
     ImportedMaterial* m_out = nullptr;
     float m_baseAlpha = 1.0f;
 

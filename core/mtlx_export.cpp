@@ -9,6 +9,7 @@
 #include "core/gltf_textures.h"
 #include "core/mapping_warnings.h"
 #include "core/mtlx_shader_inputs.h"
+#include "core/mtlx_values.h"
 
 #include <array>
 #include <charconv>
@@ -166,29 +167,31 @@ private:
             {"file", "filename", imageFile(index), {}, colour ? "srgb_texture" : ""});
         if (use.transformed) {
             // The image node's own placement, uv * uvtiling + uvoffset in MaterialX's UV space
-            // (v up from the bottom row, MaterialX Specification "Texture nodes"); Velvet's v
-            // runs down from the top, so v_mx = 1 - v and the offset becomes
-            // (offset.u, 1 - scale.v - offset.v). A rotation has no image input (place2d's
-            // sense differs between MaterialX versions): said, not written.
+            // (v up from the bottom row, MaterialX Specification "Texture nodes"), and for a
+            // rotation a place2d on its texcoord (core/mtlx_values.h derives both).
+            const mtlx::MtlxPlacement p =
+                mtlx::mtlxPlacement(use.scale, use.offset, -glm::degrees(use.rotation));
+            if (p.place) {
+                MxNode place{"place2d", "place2d_" + name, "vector2", {}};
+                place.inputs.push_back({"scale",
+                                        "vector2",
+                                        num(p.place->scale.x) + ", " + num(p.place->scale.y),
+                                        {},
+                                        {}});
+                place.inputs.push_back({"rotate", "float", num(p.place->rotate), {}, {}});
+                m_nodes.push_back(place);
+                n.inputs.push_back({"texcoord", "vector2", {}, place.name, {}});
+            } else {
+                n.inputs.push_back(
+                    {"uvtiling", "vector2", num(p.tiling.x) + ", " + num(p.tiling.y), {}, {}});
+            }
             n.inputs.push_back(
-                {"uvtiling", "vector2", num(use.scale.x) + ", " + num(use.scale.y), {}, {}});
-            n.inputs.push_back({"uvoffset",
-                                "vector2",
-                                num(use.offset.x) + ", " + num(1.0f - use.scale.y - use.offset.y),
-                                {},
-                                {}});
-            if (use.rotation != 0.0f)
-                m_rotated.insert(std::string(textureSlotMeta(slot).id));
+                {"uvoffset", "vector2", num(p.offset.x) + ", " + num(p.offset.y), {}, {}});
         }
         m_nodes.push_back(n);
         return m_images[key] = n.name;
     }
 
-public:
-    /// Slots whose UV rotation was not written (one warning each).
-    const std::set<std::string>& rotatedSlots() const { return m_rotated; }
-
-private:
     static std::string mxUvKey(const GltfTextureUse& u) {
         return "/" + num(u.scale.x) + "," + num(u.scale.y) + "," + num(u.offset.x) + "," +
                num(u.offset.y) + "," + num(u.rotation);
@@ -219,7 +222,6 @@ private:
     std::vector<MxNode> m_nodes;
     std::map<std::string, std::string> m_images;
     std::set<int> m_used;
-    std::set<std::string> m_rotated;
 };
 
 /// A MaterialX name ([A-Za-z_][A-Za-z0-9_]*, MaterialX Specification "Names") from a stem.
@@ -391,10 +393,6 @@ bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader s
         }
     }
 
-    for (const std::string& slot : b.rotatedSlots())
-        out.warnings.push_back("textures." + slot +
-                               ": the UV rotation is not exported to MaterialX (the image node "
-                               "has tiling and offset only); tiling and offset are");
     std::string xml = "<?xml version=\"1.0\"?>\n"
                       "<materialx version=\"1.39\" colorspace=\"lin_rec709\">\n";
     xml += "  <!-- Exported by Velvet; every mapping: docs/interchange.md -->\n";

@@ -9,16 +9,17 @@
 #include "core/graph/graph.h"
 #include "core/import_text.h"
 #include "core/mtlx_shader_inputs.h"
+#include "core/mtlx_values.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <glm/trigonometric.hpp>
 #include <map>
 #include <optional>
 #include <pugixml.hpp>
 #include <set>
-#include <sstream>
 
 namespace velvet {
 namespace {
@@ -37,14 +38,7 @@ using mtlx::Target;
 using mtlx::targetsOf;
 using mtlx::velvetColorSpace;
 
-std::vector<float> numbers(const std::string& text) {
-    std::vector<float> out;
-    std::string item;
-    std::stringstream in(text);
-    while (std::getline(in, item, ','))
-        out.push_back(std::stof(item));
-    return out;
-}
+using mtlx::parseNumbers;
 
 class Reader {
 public:
@@ -137,26 +131,9 @@ public:
             }
             readInput(in, label, t->second);
         }
-        if (mxAniso >= 0.0f) // needs the roughness (mtlx_shader_inputs.h)
-            m.setScalar(P::AnisotropyStrength,
-                        mtlx::mtlxAnisotropyToStrength(mxAniso, m.scalar(P::Roughness)));
-        if (baseWeight != 1.0f) {
-            if (m_graph && m_driven.count(P::BaseColor))
-                m_warnings.push_back(m_shader + ".base = " + std::to_string(baseWeight) +
-                                     " not applied to the graph-driven base colour");
-            else
-                m.setColor(P::BaseColor, m.color(P::BaseColor) * baseWeight);
-        }
-        if (m_shader == "gltf_pbr") { // sheen_color carries weight x colour, as glTF's
-            const glm::vec3 c = m.color(P::SheenColor);
-            const float w = std::max({c.r, c.g, c.b});
-            if (!m.texture(S::SheenColor).empty() || m_driven.count(P::SheenColor))
-                m.setScalar(P::SheenWeight, 1.0f);
-            else {
-                m.setScalar(P::SheenWeight, w);
-                m.setColor(P::SheenColor, w > 0.0f ? c / w : glm::vec3(1.0f));
-            }
-        }
+        mtlx::finishMaterial(m, m_shader, baseWeight, mxAniso,
+                             m_graph && m_driven.count(P::BaseColor),
+                             m_driven.count(P::SheenColor) > 0, m_warnings);
         if (m_graph)
             m.graph = SharedGraph(std::make_shared<const Graph>(std::move(*m_graph)));
         out.warnings = m_warnings;
@@ -250,47 +227,20 @@ private:
         return value(in, 1, label)[0];
     }
     bool isDefaultAlpha(pugi::xml_node in, const std::string& name) {
-        if (in.attribute("nodename") || in.attribute("nodegraph"))
-            return false; // a cut-out from the base colour image: see the warning
-        const std::string v = in.attribute("value").value();
-        if (name == "alpha_mode")
-            return v == "0";
-        if (name == "alpha_cutoff")
-            return true; // with alpha_mode 0 it does nothing
-        return v == "1" || v == "1, 1, 1" || v == "1,1,1";
+        return mtlx::isDefaultAlpha(name, in.attribute("value").value(),
+                                    in.attribute("nodename") || in.attribute("nodegraph"));
     }
     /// The value of a constant input: @p count numbers (a scalar is splat for colours).
     std::vector<float> value(pugi::xml_node in, size_t count, const std::string& label) {
         const std::string text = in.attribute("value").value();
         std::vector<float> v;
-        try {
-            v = numbers(text);
-        } catch (const std::exception&) {
-            fail(in, label + ": value \"" + text + "\" is not a number list");
-        }
-        for (float f : v)
-            if (!std::isfinite(f))
-                fail(in, label + ": value \"" + text + "\" is not finite");
-        if (v.size() == 1 && count == 3)
-            v.assign(3, v[0]);
-        if (v.size() != count)
-            fail(in, label + ": value \"" + text + "\" has " + std::to_string(v.size()) +
-                         " components, expected " + std::to_string(count));
+        if (const std::string problem = mtlx::constantValue(text, count, v); !problem.empty())
+            fail(in, label + ": value \"" + text + "\" " + problem);
         return v;
     }
     void set(ParamId id, std::vector<float> v, pugi::xml_node in, const std::string& label) {
-        const ParamMeta& meta = paramMeta(id);
-        bool clamped = false;
-        for (float f : v)
-            clamped |= f < meta.min || f > meta.max;
-        if (clamped)
-            m_warnings.push_back(where(in) + label + " = \"" + in.attribute("value").value() +
-                                 "\" lies outside Velvet's range of " + std::string(meta.id) +
-                                 "; clamped");
-        if (meta.type == ParamType::Color)
-            m_material->setColor(id, glm::vec3(v[0], v[1], v[2]));
-        else
-            m_material->setScalar(id, v[0]);
+        mtlx::setParam(*m_material, id, v, where(in) + label, in.attribute("value").value(),
+                       m_warnings);
     }
 
     /// One shader input: a constant, the export's patterns into a texture slot (image,
@@ -383,8 +333,70 @@ private:
             m_driven.insert(t.param);
     }
 
+    /// The UV transform of image node @p image: its uvtiling / uvoffset and a place2d on its
+    /// texcoord (@p placed: one was read), the inverse of the export's (core/mtlx_values.h).
+    /// @p graph: connected tiling / offset are skipped (they are graph inputs), else refused.
+    UvTransform placement(pugi::xml_node image, pugi::xml_node scope, const std::string& label,
+                          bool graph, bool& placed) {
+        mtlx::MtlxPlacement p;
+        if (pugi::xml_node t = findInput(image, "uvtiling"); t && !(graph && resolve(t, scope))) {
+            const std::vector<float> v = value(t, 2, label + " uvtiling");
+            p.tiling = {v[0], v[1]};
+        }
+        if (pugi::xml_node o = findInput(image, "uvoffset"); o && !(graph && resolve(o, scope))) {
+            const std::vector<float> v = value(o, 2, label + " uvoffset");
+            p.offset = {v[0], v[1]};
+        }
+        placed = false;
+        if (pugi::xml_node tc = findInput(image, "texcoord"))
+            if (pugi::xml_node up = resolve(tc, scope); up && std::string(up.name()) == "place2d") {
+                p.place = place2d(up, m_scopeOf[up.offset_debug()], label);
+                placed = true;
+            }
+        UvTransform uv;
+        if (!mtlx::velvetPlacement(p, uv))
+            m_warnings.push_back(where(image) + label +
+                                 ": the placement's shear (a non-uniform scale after a rotation) "
+                                 "is not mapped; the nearest scale and rotation are used");
+        return uv;
+    }
+    /// A place2d node's constant inputs; a connected one, or a texcoord other than the mesh's
+    /// first UV set, is said and left at its default.
+    mtlx::Place2d place2d(pugi::xml_node n, pugi::xml_node scope, const std::string& label) {
+        mtlx::Place2d p;
+        for (pugi::xml_node in : n.children("input")) {
+            const std::string name = in.attribute("name").value();
+            const pugi::xml_node up = resolve(in, scope);
+            if (name == "texcoord" &&
+                (!up || (std::string(up.name()) == "texcoord" &&
+                         std::atoi(findInput(up, "index").attribute("value").value()) == 0)))
+                continue;
+            const bool known = name == "pivot" || name == "scale" || name == "offset" ||
+                               name == "rotate" || name == "operationorder";
+            if (up || !known) {
+                m_warnings.push_back(where(in) + label + ": place2d input \"" + name +
+                                     "\" not mapped" + (known ? " (connected)" : ""));
+                continue;
+            }
+            const std::vector<float> v =
+                value(in, name == "rotate" || name == "operationorder" ? 1 : 2,
+                      label + " place2d " + name);
+            if (name == "pivot")
+                p.pivot = {v[0], v[1]};
+            else if (name == "scale")
+                p.scale = {v[0], v[1]};
+            else if (name == "offset")
+                p.offset = {v[0], v[1]};
+            else if (name == "rotate")
+                p.rotate = v[0];
+            else
+                p.operationOrder = int(v[0]);
+        }
+        return p;
+    }
+
     /// An `image` node into a texture slot: file (fileprefix, relative to the .mtlx), its
-    /// colour space, uvtiling / uvoffset (the inverse of the export's placement).
+    /// colour space, its placement (placement()).
     void fillSlot(pugi::xml_node image, TextureSlot slot, const std::string& label) {
         TextureRef ref;
         ref.file = imageFile(image, label);
@@ -392,30 +404,16 @@ private:
         std::string cs = file.attribute("colorspace").value();
         if (cs.empty())
             cs = image.attribute("colorspace").value();
-        const std::string type = image.attribute("type").value();
-        const bool colourType = type.rfind("color", 0) == 0;
-        const bool hdrFile =
-            fs::path(ref.file).extension() == ".exr" || fs::path(ref.file).extension() == ".hdr";
-        if (colourType && !cs.empty()) {
-            const std::string v = velvetColorSpace(cs);
-            // The slot's own default already is sRGB texture for colour slots (PNG, JPEG).
-            if (!(v == "sRGB texture" && textureSlotMeta(slot).isColor && !hdrFile))
-                ref.colorSpace = v;
-        } else if (!colourType && textureSlotMeta(slot).isColor) {
-            ref.colorSpace = "Raw"; // MaterialX converts colour types only
-        }
-        if (pugi::xml_node tiling = findInput(image, "uvtiling"))
-            ref.uv.scale = glm::vec2(value(tiling, 2, label + " uvtiling")[0],
-                                     value(tiling, 2, label + " uvtiling")[1]);
-        if (pugi::xml_node offset = findInput(image, "uvoffset")) {
-            const std::vector<float> o = value(offset, 2, label + " uvoffset");
-            ref.uv.offset = glm::vec2(o[0], 1.0f - ref.uv.scale.y - o[1]);
-        } else if (ref.uv.scale.y != 1.0f) {
-            ref.uv.offset.y = 1.0f - ref.uv.scale.y;
-        }
+        const bool colourType = std::string(image.attribute("type").value()).rfind("color", 0) == 0;
+        if (auto v =
+                mtlx::slotColorSpace(cs, colourType, slot, fs::path(ref.file).extension().string()))
+            ref.colorSpace = *v;
+        bool placed = false;
+        ref.uv = placement(image, m_scopeOf[image.offset_debug()], label, false, placed);
         for (pugi::xml_node i : image.children("input")) {
             const std::string n = i.attribute("name").value();
-            if (n != "file" && n != "uvtiling" && n != "uvoffset" && n != "default")
+            if (n != "file" && n != "uvtiling" && n != "uvoffset" && n != "default" &&
+                !(placed && n == "texcoord"))
                 m_warnings.push_back(where(i) + label + ": image input \"" + n + "\" not mapped");
         }
         m_material->setTexture(slot, std::move(ref));
@@ -463,29 +461,6 @@ private:
         } leave{m_visiting, key};
         const std::string c = n.name();
         const std::string name = n.attribute("name").value();
-        static const std::map<std::string, std::string> direct{{"multiply", "math.multiply"},
-                                                               {"add", "math.add"},
-                                                               {"mix", "math.mix"},
-                                                               {"clamp", "math.clamp"},
-                                                               {"power", "math.power"},
-                                                               {"normalmap", "normal.map"},
-                                                               {"combine3", "channel.combine"},
-                                                               {"separate3", "channel.split"},
-                                                               {"texcoord", "input.uv"},
-                                                               {"image", "texture.image"},
-                                                               {"tiledimage", "texture.image"}};
-        // MaterialX input names -> the Velvet node's.
-        static const std::map<std::string, std::map<std::string, std::string>> ports{
-            {"multiply", {{"in1", "a"}, {"in2", "b"}}},
-            {"add", {{"in1", "a"}, {"in2", "b"}}},
-            {"mix", {{"bg", "a"}, {"fg", "b"}, {"mix", "factor"}}},
-            {"clamp", {{"in", "value"}, {"low", "min"}, {"high", "max"}}},
-            {"power", {{"in1", "value"}, {"in2", "exponent"}}},
-            {"normalmap", {{"in", "color"}, {"scale", "strength"}}},
-            {"combine3", {{"in1", "r"}, {"in2", "g"}, {"in3", "b"}}},
-            {"separate3", {{"in", "color"}}},
-            {"image", {{"texcoord", "uv"}}},
-            {"tiledimage", {{"texcoord", "uv"}}}};
         const glm::vec2 pos(800.0f - 260.0f * float(depth), 160.0f * float(m_built.size()));
         if (c == "constant") {
             pugi::xml_node v = findInput(n, "value");
@@ -519,14 +494,14 @@ private:
             m_graph->connect({up, graph::PortIndex(upOut), split, 0});
             return m_built[key] = {split, std::clamp(index, 0, 2)};
         }
-        const auto d = direct.find(c);
-        if (d == direct.end()) {
+        const mtlx::GraphCounterpart* counterpart = mtlx::graphCounterpart(c);
+        if (!counterpart) {
             m_warnings.push_back(where(n) + label + ": node <" + c + " name=\"" + name +
                                  "\"> has no Velvet graph counterpart; not mapped (the "
                                  "parameter's value applies)");
             return m_built[key] = {graph::kInvalidNodeId, 0};
         }
-        const NodeId id = m_graph->addNode(d->second, pos).node;
+        const NodeId id = m_graph->addNode(counterpart->velvetType, pos).node;
         const graph::NodeType& type = *m_graph->node(id)->type;
         if (type.samplesTexture) {
             m_graph->setSetting(id, "file", imageFile(n, label));
@@ -537,27 +512,23 @@ private:
                                 colourType ? (cs.empty() ? std::string() : velvetColorSpace(cs))
                                            : std::string("Raw"));
         }
+        bool placed = false;
         if (type.samplesTexture) { // placement as for slots: v flipped (fillSlot)
-            glm::vec2 scale(1.0f), offset(0.0f);
-            if (pugi::xml_node t = findInput(n, "uvtiling"); t && !resolve(t, scope)) {
-                const std::vector<float> v = value(t, 2, label + " uvtiling");
-                scale = {v[0], v[1]};
-            }
-            offset.y = 1.0f - scale.y;
-            if (pugi::xml_node o = findInput(n, "uvoffset"); o && !resolve(o, scope)) {
-                const std::vector<float> v = value(o, 2, label + " uvoffset");
-                offset = {v[0], 1.0f - scale.y - v[1]};
-            }
+            const UvTransform uv = placement(n, scope, label, true, placed);
             m_graph->setInputValue(id, graph::PortIndex(type.inputIndex("scale")),
-                                   glm::vec4(scale, 0.0f, 0.0f));
+                                   glm::vec4(uv.scale, 0.0f, 0.0f));
             m_graph->setInputValue(id, graph::PortIndex(type.inputIndex("offset")),
-                                   glm::vec4(offset, 0.0f, 0.0f));
+                                   glm::vec4(uv.offset, 0.0f, 0.0f));
+            if (uv.rotation != 0.0f)
+                m_graph->setInputValue(id, graph::PortIndex(type.inputIndex("rotation")),
+                                       glm::vec4(uv.rotation, 0.0f, 0.0f, 0.0f));
         }
-        const auto portMap = ports.count(c) ? ports.at(c) : std::map<std::string, std::string>{};
+        const std::map<std::string, std::string>& portMap = counterpart->ports;
         for (pugi::xml_node in : n.children("input")) {
             const std::string mxName = in.attribute("name").value();
-            if (type.samplesTexture && (mxName == "file" || mxName == "uvtiling" ||
-                                        mxName == "uvoffset" || mxName == "default"))
+            if (type.samplesTexture &&
+                (mxName == "file" || mxName == "uvtiling" || mxName == "uvoffset" ||
+                 mxName == "default" || (placed && mxName == "texcoord")))
                 continue;
             const auto mapped = portMap.find(mxName);
             const int port = type.inputIndex(mapped != portMap.end() ? mapped->second : mxName);
@@ -577,7 +548,7 @@ private:
             }
             std::vector<float> v;
             try {
-                v = numbers(in.attribute("value").value());
+                v = parseNumbers(in.attribute("value").value());
             } catch (const std::exception&) {
                 fail(in, label + ": value \"" + in.attribute("value").value() +
                              "\" is not a number list");

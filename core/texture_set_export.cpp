@@ -2,6 +2,7 @@
 
 #include "core/channel_packing.h"
 #include "core/color_management.h"
+#include "core/texture_set_lobes.h"
 
 #include <algorithm>
 #include <array>
@@ -184,6 +185,9 @@ bool buildTextureSet(const MaterialMaps& maps, std::string_view base, std::strin
     if (!sameSize(maps.baseColor, maps.normal) || !sameSize(maps.baseColor, maps.orm) ||
         !sameSize(maps.baseColor, maps.emission))
         return fail("the baked maps differ in size");
+    for (const Image* lobe : {&maps.coat, &maps.sheen, &maps.specular, &maps.anisotropy})
+        if (!lobe->empty() && !sameSize(maps.baseColor, *lobe))
+            return fail("the baked lobe maps differ in size from the base maps");
     const int w = maps.baseColor.width, h = maps.baseColor.height;
     const size_t count = size_t(w) * size_t(h);
     const bool exr = o.fileType == TextureFileType::Exr;
@@ -200,7 +204,8 @@ bool buildTextureSet(const MaterialMaps& maps, std::string_view base, std::strin
     // 8/16-bit integers hold [0, 1]: emission is divided by its maximum (the manifest's scale).
     const float emissionScale = exr ? 1.0f : std::max(1.0f, emissionMax);
     const NormalConvention nc = o.normal.value_or(info(o.target).normal);
-    const std::vector<TextureSetFile> plan = planTextureSet(o, base, hasAlpha, hasEmission);
+    std::vector<TextureSetFile> plan = planTextureSet(o, base, hasAlpha, hasEmission);
+    const std::vector<TextureSetFile> lobes = planLobeMaps(o, base, lobePresence(maps));
 
     // Colour maps: sRGB-encoded where the file holds display-style integers, linear in EXR.
     auto encodeColour = [&](float v) { return exr ? v : linearToSrgb(std::clamp(v, 0.0f, 1.0f)); };
@@ -251,6 +256,14 @@ bool buildTextureSet(const MaterialMaps& maps, std::string_view base, std::strin
         images.push_back(std::move(emission));
     }
 
+    for (const TextureSetFile& lobe : lobes) {
+        Image packedLobe;
+        if (!packLobeMap(lobe, maps, exr, packedLobe, &why))
+            return fail(why);
+        images.push_back(std::move(packedLobe));
+        plan.push_back(lobe);
+    }
+
     const std::string ext = "." + std::string(textureFileTypeId(o.fileType));
     Json files = Json::array();
     for (size_t i = 0; i < plan.size(); ++i) {
@@ -272,6 +285,9 @@ bool buildTextureSet(const MaterialMaps& maps, std::string_view base, std::strin
             entry["convention"] = std::string(normalConventionId(nc));
         if (plan[i].role == "emissive")
             entry["scale"] = emissionScale;
+        if (plan[i].role == "anisotropy" &&
+            plan[i].channels[0].rfind("anisotropyDirection", 0) == 0)
+            entry["rotation"] = 0; // the direction already holds the material's rotation
         files.push_back(std::move(entry));
     }
     Json manifest;

@@ -21,6 +21,11 @@ struct MaterialMaps {
     Image normal;    ///< RGB: unit tangent-space normal, OpenGL convention (+Y up), in [-1, 1]
     Image orm;       ///< RGB: occlusion (strength applied), perceptual roughness, metallic
     Image emission;  ///< RGB: scene-linear emission (colour x strength), may exceed 1
+    // The lobes (core/texture_set_lobes.h); empty: not baked (the set then has no lobe maps).
+    Image coat;       ///< RG: clearcoat weight, clearcoat roughness
+    Image sheen;      ///< RGBA: sheen weight x colour (scene-linear), sheen roughness
+    Image specular;   ///< RGBA: specular colour (scene-linear), specular weight
+    Image anisotropy; ///< RGB: unit tangent-space direction (rotation applied), strength
 };
 
 enum class TextureSetTarget { Unreal, UnityHdrp, Godot, Gltf, Count };
@@ -56,9 +61,9 @@ std::string checkTextureSetOptions(const TextureSetOptions& options);
 
 /// One file of a set: its name, what it holds and how, as the manifest lists it.
 struct TextureSetFile {
-    std::string name; ///< "T_Silk_ORM.png"
-    std::string
-        role; ///< "baseColor", "normal", "occlusionRoughnessMetallic", "maskMap", "emissive"
+    std::string name;        ///< "T_Silk_ORM.png"
+    std::string role;        ///< "baseColor", "normal", "occlusionRoughnessMetallic", "maskMap",
+                             ///< "emissive", "clearcoat", "sheen", "specular", "anisotropy"
     std::string colorSpace;  ///< "srgb" (colour, sRGB-encoded) or "linear" (data, or colour in EXR)
     std::string channels[4]; ///< what R, G, B, A hold ("" for a channel the file does not have)
 };
@@ -74,7 +79,9 @@ std::vector<TextureSetFile> planTextureSet(const TextureSetOptions& options, std
 /// are n * 0.5 + 0.5 with G flipped for DirectX; base colour carries an alpha channel only when
 /// some texel's alpha is below 1 (the manifest then says alphaMode "mask", cutoff 0.5, Velvet's
 /// cut-out). Emission above 1 is scaled into [0, 1] in PNG and TGA, the factor written in the
-/// manifest ("scale"). An emissive map is written only when some texel emits. @p materialName goes
+/// manifest ("scale"). An emissive map is written only when some texel emits. Then the lobe maps
+/// the target reads (core/texture_set_lobes.h: clearcoat, sheen, specular, anisotropy), each
+/// only when the material has that lobe. @p materialName goes
 /// into the manifest. False + @p error when the maps are missing or differ in size or an image
 /// cannot be encoded.
 bool buildTextureSet(const MaterialMaps& maps, std::string_view base, std::string_view materialName,

@@ -3,6 +3,7 @@
 #include "core/graph/graph_compiler.h"
 #include "core/mapping_warnings.h"
 #include "core/texture_cache.h"
+#include "core/texture_set_lobes.h"
 #include "render/gl_util.h"
 #include "render/graph_texture.h"
 #include "render/headless_context.h"
@@ -17,7 +18,7 @@
 namespace velvet::render {
 namespace {
 
-constexpr int kTargets = 4; ///< material_bake.frag's outputs
+constexpr int kTargets = 8; ///< material_bake.frag's outputs (GL 4.5 guarantees 8 draw buffers)
 
 /// The bake's GL objects, released with the context still current.
 struct BakeObjects {
@@ -54,8 +55,15 @@ bool bakeWithContext(const Material& material, int width, int height, MaterialMa
     // The material's slots and values exactly as the renderer uploads them.
     TextureSet slots;
     slots.setMaterial(material, problems);
-    // The bake draws the maps the base reads (material_bake.frag); the lobes stay per material.
-    const GpuMaterial record = packMaterialRecord(material, slots, {}, /*compactGBuffer=*/true);
+    GpuMaterial record = packMaterialRecord(material, slots, {}, /*compactGBuffer=*/true);
+    // The bake samples every lobe slot per texel (material_bake.frag's readLobeInputs), so the
+    // lobe factors are the parameters alone, not times the texture means the compact layout
+    // folds in for the lighting pass.
+    const GpuMaterial plain = packMaterial(material);
+    record.specularColorWeight = plain.specularColorWeight;
+    record.sheenColorRoughness = plain.sheenColorRoughness;
+    record.clearcoat = plain.clearcoat;
+    record.sheenWeightAnisotropy = plain.sheenWeightAnisotropy;
     MaterialTable table;
     table.upload({record});
 
@@ -140,6 +148,10 @@ bool bakeWithContext(const Material& material, int width, int height, MaterialMa
     out.normal = readTarget(gl.colour[1], width, height, 3);
     out.orm = readTarget(gl.colour[2], width, height, 3);
     out.emission = readTarget(gl.colour[3], width, height, 3);
+    out.coat = readTarget(gl.colour[4], width, height, 2);
+    out.sheen = readTarget(gl.colour[5], width, height, 4);
+    out.specular = readTarget(gl.colour[6], width, height, 4);
+    out.anisotropy = readTarget(gl.colour[7], width, height, 3);
 
     slots.unbind();
     for (const graph::SamplerBinding& b : compiled.samplers)
@@ -153,22 +165,15 @@ bool bakeWithContext(const Material& material, int width, int height, MaterialMa
     return true;
 }
 
-/// What an engine texture set (base colour, normal, occlusion-roughness-metallic, emissive) has
-/// no map for, one line each, when the material uses it.
-std::vector<std::string> unmappedInSet(const Material& m, std::string_view target) {
-    std::vector<std::string> w;
-    const std::string to = "the " + std::string(target) + " texture set";
+/// What an engine texture set has no map for, one line each, when the material uses it: the
+/// lobes the engine has no input for (core/texture_set_lobes.h), the IOR, the BRDF term choices.
+std::vector<std::string> unmappedInSet(const Material& m, TextureSetTarget target) {
+    std::vector<std::string> w = lobeGaps(m, target);
+    const std::string to = "the " + std::string(textureSetTargetId(target)) + " texture set";
     auto add = [&](ParamId id, const std::string& what) {
         w.push_back(std::string(paramMeta(id).id) + ": " + what + "; " + to +
                     " has no map for it (set it in the engine's material)");
     };
-    if (m.scalar(ParamId::ClearcoatWeight) > 0.0f)
-        add(ParamId::ClearcoatWeight, "a clearcoat");
-    if (m.scalar(ParamId::SheenWeight) > 0.0f)
-        add(ParamId::SheenWeight, "a sheen");
-    if (m.scalar(ParamId::SpecularWeight) != 1.0f ||
-        m.color(ParamId::SpecularColor) != glm::vec3(1.0f))
-        add(ParamId::SpecularWeight, "a specular weight or colour off the default");
     if (m.scalar(ParamId::Ior) != 1.5f)
         add(ParamId::Ior, "an index of refraction other than 1.5");
     // The BRDF term choices, as for glTF and MaterialX; the graph is baked here, so its line
@@ -205,7 +210,7 @@ ExportOutcome exportTextureSet(const Material& material, const std::filesystem::
         outcome.warnings.push_back(p.toString());
     }
     outcome.warnings = [&] {
-        std::vector<std::string> all = unmappedInSet(material, textureSetTargetId(options.target));
+        std::vector<std::string> all = unmappedInSet(material, options.target);
         all.insert(all.end(), outcome.warnings.begin(), outcome.warnings.end());
         return all;
     }();

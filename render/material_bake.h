@@ -2,7 +2,8 @@
 /// @file material_bake.h
 /// A material's per-pixel maps baked on the GPU in UV space, for engine texture sets
 /// (core/texture_set_export.h, `velvet export -f texture-set`): the values the G-buffer pass
-/// computes — parameters times their texture slots (atlas regions cut by the same sampleSlot),
+/// computes — parameters times their texture slots (atlas regions cut by the same sampleSlot), the
+/// base maps and the lobes' (clearcoat, sheen, specular, anisotropy),
 /// then the material's node graph compiled by the graph compiler over them — drawn into float
 /// targets at the requested size (resources/shaders/material_bake.frag). A constant parameter
 /// gives a flat map.
@@ -34,8 +35,9 @@ bool bakeMaterialMaps(const Material& material, int width, int height, MaterialM
 /// options.size (bakeMaterialMaps), packs and names them for options.target (buildTextureSet) and
 /// writes them with the manifest into @p folder (writeExportFiles: @p baseName sanitised, every
 /// existing target refused unless @p force, each file atomic; nothing written unless all could
-/// be built). The outcome's warnings name what a texture set cannot carry (clearcoat, sheen,
-/// specular, IOR, BRDF term choices) and the texture problems met while baking.
+/// be built). The outcome's warnings name what the target's set cannot carry (a lobe the engine
+/// has no input for: core/texture_set_lobes.h; the IOR; the BRDF term choices) and the texture
+/// problems met while baking.
 ExportOutcome exportTextureSet(const Material& material, const std::filesystem::path& folder,
                                std::string_view baseName, const TextureSetOptions& options,
                                bool force);

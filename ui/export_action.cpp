@@ -6,6 +6,7 @@
 #include "render/material_bake.h"
 #include "ui/document_controller.h"
 #include "ui/log_panel.h"
+#include "ui/texture_set_dialog.h"
 
 #include <QApplication>
 #include <QCoreApplication>
@@ -72,12 +73,10 @@ QString filterOf(const WayOut& way) {
 /// Bakes and writes a texture set on a worker thread (the bake makes its own headless EGL
 /// context there, leaving the viewport's context alone) while a busy dialog shows progress.
 ExportOutcome exportTextureSetWithProgress(const Material& material, const QFileInfo& info,
-                                           TextureSetTarget target) {
+                                           const TextureSetOptions& options) {
     QString base = info.fileName();
     if (base.endsWith(QLatin1String(kTextureSetSuffix), Qt::CaseInsensitive))
         base.chop(int(std::strlen(kTextureSetSuffix)));
-    TextureSetOptions options;
-    options.target = target;
     const std::string folder = info.absolutePath().toStdString();
     auto job =
         std::async(std::launch::async, [material, folder, base = base.toStdString(), options] {
@@ -114,7 +113,8 @@ QStringList exportFilters() {
 }
 
 bool exportDocument(const DocumentController& controller, const QString& path,
-                    const QString& filter, LogPanel* log, QString* error) {
+                    const QString& filter, LogPanel* log, QString* error,
+                    const TextureSetOptions* textureSet) {
     const WayOut* way = wayOutFor(filter, path);
     if (!way) {
         if (error)
@@ -129,8 +129,15 @@ bool exportDocument(const DocumentController& controller, const QString& path,
             target += QLatin1String(kTextureSetSuffix);
         }
         const QFileInfo info(target);
+        TextureSetOptions options = textureSet ? *textureSet : TextureSetOptions{};
+        options.target = *way->textureSet;
+        if (const std::string problem = checkTextureSetOptions(options); !problem.empty()) {
+            if (error)
+                *error = tr("%1: %2").arg(target, QString::fromStdString(problem));
+            return false;
+        }
         const ExportOutcome outcome =
-            exportTextureSetWithProgress(controller.material(), info, *way->textureSet);
+            exportTextureSetWithProgress(controller.material(), info, options);
         for (const std::string& warning : outcome.warnings)
             if (log)
                 log->warning(
@@ -192,8 +199,17 @@ bool exportDocumentInteractively(QWidget* parent, const DocumentController& cont
         return false;
     settings.setValue(kLastExportDirKey, QFileInfo(path).absolutePath());
     settings.setValue(kLastExportFilterKey, filter);
+    // An engine's texture set: its size, file type, bits and normal convention first.
+    std::optional<TextureSetOptions> textureSet;
+    if (const WayOut* way = wayOutFor(filter, path); way && way->textureSet) {
+        TextureSetDialog dialog(*way->textureSet, parent);
+        if (dialog.exec() != QDialog::Accepted)
+            return false;
+        dialog.remember();
+        textureSet = dialog.options();
+    }
     QString error;
-    if (exportDocument(controller, path, filter, log, &error))
+    if (exportDocument(controller, path, filter, log, &error, textureSet ? &*textureSet : nullptr))
         return true;
     if (log)
         log->error(tr("Export failed: %1").arg(error));

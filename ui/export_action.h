@@ -4,6 +4,8 @@
 /// per shader node) or a Velvet preset, through core's exportMaterial — the same code as
 /// `velvet export`, so the editor and the CLI write the same files (docs/interchange.md).
 
+#include "core/texture_set_export.h"
+
 #include <QString>
 #include <QStringList>
 
@@ -21,12 +23,15 @@ QStringList exportFilters();
 /// exportFilters(); an unknown one is taken from the path's extension). The file dialog has
 /// confirmed any overwrite, so existing targets are replaced. What the format cannot carry goes
 /// to @p log as warnings; a failure returns false with @p error (the file and the reason), and
-/// nothing of it is left written.
+/// nothing of it is left written. A texture set is baked with @p textureSet's size, file type,
+/// bits and normal convention (its target is the filter's), or the CLI's defaults when null.
 bool exportDocument(const DocumentController& controller, const QString& path,
-                    const QString& filter, LogPanel* log, QString* error);
+                    const QString& filter, LogPanel* log, QString* error,
+                    const TextureSetOptions* textureSet = nullptr);
 
-/// Asks for a file (Qt's save dialog, starting in the last export folder) and exports to it;
-/// errors are shown in a message box and the Log. Returns whether a file was written.
+/// Asks for a file (Qt's save dialog, starting in the last export folder) and, for an engine's
+/// texture set, its settings (TextureSetDialog), and exports; errors are shown in a message box
+/// and the Log. Returns whether a file was written.
 bool exportDocumentInteractively(QWidget* parent, const DocumentController& controller,
                                  LogPanel* log);
 

@@ -4,11 +4,12 @@
 // for a surface point with that uv — parameters times their texture slots (atlas regions
 // included, through sampleSlot), then the material graph over them — written before lighting,
 // as maps. Keep in step with gbuffer.frag (the texture-set tests compare both with the same
-// material's known texels).
+// material's known texels); the lobe values come from the same material_lobe_inputs.glsl.
 #include "common_material.glsl"
 #include "common_material_textures.glsl"
 // Generated from the material's node graph (core/graph/graph_compiler.h).
 #include "material_graph.glsl"
+#include "material_lobe_inputs.glsl"
 
 layout(location = 0) uniform vec2 uSize; // the target's size in texels (uTexRegion is 1..13)
 
@@ -16,6 +17,10 @@ layout(location = 0) out vec4 outBaseColor; // rgb scene-linear base colour, a t
 layout(location = 1) out vec4 outNormal;    // xyz unit tangent-space normal (OpenGL, +Y up)
 layout(location = 2) out vec4 outOrm;       // occlusion (strength applied), roughness, metallic
 layout(location = 3) out vec4 outEmission;  // rgb emission (colour x strength), scene-linear
+layout(location = 4) out vec4 outCoat;      // clearcoat weight, clearcoat roughness
+layout(location = 5) out vec4 outSheen;     // rgb sheen weight x colour (linear), a roughness
+layout(location = 6) out vec4 outSpecular;  // rgb specular colour (linear), a specular weight
+layout(location = 7) out vec4 outAnisotropy; // xy direction (rotation applied), z strength
 
 void main() {
     // Texel centres; row 0 of the target (read back first) is v = 0.5 / height, the image's top
@@ -53,6 +58,7 @@ void main() {
     inputs.emissionStrength = m.emissive.a;
     if (hasTexture(m, TEX_NORMAL))
         inputs.normal = sampleSlot(m, TEX_NORMAL, uv).xyz * 2.0 - 1.0;
+    readLobeInputs(m, uv, inputs);
     velvetGraph(uv, inputs);
     // glTF's scaled normal, normalize((t * 2 - 1) * (s, s, 1)), as the G-buffer pass applies it.
     vec3 tn = inputs.normal;
@@ -64,4 +70,15 @@ void main() {
     outOrm = vec4(clamp(occlusion, 0.0, 1.0), clamp(inputs.roughness, 0.0, 1.0),
                   clamp(inputs.metallic, 0.0, 1.0), 1.0);
     outEmission = vec4(max(inputs.emissionColor * inputs.emissionStrength, vec3(0.0)), 1.0);
+    outCoat = vec4(clamp(inputs.clearcoatWeight, 0.0, 1.0), clamp(inputs.clearcoatRoughness, 0.0, 1.0),
+                   0.0, 1.0);
+    outSheen = vec4(clamp(inputs.sheenWeight * inputs.sheenColor, 0.0, 1.0),
+                    clamp(inputs.sheenRoughness, 0.0, 1.0));
+    outSpecular = vec4(max(inputs.specularColor, vec3(0.0)), clamp(inputs.specularWeight, 0.0, 1.0));
+    // KHR_materials_anisotropy's direction turned by the rotation (counter-clockwise, tangent
+    // towards bitangent), as gbuffer.frag turns it; a texture set carries no separate rotation.
+    float r = radians(inputs.anisotropyRotation);
+    vec2 d = mat2(cos(r), sin(r), -sin(r), cos(r)) * inputs.anisotropyDirection;
+    d = dot(d, d) > 1e-12 ? normalize(d) : vec2(1.0, 0.0);
+    outAnisotropy = vec4(d, clamp(inputs.anisotropyStrength, 0.0, 1.0), 1.0);
 }

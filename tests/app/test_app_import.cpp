@@ -21,6 +21,7 @@
 #include <QtTest>
 #include <cmath>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 using namespace velvet;
 
@@ -275,18 +276,34 @@ private slots:
         QVERIFY(std::abs(uv.rotation - 30.0f) < 1e-4f);
         QVERIFY(b.texture(TextureSlot::Emissive).uv.scale == glm::vec2(3.0f));
 
-        // MaterialX: tiling and offset in its own UV space, back the same; rotation said.
+        // MaterialX: tiling and offset in its own UV space; the rotated slot through a place2d
+        // on the image's texcoord (rotate in degrees), back the same (trigonometry: 1e-4).
         const test::Result mx =
             run({"export", dir + "/tiled.json", "-f", "mtlx", "-o", dir + "/mx"});
         QVERIFY2(mx.exitCode == 0, qPrintable(mx.err));
-        QVERIFY2(mx.err.contains("UV rotation is not exported"), qPrintable(mx.err));
+        QVERIFY2(!mx.err.contains("rotation"), qPrintable(mx.err));
+        QFile mtlx(dir + "/mx/tiled.mtlx");
+        QVERIFY(mtlx.open(QIODevice::ReadOnly));
+        const QByteArray xml = mtlx.readAll();
+        QVERIFY2(xml.contains("<place2d ") && xml.contains("<input name=\"rotate\""),
+                 xml.constData());
         const test::Result mxIn =
             run({"import", dir + "/mx/tiled.mtlx", "-o", dir + "/mxback.json"});
         QVERIFY2(mxIn.exitCode == 0, qPrintable(mxIn.err));
+        QVERIFY2(!mxIn.err.contains("not mapped"), qPrintable(mxIn.err));
         const Material c = load(dir + "/mxback.json");
-        QVERIFY(c.texture(TextureSlot::BaseColor).uv.scale == glm::vec2(4.0f, 2.0f));
-        QVERIFY(c.texture(TextureSlot::BaseColor).uv.offset == glm::vec2(0.25f, -0.5f));
+        const UvTransform cu = c.texture(TextureSlot::BaseColor).uv;
+        QVERIFY2(glm::length(cu.scale - glm::vec2(4.0f, 2.0f)) < 1e-4f &&
+                     glm::length(cu.offset - glm::vec2(0.25f, -0.5f)) < 1e-4f &&
+                     std::abs(cu.rotation - 30.0f) < 1e-4f,
+                 qPrintable(QStringLiteral("scale %1 %2 offset %3 %4 rotation %5")
+                                .arg(cu.scale.x)
+                                .arg(cu.scale.y)
+                                .arg(cu.offset.x)
+                                .arg(cu.offset.y)
+                                .arg(cu.rotation)));
         QVERIFY(c.texture(TextureSlot::Emissive).uv.scale == glm::vec2(3.0f));
+        QVERIFY(c.texture(TextureSlot::Emissive).uv.rotation == 0.0f);
     }
 
     void exitCodes() {

@@ -3,7 +3,8 @@
 // maps (an ORM texel = occlusion with its strength, roughness x G, metallic x B), the normal
 // map's green channel is flipped for Unreal (DirectX) and not for glTF (OpenGL), the manifest
 // names each file's role; an existing set is refused (exit 2) unless --force, names cannot leave
-// the folder; bad options are usage errors.
+// the folder; bad options are usage errors; presets' clearcoat and sheen reach the lobe maps.
+#include "core/color_management.h"
 #include "core/document_io.h"
 #include "core/image.h"
 #include "run_velvet.h"
@@ -148,6 +149,46 @@ private slots:
         for (const QJsonValue v : manifest["files"].toArray())
             roles << v.toObject()["role"].toString();
         QCOMPARE(roles, (QStringList{"baseColor", "normal", "occlusionRoughnessMetallic"}));
+    }
+
+    // The lobes end to end: the car paint preset's clearcoat reaches glTF's clearcoat map (R
+    // weight, G roughness, the preset's values), crimson velvet's sheen glTF's sheen map (sRGB
+    // weight x colour, A roughness); HDRP Lit and Godot have no sheen input and say so by name.
+    void lobeMapsFromPresets() {
+        velvet::Problems problems;
+        const QString presets = QStringLiteral(VELVET_SOURCE_DIR "/resources/presets/");
+        const auto car =
+            velvet::loadMaterialFile((presets + "car_paint.json").toStdString(), problems);
+        const auto velvetM =
+            velvet::loadMaterialFile((presets + "crimson_velvet.json").toStdString(), problems);
+        QVERIFY(car && velvetM);
+        using velvet::ParamId;
+        const QString out = m_tmp.filePath("lobes");
+        Result r = runVelvet({"export", presets + "car_paint.json", "-f", "texture-set", "--target",
+                              "gltf", "--size", "4", "-o", out});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(!r.err.contains("clearcoat"), qPrintable(r.err)); // carried, not warned
+        const velvet::Image coat = read(out + "/car_paint_clearcoat.png");
+        QVERIFY(std::abs(coat.at(1, 1)[0] - car->scalar(ParamId::ClearcoatWeight)) <= kTol);
+        QVERIFY(std::abs(coat.at(1, 1)[1] - car->scalar(ParamId::ClearcoatRoughness)) <= kTol);
+
+        r = runVelvet({"export", presets + "crimson_velvet.json", "-f", "texture-set", "--target",
+                       "gltf", "--size", "4", "-o", out});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const velvet::Image sheen = read(out + "/crimson_velvet_sheen.png");
+        const glm::vec3 expected =
+            velvetM->scalar(ParamId::SheenWeight) * velvetM->color(ParamId::SheenColor);
+        for (int c = 0; c < 3; ++c)
+            QVERIFY2(std::abs(sheen.at(2, 2)[c] - velvet::linearToSrgb(expected[c])) <= kTol,
+                     qPrintable(QString::number(c)));
+        QVERIFY(std::abs(sheen.at(2, 2)[3] - velvetM->scalar(ParamId::SheenRoughness)) <= kTol);
+        for (const char* target : {"unity-hdrp", "godot"}) {
+            r = runVelvet({"export", presets + "crimson_velvet.json", "-f", "texture-set",
+                           "--target", target, "--size", "4", "-o", m_tmp.filePath(target)});
+            QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+            QVERIFY2(r.err.contains("sheen.weight") && r.err.contains("no sheen input"),
+                     qPrintable(r.err));
+        }
     }
 
     void existingSetIsRefusedUnlessForce() {

@@ -3,7 +3,8 @@
 // texel is occlusion, roughness, metallic; HDRP's mask map is metallic, occlusion, detail mask,
 // smoothness = 1 - roughness); the normal map's green channel flipped for DirectX (Unreal) and
 // not for OpenGL (Unity, Godot, glTF), and as --normal asks; colour maps sRGB-encoded in PNG,
-// linear in EXR; emission above 1 scaled with its factor in the manifest; refused options.
+// linear in EXR; emission above 1 scaled with its factor in the manifest; refused options; the
+// lobe maps (clearcoat, sheen, specular, anisotropy) each engine reads.
 #include "core/color_management.h"
 #include "core/texture_set_export.h"
 
@@ -16,7 +17,9 @@
 #include <QtTest>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 using namespace velvet;
 
@@ -149,6 +152,137 @@ private slots:
                                        "Silk_texture_set.json"}));
         QCOMPARE(w.images["Silk_baseColor.png"].channels, 3);
         QCOMPARE(w.manifest["alphaMode"].toString(), QStringLiteral("opaque"));
+    }
+
+    // The lobe maps each engine reads, channel by channel against the baked lobe values
+    // (16-bit PNG): glTF's KHR_materials_clearcoat (R weight, G roughness), _sheen (RGB colour
+    // sRGB, A roughness), _specular (RGB colour sRGB, A weight), _anisotropy (RG direction, B
+    // strength); Unreal's clear coat (R, G), fuzz colour (the colour over its largest channel,
+    // sRGB) with Cloth (that channel) in A, Specular = F0 / 0.08 = 0.5 weight mean(colour), and
+    // anisotropy strength; HDRP Lit's coat mask and anisotropy map; Godot's clearcoat texture
+    // (R, G) and flowmap (RG direction, A strength). Without lobes no lobe file is written.
+    void lobeMapsPerTarget() {
+        MaterialMaps maps = knownMaps();
+        maps.coat = Image(kW, kH, 2);
+        maps.sheen = Image(kW, kH, 4);
+        maps.specular = Image(kW, kH, 4);
+        maps.anisotropy = Image(kW, kH, 3);
+        const auto coat = [](int x, int y) { return glm::vec2(0.1f * x, 0.2f + 0.2f * y); };
+        const auto sheen = [](int x, int y) {
+            return glm::vec4(0.5f, 0.25f + 0.05f * x, 0.1f * y, 0.4f);
+        };
+        const auto spec = [](int x, int y) {
+            return glm::vec4(1.0f, 0.9f - 0.1f * y, 0.8f, 0.2f * x);
+        };
+        const auto dir = [](int x, int y) {
+            const float a = 0.5f * x + 0.25f * y;
+            return glm::vec3(std::cos(a), std::sin(a), 0.15f * (x + y));
+        };
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const glm::vec2 cc = coat(x, y);
+                std::copy(&cc.x, &cc.x + 2, maps.coat.at(x, y));
+                const glm::vec4 sh = sheen(x, y), sp = spec(x, y);
+                const glm::vec3 d = dir(x, y);
+                std::copy(&sh.x, &sh.x + 4, maps.sheen.at(x, y));
+                std::copy(&sp.x, &sp.x + 4, maps.specular.at(x, y));
+                std::copy(&d.x, &d.x + 3, maps.anisotropy.at(x, y));
+            }
+        constexpr float k16 = 0.5f / 65535.0f + 1e-5f;
+        const auto srgb = [](float v) { return linearToSrgb(v); };
+        struct Case {
+            TextureSetTarget target;
+            QStringList lobeFiles; ///< after the four base files, before the manifest
+        };
+        const Case cases[] = {
+            {TextureSetTarget::Gltf,
+             {"Silk_clearcoat.png", "Silk_sheen.png", "Silk_specular.png", "Silk_anisotropy.png"}},
+            {TextureSetTarget::Unreal,
+             {"T_Silk_CC.png", "T_Silk_Fuzz.png", "T_Silk_S.png", "T_Silk_Aniso.png"}},
+            {TextureSetTarget::UnityHdrp, {"Silk_CoatMask.png", "Silk_Anisotropy.png"}},
+            {TextureSetTarget::Godot, {"Silk_clearcoat.png", "Silk_flowmap.png"}},
+        };
+        for (const Case& c : cases) {
+            QTemporaryDir tmp;
+            TextureSetOptions o;
+            o.target = c.target;
+            o.bits = 16;
+            const Written w = build(maps, o, tmp.path());
+            QCOMPARE(w.names.mid(4, w.names.size() - 5), c.lobeFiles);
+            QCOMPARE(entry(w.manifest, "clearcoat")["file"].toString(), c.lobeFiles[0]);
+            QCOMPARE(entry(w.manifest, "anisotropy")["file"].toString(), c.lobeFiles.back());
+            const Image& coatImage = *w.images.find(c.lobeFiles[0]);
+            const Image& anisoImage = *w.images.find(c.lobeFiles.back());
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW; ++x) {
+                    const glm::vec2 cc = coat(x, y);
+                    const glm::vec4 sh = sheen(x, y), sp = spec(x, y);
+                    const glm::vec3 d = dir(x, y);
+                    const float* cf = coatImage.at(x, y);
+                    QVERIFY(near(cf[0], cc.x, k16, "coat weight"));
+                    if (c.target != TextureSetTarget::UnityHdrp)
+                        QVERIFY(near(cf[1], cc.y, k16, "coat roughness"));
+                    const float* an = anisoImage.at(x, y);
+                    switch (c.target) {
+                    case TextureSetTarget::Gltf: {
+                        const float* s = w.images.find("Silk_sheen.png")->at(x, y);
+                        for (int k = 0; k < 3; ++k)
+                            QVERIFY(near(s[k], srgb(sh[k]), k16, "sheen colour (sRGB)"));
+                        QVERIFY(near(s[3], sh[3], k16, "sheen roughness"));
+                        const float* p = w.images.find("Silk_specular.png")->at(x, y);
+                        for (int k = 0; k < 3; ++k)
+                            QVERIFY(near(p[k], srgb(sp[k]), k16, "specular colour (sRGB)"));
+                        QVERIFY(near(p[3], sp[3], k16, "specular weight"));
+                        QVERIFY(near(an[0], d.x * 0.5f + 0.5f, k16, "direction x"));
+                        QVERIFY(near(an[1], d.y * 0.5f + 0.5f, k16, "direction y"));
+                        QVERIFY(near(an[2], d.z, k16, "anisotropy strength"));
+                        break;
+                    }
+                    case TextureSetTarget::Unreal: {
+                        const float top = std::max({sh.r, sh.g, sh.b});
+                        const float* f = w.images.find("T_Silk_Fuzz.png")->at(x, y);
+                        for (int k = 0; k < 3; ++k)
+                            QVERIFY(near(f[k], srgb(sh[k] / top), k16, "fuzz colour"));
+                        QVERIFY(near(f[3], top, k16, "cloth"));
+                        const float specular = 0.5f * sp.a * (sp.r + sp.g + sp.b) / 3.0f;
+                        QVERIFY(near(w.images.find("T_Silk_S.png")->at(x, y)[0], specular, k16,
+                                     "Unreal Specular = F0 / 0.08"));
+                        QVERIFY(near(an[0], d.z, k16, "anisotropy strength"));
+                        break;
+                    }
+                    case TextureSetTarget::UnityHdrp:
+                        QVERIFY(near(an[0], d.z, k16, "anisotropy map"));
+                        break;
+                    case TextureSetTarget::Godot:
+                        QCOMPARE(anisoImage.channels, 4);
+                        QVERIFY(near(an[0], d.x * 0.5f + 0.5f, k16, "flow x"));
+                        QVERIFY(near(an[1], d.y * 0.5f + 0.5f, k16, "flow y"));
+                        QVERIFY(near(an[3], d.z, k16, "flowmap strength (A)"));
+                        break;
+                    default:
+                        break;
+                    }
+                }
+        }
+        // The glTF set's roles and channels as the manifest names them.
+        QTemporaryDir tmp;
+        const Written w = build(maps, {}, tmp.path());
+        const QJsonObject sheenEntry = entry(w.manifest, "sheen");
+        QCOMPARE(sheenEntry["colorSpace"].toString(), QStringLiteral("srgb"));
+        QCOMPARE(sheenEntry["channels"].toObject()["A"].toString(),
+                 QStringLiteral("sheenRoughness"));
+        QCOMPARE(entry(w.manifest, "anisotropy")["rotation"].toInt(-1), 0);
+        QCOMPARE(entry(w.manifest, "specular")["channels"].toObject()["A"].toString(),
+                 QStringLiteral("specular"));
+        // Lobes off (weight 0, default specular, strength 0): no lobe file.
+        MaterialMaps off = knownMaps();
+        off.coat = Image(kW, kH, 2);
+        off.sheen = Image(kW, kH, 4);
+        off.specular = Image(kW, kH, 4);
+        std::fill(off.specular.pixels.begin(), off.specular.pixels.end(), 1.0f);
+        off.anisotropy = Image(kW, kH, 3);
+        QTemporaryDir none;
+        QCOMPARE(build(off, {}, none.path()).names.size(), 5);
     }
 
     // Unreal's ORM and glTF's and Godot's: R occlusion, G roughness, B metallic; HDRP's mask

@@ -2,7 +2,8 @@
 // space hold, texel by texel, what the G-buffer pass computes: parameters times their textures
 // (varying texels, one of them an atlas region), occlusion with its strength, the normal map with
 // its scale, emission colour x texture x strength; a node graph's output (a UV gradient into
-// roughness) is evaluated per texel; a material without textures gives flat maps.
+// roughness) is evaluated per texel; a material without textures gives flat maps; the lobes
+// (clearcoat, sheen, specular, anisotropy) as the G-buffer pass reads them.
 #include "core/color_management.h"
 #include "core/graph/graph.h"
 #include "core/graph/node_catalogue.h"
@@ -14,6 +15,7 @@
 #include <QtTest>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 using namespace velvet;
 
@@ -144,6 +146,72 @@ private slots:
                 const float* b = maps.normal.at(x, y);
                 for (int c = 0; c < 3; ++c)
                     QVERIFY(near(b[c], n[c], 4 * kHalf, "normal", x, y));
+            }
+    }
+
+    // The lobes, texel by texel against the material: clearcoat weight x texture R and
+    // roughness x texture G, sheen weight x colour x texture RGB and roughness x texture A,
+    // specular colour x texture RGB and weight x texture A (KHR_materials_* channels), and the
+    // anisotropy direction from the texture's RG turned by the rotation, strength x its B.
+    void lobesTexelByTexel() {
+        const QString d = m_dir.path() + "/";
+        write(d + "lobe_a.png", pattern(kSide, kSide, 4));
+        Image dir(kSide, kSide, 3);
+        for (int y = 0; y < kSide; ++y)
+            for (int x = 0; x < kSide; ++x) {
+                const float a = 0.3f * float(x) + 0.1f * float(y); // radians, varies per texel
+                dir.at(x, y)[0] = std::cos(a) * 0.5f + 0.5f;
+                dir.at(x, y)[1] = std::sin(a) * 0.5f + 0.5f;
+                dir.at(x, y)[2] = texel(x, y, 2);
+            }
+        write(d + "direction.png", dir);
+        Material m;
+        m.setScalar(ParamId::ClearcoatWeight, 0.7f);
+        m.setScalar(ParamId::ClearcoatRoughness, 0.6f);
+        m.setScalar(ParamId::SheenWeight, 0.5f);
+        const glm::vec3 sheenColour(1.0f, 0.5f, 0.25f), specColour(1.0f, 0.9f, 0.8f);
+        m.setColor(ParamId::SheenColor, sheenColour);
+        m.setScalar(ParamId::SheenRoughness, 0.8f);
+        m.setScalar(ParamId::SpecularWeight, 0.9f);
+        m.setColor(ParamId::SpecularColor, specColour);
+        m.setScalar(ParamId::AnisotropyStrength, 0.75f);
+        m.setScalar(ParamId::AnisotropyRotation, 30.0f);
+        for (TextureSlot slot : {TextureSlot::Clearcoat, TextureSlot::ClearcoatRoughness,
+                                 TextureSlot::SheenRoughness, TextureSlot::Specular})
+            m.setTexture(slot, ref(d + "lobe_a.png"));
+        for (TextureSlot slot : {TextureSlot::SheenColor, TextureSlot::SpecularColor})
+            m.setTexture(slot, ref(d + "lobe_a.png", "Raw"));
+        m.setTexture(TextureSlot::Anisotropy, ref(d + "direction.png"));
+
+        MaterialMaps maps;
+        Problems problems;
+        std::string error;
+        QVERIFY2(render::bakeMaterialMaps(m, kSide, kSide, maps, &problems, &error), error.c_str());
+        QVERIFY(problems.items.empty());
+        QCOMPARE(maps.coat.width, kSide);
+        QCOMPARE(maps.sheen.channels, 4);
+        const float r = glm::radians(30.0f);
+        for (int y = 0; y < kSide; ++y)
+            for (int x = 0; x < kSide; ++x) {
+                const float* coat = maps.coat.at(x, y);
+                QVERIFY(near(coat[0], 0.7f * texel(x, y, 0), kHalf, "clearcoat", x, y));
+                QVERIFY(near(coat[1], 0.6f * texel(x, y, 1), kHalf, "clearcoat roughness", x, y));
+                const float* sheen = maps.sheen.at(x, y);
+                for (int c = 0; c < 3; ++c)
+                    QVERIFY(near(sheen[c], 0.5f * sheenColour[c] * texel(x, y, c), kHalf,
+                                 "sheen colour", x, y));
+                QVERIFY(near(sheen[3], 0.8f * texel(x, y, 3), kHalf, "sheen roughness", x, y));
+                const float* spec = maps.specular.at(x, y);
+                for (int c = 0; c < 3; ++c)
+                    QVERIFY(near(spec[c], specColour[c] * texel(x, y, c), kHalf, "specular colour",
+                                 x, y));
+                QVERIFY(near(spec[3], 0.9f * texel(x, y, 3), kHalf, "specular", x, y));
+                const float a = 0.3f * float(x) + 0.1f * float(y) + r;
+                const float* an = maps.anisotropy.at(x, y);
+                // The direction from 8-bit texels: a few thousandths of a radian.
+                QVERIFY(near(an[0], std::cos(a), 0.01f, "anisotropy direction x", x, y));
+                QVERIFY(near(an[1], std::sin(a), 0.01f, "anisotropy direction y", x, y));
+                QVERIFY(near(an[2], 0.75f * texel(x, y, 2), kHalf, "anisotropy strength", x, y));
             }
     }
 

@@ -9,14 +9,17 @@
 #include "ui/export_action.h"
 #include "ui/log_panel.h"
 #include "ui/main_window.h"
+#include "ui/texture_set_dialog.h"
 #include "ui/viewport_widget.h"
 #include "ui_test_modal.h"
 #include "ui_test_window.h"
 
+#include <QComboBox>
 #include <QDir>
 #include <QFile>
 #include <QMessageBox>
 #include <QSettings>
+#include <QSpinBox>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
@@ -34,6 +37,7 @@ private slots:
         QVERIFY(m_dir.isValid());
         QSettings().remove(QStringLiteral("export/lastDir"));
         QSettings().remove(QStringLiteral("export/lastFilter"));
+        QSettings().remove(QStringLiteral("export/textureSet"));
         m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
         m_doc = m_window->controller();
         const QString error = test::showWithFirstFrame(m_window.get(), QSize(1280, 800));
@@ -76,8 +80,9 @@ private slots:
         QVERIFY(!xml.contains("<standard_surface"));
     }
 
-    // A texture set for Unreal from the dialog: the maps are baked (on a worker thread, with a
-    // busy dialog) into T_NAME_D / _N / _ORM beside the manifest the dialog named; the dialog
+    // A texture set for Unreal from the dialog: the settings dialog offers the CLI's defaults
+    // (1024 px, PNG, 8 bits, the engine's normals); the maps are baked (on a worker thread, with
+    // a busy dialog) into T_NAME_D / _N / _ORM beside the manifest the dialog named; the dialog
     // offers the same way out first next time.
     void filterChoosesTextureSet() {
         const QString unreal = exportFilters().filter(QStringLiteral("Unreal")).value(0);
@@ -86,6 +91,11 @@ private slots:
         m_doc->editParam(ParamId::Metallic, glm::vec3(1.0f));
         const QString path = m_dir.filePath(QStringLiteral("engine"));
         test::answerFileDialog(path, unreal);
+        TextureSetOptions shown;
+        test::onNextModal<TextureSetDialog>([&shown](TextureSetDialog* d) {
+            shown = d->options();
+            d->accept();
+        });
         pressCtrlE();
         const QString manifest = path + QStringLiteral("_texture_set.json");
         QVERIFY2(QTest::qWaitFor([&] { return QFile::exists(manifest); }, 60000),
@@ -105,9 +115,73 @@ private slots:
                            &error),
                  error.c_str());
         QCOMPARE(orm.at(orm.width / 2, orm.height / 2)[2], 1.0f);
+        QCOMPARE(orm.width, 1024); // the CLI's defaults, as the dialog showed them
+        QCOMPARE(shown.size, 1024);
+        QCOMPARE(shown.fileType, TextureFileType::Png);
+        QCOMPARE(shown.bits, 8);
+        QVERIFY(!shown.normal);
+        QCOMPARE(shown.target, TextureSetTarget::Unreal);
         QVERIFY(m_window->logPanel()->text().contains(QStringLiteral("T_engine")) ||
                 m_window->logPanel()->text().contains(QStringLiteral("engine_texture_set")));
         QCOMPARE(QSettings().value(QStringLiteral("export/lastFilter")).toString(), unreal);
+        QSettings().remove(QStringLiteral("export/lastFilter"));
+    }
+
+    // The settings chosen in the dialog reach the files: 64 px, 16-bit PNG, OpenGL normals for
+    // Unreal (replacing its DirectX default). The dialog offers them again next time, and
+    // cancelling it exports nothing.
+    void textureSetSettingsReachTheFiles() {
+        const QString unrealFilter = exportFilters().filter(QStringLiteral("Unreal")).value(0);
+        const QString path = m_dir.filePath(QStringLiteral("small"));
+        test::answerFileDialog(path, unrealFilter);
+        test::onNextModal<TextureSetDialog>([](TextureSetDialog* d) {
+            d->sizeBox()->setValue(64);
+            d->typeBox()->setCurrentIndex(d->typeBox()->findText(QStringLiteral("PNG")));
+            QCOMPARE(d->bitsBox()->count(), 2); // PNG holds 8 or 16
+            d->bitsBox()->setCurrentIndex(d->bitsBox()->findData(16));
+            d->normalBox()->setCurrentIndex(d->normalBox()->findData(QStringLiteral("opengl")));
+            d->accept();
+        });
+        pressCtrlE();
+        const QString manifest = path + QStringLiteral("_texture_set.json");
+        QVERIFY2(QTest::qWaitFor([&] { return QFile::exists(manifest); }, 60000),
+                 qPrintable(m_window->logPanel()->text()));
+        for (const char* file : {"T_small_D.png", "T_small_N.png", "T_small_ORM.png"}) {
+            ImageInfo info;
+            std::string error;
+            QVERIFY2(readImageInfo(m_dir.filePath(QString::fromLatin1(file)).toStdString(), info,
+                                   &error),
+                     error.c_str());
+            QCOMPARE(info.width, 64);
+            QCOMPARE(info.height, 64);
+            QCOMPARE(info.bitsPerSample, 16);
+        }
+        QFile f(manifest);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        QVERIFY(f.readAll().contains("\"normalConvention\": \"opengl\""));
+
+        // Remembered: the next texture set starts from them (TGA offers 8 bits only).
+        TextureSetDialog again(TextureSetTarget::Godot);
+        QCOMPARE(again.options().size, 64);
+        QCOMPARE(again.options().bits, 16);
+        QCOMPARE(again.options().normal, std::optional(NormalConvention::OpenGl));
+        again.typeBox()->setCurrentIndex(again.typeBox()->findText(QStringLiteral("TGA")));
+        QCOMPARE(again.bitsBox()->count(), 1);
+        QCOMPARE(again.options().bits, 8);
+        QVERIFY(checkTextureSetOptions(again.options()).empty());
+
+        // Cancelled: nothing is written.
+        const QString cancelled = m_dir.filePath(QStringLiteral("cancelled"));
+        test::answerFileDialog(cancelled, unrealFilter);
+        bool asked = false;
+        test::onNextModal<TextureSetDialog>([&asked](TextureSetDialog* d) {
+            asked = true;
+            d->reject();
+        });
+        pressCtrlE();
+        QVERIFY(QTest::qWaitFor([&] { return asked; }, 30000));
+        QTest::qWait(200);
+        QVERIFY(!QFile::exists(cancelled + QStringLiteral("_texture_set.json")));
         QSettings().remove(QStringLiteral("export/lastFilter"));
     }
 
