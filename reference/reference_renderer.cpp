@@ -40,10 +40,12 @@ glm::vec3 cameraBackground(const Context& ctx, glm::vec3 d) {
     return ctx.env.radiance(d); // Sharp; Blurred and the procedural FBM are shown sharp
 }
 
-glm::vec3 trace(const Context& ctx, glm::vec3 o, glm::vec3 d, Rng& rng) {
+/// Radiance along the camera ray o + t d; @p onMesh tells whether it hit the mesh.
+glm::vec3 trace(const Context& ctx, glm::vec3 o, glm::vec3 d, Rng& rng, bool& onMesh) {
     glm::vec3 radiance(0.0f), throughput(1.0f);
     Hit hit;
-    if (!intersect(ctx, o, d, 1e30f, hit))
+    onMesh = intersect(ctx, o, d, 1e30f, hit);
+    if (!onMesh)
         return cameraBackground(ctx, d);
     for (int bounce = 0;; ++bounce) {
         const glm::vec3 v = -d;
@@ -97,6 +99,14 @@ glm::vec3 trace(const Context& ctx, glm::vec3 o, glm::vec3 d, Rng& rng) {
 }
 
 /// Each pixel's sum divided by its own sample count (a cancelled pass leaves rows behind).
+/// The fraction of each pixel's samples whose camera ray hit the mesh.
+Image coverage(const std::vector<int>& hits, const std::vector<int>& count, int w, int h) {
+    Image image(w, h, 1);
+    for (size_t i = 0; i < hits.size(); ++i)
+        image.pixels[i] = count[i] ? float(hits[i]) / float(count[i]) : 0.0f;
+    return image;
+}
+
 Image averaged(const std::vector<glm::dvec3>& sum, const std::vector<int>& count, int w, int h) {
     Image image(w, h, 3);
     for (size_t i = 0; i < sum.size(); ++i) {
@@ -255,7 +265,7 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
 
     const CameraRays camera(scene.camera, w, h);
     std::vector<glm::dvec3> sum(size_t(w) * h, glm::dvec3(0.0));
-    std::vector<int> count(size_t(w) * h, 0);
+    std::vector<int> count(size_t(w) * h, 0), hits(size_t(w) * h, 0);
     const auto start = std::chrono::steady_clock::now();
     std::atomic<bool> stopped{false};
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -276,7 +286,9 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
                             const float ny = 1.0f - (float(y) + rng.uniform()) / float(h) * 2.0f;
                             glm::vec3 o, d;
                             camera.ray(nx, ny, o, d);
-                            glm::vec3 c = trace(ctx, o, d, rng);
+                            bool onMesh = false;
+                            glm::vec3 c = trace(ctx, o, d, rng, onMesh);
+                            hits[index] += onMesh ? 1 : 0;
                             if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
                                 c = glm::vec3(0.0f);
                             sum[index] += glm::dvec3(c);
@@ -292,7 +304,7 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
         const int done = pass + 1;
         const bool showNow = done <= 32 ? (done & (done - 1)) == 0 : done % 32 == 0;
         if (options.onPassImage && !stopped && showNow)
-            options.onPassImage(averaged(sum, count, w, h), done);
+            options.onPassImage(averaged(sum, count, w, h), coverage(hits, count, w, h), done);
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (options.timeLimitSeconds > 0 && elapsed >= options.timeLimitSeconds)
@@ -302,6 +314,7 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
     rtcReleaseDevice(device);
     out.cancelled = stopped;
     out.image = averaged(sum, count, w, h);
+    out.coverage = coverage(hits, count, w, h);
     return true;
 }
 

@@ -226,8 +226,14 @@ void MainWindow::createDocks() {
             });
     connect(referenceDock, &QDockWidget::visibilityChanged, m_reference,
             &ReferencePanel::setActive);
-    connect(m_reference, &ReferencePanel::status, this,
-            [this](const QString& text) { statusBar()->showMessage(text, 5000); });
+    // The reference's samples and ΔE stay in the status bar while it converges (its images come
+    // seconds apart); hidden, it clears its line.
+    connect(m_reference, &ReferencePanel::status, this, [this](const QString& text) {
+        if (text.isEmpty())
+            statusBar()->clearMessage();
+        else
+            statusBar()->showMessage(text);
+    });
     connect(m_postChain, &PostChainPanel::problemsReported, m_log, &LogPanel::error);
     connect(m_library, &LibraryPanel::problemsReported, m_log, &LogPanel::warning);
 

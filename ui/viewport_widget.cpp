@@ -559,7 +559,7 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     return true;
 }
 
-QImage ViewportWidget::grabFramebuffer() {
+QImage ViewportWidget::grabFramebuffer(Image* linear) {
     if (!m_renderer || !m_surface->context())
         return {};
     m_surface->makeCurrent();
@@ -584,6 +584,8 @@ QImage ViewportWidget::grabFramebuffer() {
             }
         }
         result.setDevicePixelRatio(m_surface->devicePixelRatio());
+        if (linear)
+            *linear = m_renderer->readLinear();
     } else {
         requestFrame(); // the window shows the error
     }
