@@ -28,6 +28,7 @@ const std::vector<OptionSpec> kOptions{
     {"light-rig", 0, true, "A,B", "--table: these rigs (default environment,three-point)"},
     {"size", 0, true, "N", "--table: image side in pixels (default 48)"},
     {"spp", 0, true, "N", "--table: reference samples per pixel (default 64)"},
+    {"bounces", 0, true, "N", "--table: reference path vertices after the first hit (default 4)"},
     {"images", 0, true, "DIR", "--table: write each case's viewport, reference and heat map"},
     {"help", 'h', false, "", "this text"},
 };
@@ -41,6 +42,7 @@ const char* kHelp =
     "an integer image (.png, …) is taken as display-referred sRGB. Both must have the same size.\n"
     "\n"
     "velvet compare --table [--preset A,B] [--mesh A,B] [--light-rig A,B] [--size N] [--spp N]\n"
+    "                       [--bounces N] [--images DIR]\n"
     "renders each library preset on each mesh under each rig (the default HDRI stays) with the\n"
     "viewport's renderer and the reference path tracer, and prints a Markdown table of the\n"
     "mean, 95th percentile and maximum ΔE2000 over the pixels the mesh covers, against issue\n"
@@ -79,6 +81,9 @@ int runTable(const Arguments& args) {
                      args.value("size") + "'");
     if (args.has("spp") && !parseCount(args.value("spp"), options.samples, 1, 65536))
         return usage("--spp expects a whole number in [1, 65536], got '" + args.value("spp") + "'");
+    if (args.has("bounces") && !parseCount(args.value("bounces"), options.bounces, 0, 64))
+        return usage("--bounces expects a whole number in [0, 64], got '" + args.value("bounces") +
+                     "'");
     const std::vector<std::string> library = libraryPresets();
     std::vector<std::string> presets =
         args.has("preset") ? splitList(args.value("preset")) : library;
@@ -151,7 +156,7 @@ int runTable(const Arguments& args) {
     std::cout << "\n"
               << met << " of " << total << " cases meet the goal (mean < 2, p95 < 5) at "
               << options.size << "x" << options.size << ", " << options.samples
-              << " reference samples per pixel\n";
+              << " reference samples per pixel, " << options.bounces << " bounces\n";
     return Ok;
 }
 

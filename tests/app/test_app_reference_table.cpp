@@ -27,10 +27,11 @@ constexpr PreviewMeshKind kSphere = PreviewMeshKind::Sphere;
 constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 
 // Why they miss (BENCHMARKS.md, "The viewport against the reference"): rough metals and
-// anisotropy under image-based light (the split sum's isotropic prefiltered lobe), sheen under
-// the environment (no sheen term in image-based light's prefiltering), the fabrics' fine weave
-// (minified graph patterns), the shader ball's interreflections and occlusion (screen-space
-// occlusion is the viewport's only stand-in).
+// anisotropy (the viewport's image-based light adds multiple-scattering energy the reference's
+// single-scattering GGX lacks; the bent-normal approximation of anisotropic reflections), sheen
+// under the environment (albedo x prefiltered radiance against the integrated sheen lobe), the
+// fabrics' weaves (pattern-aligned: lower relief contrast in the viewport), the shader ball's
+// cavities (the viewport reflects the environment where the mesh sees itself).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 13.85, 30.03},
     {"brushed_aluminium", kSphere, "three-point", 8.42, 23.80},
