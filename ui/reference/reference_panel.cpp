@@ -125,7 +125,10 @@ void ReferenceSplitView::paintLegend(QPainter& p, const QRect& image) {
     p.setPen(palette().windowText().color());
     p.drawText(QRect(image.left(), bar.top() - 4, margin, bar.height() + 8), Qt::AlignVCenter,
                QStringLiteral("ΔE00"));
-    for (int i = 0; i <= 4; ++i) {
+    // Five ticks where they fit, else the ends and the middle, else the ends.
+    const int widest = fm.horizontalAdvance(QStringLiteral("≥%1").arg(kHeatMapMax)) + 8;
+    const int step = bar.width() >= 4 * widest ? 1 : bar.width() >= 2 * widest ? 2 : 4;
+    for (int i = 0; i <= 4; i += step) {
         const int x = bar.left() + bar.width() * i / 4;
         const QString text = i == 4 ? QStringLiteral("≥%1").arg(kHeatMapMax)
                                     : QString::number(kHeatMapMax * i / 4.0);
