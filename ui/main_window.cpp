@@ -114,6 +114,10 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
         statusBar()->showMessage(text, 10000);
     });
     connect(m_viewToolbar, &ViewportToolbar::viewStateChanged, this, &MainWindow::applyViewState);
+    // The reference's display transform follows the viewport's exposure (and a debug view stops
+    // the comparison): a view-state change restarts it like a scene edit.
+    connect(m_viewToolbar, &ViewportToolbar::viewStateChanged, m_reference,
+            &ReferencePanel::viewStateChanged);
     connect(m_viewToolbar, &ViewportToolbar::timingOverlayToggled, m_viewport,
             &ViewportWidget::setTimingOverlayVisible);
 

@@ -13,7 +13,9 @@
 #include "ui_test_window.h"
 
 #include <QApplication>
+#include <QComboBox>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QSignalSpy>
 #include <QSlider>
@@ -230,6 +232,50 @@ private slots:
 
         if (const QByteArray shots = qgetenv("VELVET_TEST_SCREENSHOTS"); !shots.isEmpty())
             panel->grab().save(QString::fromUtf8(shots) + QStringLiteral("/reference_heatmap.png"));
+
+        // One display transform for both: +1 EV typed into the toolbar's exposure restarts the
+        // reference and brightens both images; the ΔE stays about what it was (exposing only one
+        // side would shift L* by ten or more everywhere).
+        auto* exposure = m_window->findChild<QDoubleSpinBox*>(QStringLiteral("exposureSpin"));
+        QVERIFY(exposure);
+        const QColor vpBefore = viewportShown.pixelColor(heat.width() / 2, heat.height() / 2);
+        const QColor refBefore = referenceShown.pixelColor(heat.width() / 2, heat.height() / 2);
+        exposure->setFocus();
+        QTest::keyClick(exposure, Qt::Key_A, Qt::ControlModifier);
+        QTest::keyClicks(exposure, QStringLiteral("1"));
+        QTest::keyClick(exposure, Qt::Key_Return);
+        QCOMPARE(m_window->viewport()->frameSettings().exposureEv, 1.0f);
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() == 0; }, 10000));
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 32; }, 240000));
+        view->setHeatMapShown(false);
+        view->setSplit(1.0);
+        const QColor vpAfter = view->composed().pixelColor(heat.width() / 2, heat.height() / 2);
+        view->setSplit(0.0);
+        const QColor refAfter = view->composed().pixelColor(heat.width() / 2, heat.height() / 2);
+        QVERIFY2(vpAfter.lightness() > vpBefore.lightness() + 10 &&
+                     refAfter.lightness() > refBefore.lightness() + 10,
+                 qPrintable(QStringLiteral("viewport %1 -> %2, reference %3 -> %4")
+                                .arg(vpBefore.lightness())
+                                .arg(vpAfter.lightness())
+                                .arg(refBefore.lightness())
+                                .arg(refAfter.lightness())));
+        const DeltaEStats exposed = panel->deltaEStats();
+        qInfo("+1 EV: ΔE on the mesh mean %.3f, p95 %.3f (was %.3f, %.3f)", exposed.mean,
+              exposed.p95, stats.mean, stats.p95);
+        QVERIFY2(exposed.pixels > 0 && exposed.mean < stats.mean * 1.5 + 1.0,
+                 qPrintable(QString::number(exposed.mean)));
+        // A debug view's image holds raw values, not light: no ΔE, and the panel says why.
+        auto* debugView = m_window->findChild<QComboBox*>(QStringLiteral("debugViewCombo"));
+        QVERIFY(debugView && debugView->count() > 1);
+        debugView->setCurrentIndex(1);
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() == 0; }, 10000));
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 1; }, 120000));
+        QCOMPARE(panel->deltaEStats().pixels, size_t(0));
+        QVERIFY2(m_window->statusBar()->currentMessage().contains(QStringLiteral("debug view")),
+                 qPrintable(m_window->statusBar()->currentMessage()));
+        debugView->setCurrentIndex(0);
+        exposure->setValue(0.0);
+        view->setHeatMapShown(true);
         QTest::mouseClick(toggle, Qt::LeftButton); // back to the split
         QVERIFY(!view->heatMapShown() && slider->isEnabled());
         QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);

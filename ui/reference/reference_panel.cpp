@@ -238,7 +238,10 @@ void ReferencePanel::showFrame(const ReferenceFrame& frame) {
     m_view->setDeltaE(frame.deltaE, frame.coverage);
     QString text;
     if (frame.deltaE.empty()) {
-        text = tr("Reference: %1 spp (no viewport image to compare with)").arg(frame.passes);
+        text = tr("Reference: %1 spp (%2)")
+                   .arg(frame.passes)
+                   .arg(m_noComparison.isEmpty() ? tr("no viewport image to compare with")
+                                                 : m_noComparison);
     } else if (frame.stats.pixels == 0) {
         text = tr("Reference: %1 spp (the mesh covers no whole pixel)").arg(frame.passes);
     } else {
@@ -282,7 +285,10 @@ void ReferencePanel::restart() {
     const float exposure = m_viewport->frameSettings().exposureEv;
     Image viewportDisplay;
     std::string error;
-    if (!linear.empty()) {
+    // A debug view's linear image holds raw values (normals, depth…), not light.
+    const bool debugView = m_viewport->frameSettings().view != render::DebugView::Final;
+    m_noComparison = debugView ? tr("the viewport shows a debug view: no ΔE") : QString();
+    if (!linear.empty() && !debugView) {
         const Image small = velvet::resize(linear, kWidth, height, &error, ResizeFilter::Box);
         if (!small.empty())
             viewportDisplay = ReferenceJob::displayImage(small, exposure);

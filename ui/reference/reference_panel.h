@@ -89,6 +89,10 @@ public:
     /// Width in pixels the reference renders at (its height follows the viewport's aspect).
     static constexpr int kWidth = 160;
 
+public slots:
+    /// The viewport's frame settings changed (exposure, debug view): restarts like an edit.
+    void viewStateChanged() { scheduleRestart(); }
+
 signals:
     /// One line for the status bar ("Reference: 16 spp · ΔE2000 mean 1.84, p95 4.10").
     void status(const QString& text);
@@ -107,6 +111,7 @@ private:
     QLabel* m_label;
     QTimer m_restart;
     QImage m_snapshot;
+    QString m_noComparison; ///< why the viewport's image is not compared (a debug view), or empty
     DeltaEStats m_stats;
     bool m_active = false;
     int m_passes = 0;
