@@ -125,6 +125,18 @@ DeltaEStats deltaEStats(const Image& deltaE) {
     return s;
 }
 
+DeltaEStats deltaEStats(const Image& deltaE, const Image& coverage) {
+    if (deltaE.width != coverage.width || deltaE.height != coverage.height ||
+        deltaE.channels != 1 || coverage.channels != 1)
+        return {};
+    Image inside(0, 1, 1);
+    for (size_t i = 0; i < deltaE.pixels.size(); ++i)
+        if (coverage.pixels[i] >= 1.0f)
+            inside.pixels.push_back(deltaE.pixels[i]);
+    inside.width = int(inside.pixels.size());
+    return deltaEStats(inside);
+}
+
 glm::vec3 heatMapColor(double value, double scaleMax) {
     struct Stop {
         float at;

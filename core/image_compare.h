@@ -32,6 +32,11 @@ bool compareImages(const Image& a, const Image& b, Image& deltaE, DeltaEStats& s
 
 /// Statistics of a one-channel ΔE map.
 DeltaEStats deltaEStats(const Image& deltaE);
+/// Statistics of the pixels of @p deltaE whose @p coverage (one channel, the same size) is 1:
+/// the mesh's own pixels when coverage is the reference's (reference::Result::coverage), so a
+/// background the viewport blurs does not count against the material. Empty (pixels 0) when the
+/// sizes differ or no pixel is covered.
+DeltaEStats deltaEStats(const Image& deltaE, const Image& coverage);
 
 /// The colour the heat map gives ΔE @p value on a scale to @p scaleMax (display-referred sRGB):
 /// a piecewise-linear ramp black (0) - blue - green - yellow - red (scaleMax and above).

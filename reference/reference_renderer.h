@@ -25,16 +25,21 @@ struct Options {
     std::uint64_t seed = 1;      ///< same seed, same image
     double timeLimitSeconds = 0; ///< > 0: stop after the pass running when this much time passed
     int threads = 0;             ///< 0: oneTBB's default
-    /// Called (on the calling thread) with the image so far after passes 1, 2, 4, 8, 16, 32 and
-    /// then every 32nd: the editor's Reference view shows the render as it converges.
-    std::function<void(const Image& soFar, int passes)> onPassImage;
+    /// Called (on the calling thread) with the image so far and its coverage (Result::coverage)
+    /// after passes 1, 2, 4, 8, 16, 32 and then every 32nd: the editor's Reference view shows the
+    /// render as it converges.
+    std::function<void(const Image& soFar, const Image& coverage, int passes)> onPassImage;
 };
 
 /// Called after each pass (on the calling thread): passes done, passes asked for.
 using ProgressFn = std::function<void(int done, int total)>;
 
 struct Result {
-    Image image;        ///< scene-linear RGB, row 0 at the top (as render::readLinear)
+    Image image; ///< scene-linear RGB, row 0 at the top (as render::readLinear)
+    /// One channel: the fraction of each pixel's samples whose camera ray hit the mesh (1 inside
+    /// it, 0 on the background, between on its silhouette). Comparisons with the viewport weigh
+    /// the material with it, not the background (which the viewport may blur).
+    Image coverage;
     int passesDone = 0; ///< complete samples per pixel
     bool cancelled = false;
 };

@@ -114,6 +114,10 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
         statusBar()->showMessage(text, 10000);
     });
     connect(m_viewToolbar, &ViewportToolbar::viewStateChanged, this, &MainWindow::applyViewState);
+    // The reference's display transform follows the viewport's exposure (and a debug view stops
+    // the comparison): a view-state change restarts it like a scene edit.
+    connect(m_viewToolbar, &ViewportToolbar::viewStateChanged, m_reference,
+            &ReferencePanel::viewStateChanged);
     connect(m_viewToolbar, &ViewportToolbar::timingOverlayToggled, m_viewport,
             &ViewportWidget::setTimingOverlayVisible);
 
@@ -226,8 +230,14 @@ void MainWindow::createDocks() {
             });
     connect(referenceDock, &QDockWidget::visibilityChanged, m_reference,
             &ReferencePanel::setActive);
-    connect(m_reference, &ReferencePanel::status, this,
-            [this](const QString& text) { statusBar()->showMessage(text, 5000); });
+    // The reference's samples and ΔE stay in the status bar while it converges (its images come
+    // seconds apart); hidden, it clears its line.
+    connect(m_reference, &ReferencePanel::status, this, [this](const QString& text) {
+        if (text.isEmpty())
+            statusBar()->clearMessage();
+        else
+            statusBar()->showMessage(text);
+    });
     connect(m_postChain, &PostChainPanel::problemsReported, m_log, &LogPanel::error);
     connect(m_library, &LibraryPanel::problemsReported, m_log, &LogPanel::warning);
 

@@ -423,7 +423,7 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     return true;
 }
 
-QImage ViewportWidget::grabFramebuffer() {
+QImage ViewportWidget::grabFramebuffer(Image* linear) {
     if (!m_renderer || !m_surface->context())
         return {};
     m_surface->makeCurrent();
@@ -448,6 +448,8 @@ QImage ViewportWidget::grabFramebuffer() {
             }
         }
         result.setDevicePixelRatio(m_surface->devicePixelRatio());
+        if (linear)
+            *linear = m_renderer->readLinear();
     } else {
         requestFrame(); // the window shows the error
     }

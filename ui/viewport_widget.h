@@ -158,8 +158,10 @@ public:
     const render::Renderer* renderer() const { return m_renderer.get(); }
     /// Renders a fresh frame at the viewport's size (off screen, with the GL window's context) and
     /// returns it as the renderer wrote it (display-encoded, RGB32; no timing overlay). A null
-    /// image before the renderer exists. Counts as a frame (frameCompleted).
-    QImage grabFramebuffer();
+    /// image before the renderer exists. Counts as a frame (frameCompleted). @p linear, when
+    /// given, gets the same frame's scene-linear colour (Renderer::readLinear; the Reference view
+    /// compares it with the path tracer's).
+    QImage grabFramebuffer(Image* linear = nullptr);
     /// Renders material-graph node thumbnails (render/graph_preview.h) with the GL window's
     /// context current, texture nodes loading through the renderer's cache. Empty (no thumbnail
     /// drawn) before the renderer exists; one entry per request otherwise. Reasons a request

@@ -129,6 +129,39 @@ private slots:
                      .exitCode,
                  1);
     }
+
+    // --table: the viewport against the reference as a Markdown table, one row per case, and
+    // the images of each case with --images; the same numbers as app/reference_table.h gives
+    // (test_app_reference_table holds the goal).
+    void table() {
+        const Result r = velvet::test::runVelvet(
+            {"compare", "--table", "--preset", "rubber", "--mesh", "sphere", "--light-rig",
+             "environment,three-point", "--size", "16", "--spp", "16", "--images", m_tmp.path()});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QStringList lines = QString(r.out).split('\n', Qt::SkipEmptyParts);
+        QVERIFY2(lines.size() == 5, qPrintable(r.out)); // header, rule, two rows, the summary
+        QVERIFY(lines[0].startsWith("| preset | mesh | lights | mean"));
+        QVERIFY2(lines[2].startsWith("| rubber | sphere | environment | "), qPrintable(lines[2]));
+        QVERIFY2(lines[3].startsWith("| rubber | sphere | three-point | "), qPrintable(lines[3]));
+        QVERIFY2(lines[4].contains("of 2 cases meet the goal"), qPrintable(lines[4]));
+        for (const char* kind : {"viewport", "reference", "delta"}) {
+            const QString file =
+                m_tmp.filePath(QStringLiteral("rubber_sphere_environment_%1.png").arg(kind));
+            velvet::Image img;
+            std::string error;
+            QVERIFY2(velvet::readImage(file.toStdString(), img, &error), error.c_str());
+            QCOMPARE(img.width, kind == std::string("delta") ? 220 : 16); // the legend widens
+        }
+        // Refusals: images with --table, an unknown preset, mesh or rig, a bad size.
+        QCOMPARE(velvet::test::runVelvet({"compare", "--table", "a.png", "b.png"}).exitCode, 1);
+        Result bad = velvet::test::runVelvet({"compare", "--table", "--preset", "velour"});
+        QCOMPARE(bad.exitCode, 1);
+        QVERIFY2(bad.err.contains("velour"), qPrintable(bad.err));
+        QCOMPARE(velvet::test::runVelvet({"compare", "--table", "--mesh", "teapot"}).exitCode, 1);
+        QCOMPARE(velvet::test::runVelvet({"compare", "--table", "--light-rig", "moon"}).exitCode,
+                 1);
+        QCOMPARE(velvet::test::runVelvet({"compare", "--table", "--size", "2"}).exitCode, 1);
+    }
 };
 
 QTEST_GUILESS_MAIN(TestAppCompare)

@@ -148,6 +148,22 @@ private slots:
         QCOMPARE(d.at(0, 0)[0], 0.0f);
         QVERIFY(d.at(1, 0)[0] <= 1.0f && d.at(1, 0)[0] > 0.99f);
     }
+
+    // The statistics over the pixels a mesh covers fully (the Reference view, velvet compare
+    // --table): partly covered and uncovered pixels do not count.
+    void statisticsOverCoveredPixels() {
+        velvet::Image deltaE(2, 2, 1), coverage(2, 2, 1);
+        deltaE.pixels = {1.0f, 20.0f, 3.0f, 40.0f};
+        coverage.pixels = {1.0f, 0.0f, 1.0f, 0.5f};
+        const velvet::DeltaEStats s = velvet::deltaEStats(deltaE, coverage);
+        QCOMPARE(s.pixels, size_t(2));
+        QCOMPARE(s.mean, 2.0);
+        QCOMPARE(s.p95, 3.0); // nearest rank: the ceil(0.95 x 2) = 2nd smallest
+        QCOMPARE(s.max, 3.0);
+        QCOMPARE(velvet::deltaEStats(deltaE, velvet::Image(2, 1, 1)).pixels, size_t(0));
+        coverage.pixels = {0.0f, 0.0f, 0.99f, 0.0f};
+        QCOMPARE(velvet::deltaEStats(deltaE, coverage).pixels, size_t(0));
+    }
 };
 
 QTEST_APPLESS_MAIN(TestColorDifference)

@@ -2,20 +2,28 @@
 // dock and starts the path tracer in the background; images arrive while the UI keeps
 // processing events; an edit restarts the render and changes the image; dragging the divider
 // puts the viewport's pixels left of it and the reference's right; hiding the dock stops it.
+// The ΔE heat map toggle shows each pixel coloured by the CIEDE2000 between the two images the
+// split shows, and the status bar states their mean and 95th percentile as the render converges.
+#include "core/image_compare.h"
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
+#include "ui/reference/reference_job.h"
 #include "ui/reference/reference_panel.h"
 #include "ui/viewport_widget.h"
 #include "ui_test_window.h"
 
 #include <QApplication>
+#include <QComboBox>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QStandardPaths>
+#include <QStatusBar>
 #include <QSurfaceFormat>
 #include <QTimer>
+#include <QToolButton>
 #include <QtTest>
 #include <memory>
 
@@ -134,6 +142,145 @@ private slots:
         // Hidden, it stops.
         QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
         QVERIFY(QTest::qWaitFor([&] { return !panel->active(); }));
+    }
+
+    void heatMapShowsTheDeltaEAndTheStatusBarItsMean() {
+        auto* dock = m_window->findChild<QDockWidget*>(QStringLiteral("referenceDock"));
+        ReferencePanel* panel = m_window->referencePanel();
+        QVERIFY(dock && panel && !panel->active());
+        QSignalSpy lines(panel, &ReferencePanel::status);
+        QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
+        QVERIFY(QTest::qWaitFor([&] { return panel->active(); }));
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 1; }, 120000));
+        const double meanAtFirst = panel->deltaEStats().mean;
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 32; }, 240000));
+
+        // The toggle (a click on the real button) swaps the split for the heat map.
+        auto* toggle = panel->findChild<QToolButton*>(QStringLiteral("referenceHeatMap"));
+        auto* slider = panel->findChild<QSlider*>(QStringLiteral("referenceSplit"));
+        QVERIFY(toggle && slider);
+        ReferenceSplitView* view = panel->view();
+        QVERIFY(!view->heatMapShown());
+        QTest::mouseClick(toggle, Qt::LeftButton);
+        QVERIFY(view->heatMapShown());
+        QVERIFY(!slider->isEnabled());
+        // No event is processed from here on, so the images and the ΔE below are one frame's.
+        QVERIFY(QTest::qWaitFor([&] { return !view->coverage().pixels.empty(); }));
+        const QImage heat = view->composed();
+        view->setHeatMapShown(false);
+        view->setSplit(1.0);
+        const QImage viewportShown = view->composed();
+        view->setSplit(0.0);
+        const QImage referenceShown = view->composed();
+        view->setHeatMapShown(true);
+        QVERIFY(!heat.isNull());
+        QCOMPARE(heat.size(), referenceShown.size());
+
+        // The ΔE recomputed here from the two images the split shows (one display transform for
+        // both: the panel compares exactly what it shows).
+        Image deltaE;
+        DeltaEStats stats;
+        std::string error;
+        QVERIFY2(compareImages(ReferenceJob::fromQImage(viewportShown),
+                               ReferenceJob::fromQImage(referenceShown), deltaE, stats, &error),
+                 error.c_str());
+        // ... over the pixels the mesh covers (the sphere: a disc of them, the corners not).
+        const Image& coverage = view->coverage();
+        QCOMPARE(coverage.width, heat.width());
+        const QPoint centre(heat.width() / 2, heat.height() / 2);
+        QCOMPARE(*coverage.at(centre.x(), centre.y()), 1.0f);
+        QCOMPARE(*coverage.at(0, 0), 0.0f);
+        stats = deltaEStats(deltaE, coverage);
+        QVERIFY(stats.pixels > 100);
+        QCOMPARE(stats.pixels, panel->deltaEStats().pixels);
+        QVERIFY(std::abs(stats.mean - panel->deltaEStats().mean) < 1e-9);
+        QVERIFY(std::abs(stats.p95 - panel->deltaEStats().p95) < 1e-9);
+        // Each covered pixel coloured by its ΔE on the scale black 0 .. red kHeatMapMax; the
+        // others grey (the viewport dimmed).
+        int wrong = 0, coloured = 0, grey = 0;
+        for (int y = 0; y < heat.height(); ++y)
+            for (int x = 0; x < heat.width(); ++x) {
+                const QColor got = heat.pixelColor(x, y);
+                if (*coverage.at(x, y) < 1.0f) {
+                    const int g = qGray(viewportShown.pixel(x, y)) / 2;
+                    wrong += got == QColor(g, g, g) ? 0 : 1;
+                    ++grey;
+                    continue;
+                }
+                const glm::vec3 want =
+                    heatMapColor(*deltaE.at(x, y), ReferenceSplitView::kHeatMapMax) * 255.0f;
+                if (std::abs(got.red() - want.r) > 1.0f || std::abs(got.green() - want.g) > 1.0f ||
+                    std::abs(got.blue() - want.b) > 1.0f)
+                    ++wrong;
+                if (got.red() != got.green() || got.green() != got.blue())
+                    ++coloured; // a hue: ΔE above 0 (black is 0)
+            }
+        QCOMPARE(wrong, 0);
+        qInfo("ΔE on the mesh at %d spp: mean %.3f, p95 %.3f, max %.3f over %zu pixels; %d grey",
+              panel->passes(), stats.mean, stats.p95, stats.max, stats.pixels, grey);
+        QVERIFY(grey > 0 && coloured > 0);
+
+        // The status bar states the mean and the 95th percentile of the image shown.
+        const QString shown = m_window->statusBar()->currentMessage();
+        QVERIFY2(shown.contains(QStringLiteral("mean %1").arg(stats.mean, 0, 'f', 2)) &&
+                     shown.contains(QStringLiteral("p95 %1").arg(stats.p95, 0, 'f', 2)),
+                 qPrintable(shown));
+        // ... updated as the reference converged: a line per image, its noise falling.
+        QVERIFY2(lines.count() >= 6, qPrintable(QString::number(lines.count())));
+        QVERIFY2(stats.mean < meanAtFirst,
+                 qPrintable(QStringLiteral("%1 -> %2").arg(meanAtFirst).arg(stats.mean)));
+
+        if (const QByteArray shots = qgetenv("VELVET_TEST_SCREENSHOTS"); !shots.isEmpty())
+            panel->grab().save(QString::fromUtf8(shots) + QStringLiteral("/reference_heatmap.png"));
+
+        // One display transform for both: +1 EV typed into the toolbar's exposure restarts the
+        // reference and brightens both images; the ΔE stays about what it was (exposing only one
+        // side would shift L* by ten or more everywhere).
+        auto* exposure = m_window->findChild<QDoubleSpinBox*>(QStringLiteral("exposureSpin"));
+        QVERIFY(exposure);
+        const QColor vpBefore = viewportShown.pixelColor(heat.width() / 2, heat.height() / 2);
+        const QColor refBefore = referenceShown.pixelColor(heat.width() / 2, heat.height() / 2);
+        exposure->setFocus();
+        QTest::keyClick(exposure, Qt::Key_A, Qt::ControlModifier);
+        QTest::keyClicks(exposure, QStringLiteral("1"));
+        QTest::keyClick(exposure, Qt::Key_Return);
+        QCOMPARE(m_window->viewport()->frameSettings().exposureEv, 1.0f);
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() == 0; }, 10000));
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 32; }, 240000));
+        view->setHeatMapShown(false);
+        view->setSplit(1.0);
+        const QColor vpAfter = view->composed().pixelColor(heat.width() / 2, heat.height() / 2);
+        view->setSplit(0.0);
+        const QColor refAfter = view->composed().pixelColor(heat.width() / 2, heat.height() / 2);
+        QVERIFY2(vpAfter.lightness() > vpBefore.lightness() + 10 &&
+                     refAfter.lightness() > refBefore.lightness() + 10,
+                 qPrintable(QStringLiteral("viewport %1 -> %2, reference %3 -> %4")
+                                .arg(vpBefore.lightness())
+                                .arg(vpAfter.lightness())
+                                .arg(refBefore.lightness())
+                                .arg(refAfter.lightness())));
+        const DeltaEStats exposed = panel->deltaEStats();
+        qInfo("+1 EV: ΔE on the mesh mean %.3f, p95 %.3f (was %.3f, %.3f)", exposed.mean,
+              exposed.p95, stats.mean, stats.p95);
+        QVERIFY2(exposed.pixels > 0 && exposed.mean < stats.mean * 1.5 + 1.0,
+                 qPrintable(QString::number(exposed.mean)));
+        // A debug view's image holds raw values, not light: no ΔE, and the panel says why.
+        auto* debugView = m_window->findChild<QComboBox*>(QStringLiteral("debugViewCombo"));
+        QVERIFY(debugView && debugView->count() > 1);
+        debugView->setCurrentIndex(1);
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() == 0; }, 10000));
+        QVERIFY(QTest::qWaitFor([&] { return panel->passes() >= 1; }, 120000));
+        QCOMPARE(panel->deltaEStats().pixels, size_t(0));
+        QVERIFY2(m_window->statusBar()->currentMessage().contains(QStringLiteral("debug view")),
+                 qPrintable(m_window->statusBar()->currentMessage()));
+        debugView->setCurrentIndex(0);
+        exposure->setValue(0.0);
+        view->setHeatMapShown(true);
+        QTest::mouseClick(toggle, Qt::LeftButton); // back to the split
+        QVERIFY(!view->heatMapShown() && slider->isEnabled());
+        QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
+        QVERIFY(QTest::qWaitFor([&] { return !panel->active(); }));
+        QVERIFY(m_window->statusBar()->currentMessage().isEmpty());
     }
 };
 

@@ -1,24 +1,13 @@
 #include "ui/reference/reference_job.h"
 
-#include "core/tone_curves.h"
 #include "reference/reference_renderer.h"
 
 #include <QMetaObject>
-#include <glm/common.hpp>
 #include <QPointer>
 #include <algorithm>
 #include <cmath>
 
 namespace velvet::ui {
-
-namespace {
-
-float srgbEncode(float v) {
-    v = std::clamp(v, 0.0f, 1.0f);
-    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
-
-} // namespace
 
 ReferenceJob::ReferenceJob(QObject* parent) : QObject(parent) {}
 
@@ -26,17 +15,44 @@ ReferenceJob::~ReferenceJob() {
     stop();
 }
 
-QImage ReferenceJob::toDisplay(const Image& linear) {
-    QImage out(linear.width, linear.height, QImage::Format_RGB888);
-    for (int y = 0; y < linear.height; ++y) {
-        uchar* row = out.scanLine(y);
+Image ReferenceJob::displayImage(const Image& linear, float exposureEv) {
+    Image scaled(linear.width, linear.height, 3);
+    const float gain = std::exp2(exposureEv);
+    for (int y = 0; y < linear.height; ++y)
         for (int x = 0; x < linear.width; ++x) {
             const glm::vec4 c = linear.rgba(x, y);
-            const glm::vec3 mapped =
-                tone::khronosPbrNeutral(glm::max(glm::vec3(c), glm::vec3(0.0f)));
-            for (int k = 0; k < 3; ++k)
-                row[x * 3 + k] = uchar(std::lround(srgbEncode(mapped[k]) * 255.0f));
+            float* o = scaled.at(x, y);
+            o[0] = c.r * gain, o[1] = c.g * gain, o[2] = c.b * gain;
         }
+    Image out = defaultDisplayTransform(scaled);
+    // On 8-bit levels: the ΔE is of the pixels the view shows, and a test can recompute it
+    // from the QImages exactly.
+    for (float& v : out.pixels)
+        v = float(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)) / 255.0f;
+    return out;
+}
+
+QImage ReferenceJob::toQImage(const Image& display) {
+    QImage out(display.width, display.height, QImage::Format_RGB888);
+    for (int y = 0; y < display.height; ++y) {
+        uchar* row = out.scanLine(y);
+        for (int x = 0; x < display.width; ++x) {
+            const glm::vec4 c = display.rgba(x, y);
+            for (int k = 0; k < 3; ++k)
+                row[x * 3 + k] = uchar(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+        }
+    }
+    return out;
+}
+
+Image ReferenceJob::fromQImage(const QImage& image) {
+    const QImage rgb = image.convertToFormat(QImage::Format_RGB888);
+    Image out(rgb.width(), rgb.height(), 3);
+    for (int y = 0; y < rgb.height(); ++y) {
+        const uchar* row = rgb.constScanLine(y);
+        for (int x = 0; x < rgb.width(); ++x)
+            for (int k = 0; k < 3; ++k)
+                out.at(x, y)[k] = float(row[x * 3 + k]) / 255.0f;
     }
     return out;
 }
@@ -48,7 +64,8 @@ void ReferenceJob::stop() {
         m_thread.join();
 }
 
-void ReferenceJob::start(const Scene& scene, int width, int height, int samples) {
+void ReferenceJob::start(const Scene& scene, int width, int height, const Image& viewport,
+                         float exposureEv, int samples) {
     stop();
     const int generation = ++m_generation;
     m_cancel = std::make_shared<std::atomic<bool>>(false);
@@ -59,15 +76,30 @@ void ReferenceJob::start(const Scene& scene, int width, int height, int samples)
     options.height = std::max(height, 1);
     options.samplesPerPixel = samples;
     options.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
-    // Each image is encoded on the worker and delivered to the UI thread only if this render is
-    // still the current one (a restart bumps the generation).
-    options.onPassImage = [self, generation](const Image& soFar, int passes) {
-        const QImage image = toDisplay(soFar);
+    // Each image is encoded and compared on the worker and delivered to the UI thread only if
+    // this render is still the current one (a restart bumps the generation).
+    auto compareWith = std::make_shared<const Image>(viewport);
+    options.onPassImage = [self, generation, compareWith,
+                           exposureEv](const Image& soFar, const Image& coverage, int passes) {
+        ReferenceFrame frame;
+        const Image display = displayImage(soFar, exposureEv);
+        frame.image = toQImage(display);
+        frame.passes = passes;
+        frame.coverage = coverage;
+        // The statistics are the material's: over the pixels the mesh covers, not the background
+        // (the viewport may blur it, the path tracer shows it sharp) nor the silhouette's
+        // partly covered pixels.
+        DeltaEStats all;
+        if (!compareWith->empty() &&
+            compareImages(*compareWith, display, frame.deltaE, all, nullptr))
+            frame.stats = deltaEStats(frame.deltaE, coverage);
+        else
+            frame.deltaE = Image(); // sizes differ: no comparison (the panel says so)
         QMetaObject::invokeMethod(
             self.data(),
-            [self, generation, image, passes] {
+            [self, generation, frame = std::move(frame)] {
                 if (self && self->m_generation == generation)
-                    emit self->imageReady(image, passes);
+                    emit self->imageReady(frame);
             },
             Qt::QueuedConnection);
     };

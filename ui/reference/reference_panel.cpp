@@ -1,17 +1,36 @@
 #include "ui/reference/reference_panel.h"
 
+#include "core/image_ops.h"
 #include "ui/document_controller.h"
 #include "ui/reference/reference_job.h"
 #include "ui/viewport_widget.h"
 
+#include <QHBoxLayout>
 #include <QLabel>
+#include <QLinearGradient>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QSlider>
+#include <QToolButton>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <cmath>
 
 namespace velvet::ui {
+
+namespace {
+
+QColor toColor(glm::vec3 c) {
+    const auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+    return QColor(byte(c.r), byte(c.g), byte(c.b));
+}
+
+/// Height of the heat map's legend strip for @p fm.
+int legendHeight(const QFontMetrics& fm) {
+    return 10 + fm.height() + 6;
+}
+
+} // namespace
 
 // ---- The split view -----------------------------------------------------------------------------
 
@@ -27,6 +46,18 @@ void ReferenceSplitView::setImages(const QImage& viewport, const QImage& referen
     update();
 }
 
+void ReferenceSplitView::setDeltaE(const Image& deltaE, const Image& coverage) {
+    m_deltaE = deltaE;
+    m_coverage = coverage;
+    update();
+}
+
+void ReferenceSplitView::setHeatMapShown(bool shown) {
+    m_heatMap = shown;
+    setCursor(shown ? Qt::ArrowCursor : Qt::SplitHCursor);
+    update();
+}
+
 void ReferenceSplitView::setSplit(double split) {
     m_split = std::clamp(split, 0.0, 1.0);
     update();
@@ -35,6 +66,28 @@ void ReferenceSplitView::setSplit(double split) {
 QImage ReferenceSplitView::composed() const {
     if (m_reference.isNull())
         return {};
+    if (m_heatMap) {
+        QImage out(m_reference.size(), QImage::Format_RGB888);
+        out.fill(Qt::black);
+        if (m_deltaE.width != out.width() || m_deltaE.height != out.height() ||
+            m_coverage.width != out.width() || m_coverage.height != out.height())
+            return out; // no comparison for this image (yet)
+        // The mesh's pixels coloured by their ΔE; around them the viewport, grey and dimmed, so
+        // the map sits over what the artist sees.
+        const QImage under =
+            m_viewport.scaled(out.size(), Qt::IgnoreAspectRatio, Qt::SmoothTransformation)
+                .convertToFormat(QImage::Format_RGB888);
+        for (int y = 0; y < out.height(); ++y)
+            for (int x = 0; x < out.width(); ++x) {
+                if (*m_coverage.at(x, y) >= 1.0f) {
+                    out.setPixelColor(x, y, toColor(heatMapColor(*m_deltaE.at(x, y), kHeatMapMax)));
+                } else if (!under.isNull()) {
+                    const int grey = qGray(under.pixel(x, y)) / 2;
+                    out.setPixelColor(x, y, QColor(grey, grey, grey));
+                }
+            }
+        return out;
+    }
     QImage out = m_reference.convertToFormat(QImage::Format_RGB888);
     if (m_viewport.isNull())
         return out;
@@ -50,9 +103,38 @@ QImage ReferenceSplitView::composed() const {
 QRect ReferenceSplitView::imageRect() const {
     if (m_reference.isNull())
         return rect();
+    QRect area = rect();
+    if (m_heatMap)
+        area.setBottom(area.bottom() - legendHeight(fontMetrics()));
     QSize size = m_reference.size();
-    size.scale(this->size(), Qt::KeepAspectRatio);
-    return QRect(QPoint((width() - size.width()) / 2, (height() - size.height()) / 2), size);
+    size.scale(area.size(), Qt::KeepAspectRatio);
+    return QRect(QPoint((area.width() - size.width()) / 2, (area.height() - size.height()) / 2),
+                 size);
+}
+
+void ReferenceSplitView::paintLegend(QPainter& p, const QRect& image) {
+    // The ramp of heatMapColor from 0 to kHeatMapMax, under the map, with five ticks.
+    const QFontMetrics fm(font());
+    const int margin = fm.horizontalAdvance(QStringLiteral("ΔE00 "));
+    const QRect bar(image.left() + margin, image.bottom() + 4,
+                    std::max(image.width() - 2 * margin, 20), 8);
+    QLinearGradient ramp(bar.topLeft(), bar.topRight());
+    for (int i = 0; i <= 8; ++i)
+        ramp.setColorAt(i / 8.0, toColor(heatMapColor(kHeatMapMax * i / 8.0, kHeatMapMax)));
+    p.fillRect(bar, ramp);
+    p.setPen(palette().windowText().color());
+    p.drawText(QRect(image.left(), bar.top() - 4, margin, bar.height() + 8), Qt::AlignVCenter,
+               QStringLiteral("ΔE00"));
+    // Five ticks where they fit, else the ends and the middle, else the ends.
+    const int widest = fm.horizontalAdvance(QStringLiteral("≥%1").arg(kHeatMapMax)) + 8;
+    const int step = bar.width() >= 4 * widest ? 1 : bar.width() >= 2 * widest ? 2 : 4;
+    for (int i = 0; i <= 4; i += step) {
+        const int x = bar.left() + bar.width() * i / 4;
+        const QString text = i == 4 ? QStringLiteral("≥%1").arg(kHeatMapMax)
+                                    : QString::number(kHeatMapMax * i / 4.0);
+        const int w = fm.horizontalAdvance(text);
+        p.drawText(QRect(x - w / 2, bar.bottom() + 2, w + 2, fm.height()), Qt::AlignLeft, text);
+    }
 }
 
 void ReferenceSplitView::paintEvent(QPaintEvent*) {
@@ -65,6 +147,10 @@ void ReferenceSplitView::paintEvent(QPaintEvent*) {
     const QRect r = imageRect();
     p.setRenderHint(QPainter::SmoothPixmapTransform);
     p.drawImage(r, composed());
+    if (m_heatMap) {
+        paintLegend(p, r);
+        return;
+    }
     // The divider and what each side is.
     const int x = r.left() + int(std::lround(m_split * r.width()));
     p.setPen(QPen(Qt::white, 2));
@@ -84,7 +170,7 @@ void ReferenceSplitView::mousePressEvent(QMouseEvent* event) {
 }
 
 void ReferenceSplitView::mouseMoveEvent(QMouseEvent* event) {
-    if (!(event->buttons() & Qt::LeftButton))
+    if (m_heatMap || !(event->buttons() & Qt::LeftButton))
         return;
     const QRect r = imageRect();
     setSplit(double(event->position().x() - r.left()) / std::max(r.width(), 1));
@@ -97,32 +183,39 @@ ReferencePanel::ReferencePanel(DocumentController* controller, ViewportWidget* v
                                QWidget* parent)
     : QWidget(parent), m_controller(controller), m_viewport(viewport),
       m_job(new ReferenceJob(this)), m_view(new ReferenceSplitView(this)),
-      m_split(new QSlider(Qt::Horizontal, this)), m_label(new QLabel(this)) {
+      m_split(new QSlider(Qt::Horizontal, this)), m_heatMap(new QToolButton(this)),
+      m_label(new QLabel(this)) {
     setObjectName(QStringLiteral("referencePanel"));
     m_split->setObjectName(QStringLiteral("referenceSplit"));
     m_split->setRange(0, 100);
     m_split->setValue(50);
     m_split->setToolTip(tr("Viewport left of the divider, the path-traced reference right"));
+    m_heatMap->setObjectName(QStringLiteral("referenceHeatMap"));
+    m_heatMap->setText(tr("ΔE heat map"));
+    m_heatMap->setCheckable(true);
+    m_heatMap->setToolTip(tr("Show where the viewport departs from the reference: per-pixel "
+                             "CIEDE2000 after the same display transform, black 0 to red %1 and "
+                             "above")
+                              .arg(ReferenceSplitView::kHeatMapMax));
     m_label->setObjectName(QStringLiteral("referenceStatus"));
     m_label->setWordWrap(true);
+    auto* controls = new QHBoxLayout;
+    controls->addWidget(m_split, 1);
+    controls->addWidget(m_heatMap);
     auto* layout = new QVBoxLayout(this);
     layout->addWidget(m_view, 1);
-    layout->addWidget(m_split);
+    layout->addLayout(controls);
     layout->addWidget(m_label);
     connect(m_split, &QSlider::valueChanged, this, [this](int v) { m_view->setSplit(v / 100.0); });
     connect(m_view, &ReferenceSplitView::splitDragged, this, [this](double s) {
         const QSignalBlocker block(m_split);
         m_split->setValue(int(std::lround(s * 100.0)));
     });
-    connect(m_job, &ReferenceJob::imageReady, this, [this](const QImage& image, int passes) {
-        m_passes = passes;
-        m_view->setImages(m_snapshot, image);
-        const QString text = tr("Reference: %1 samples per pixel (CPU path tracer; restarts when "
-                                "the scene or the view changes)")
-                                 .arg(passes);
-        m_label->setText(text);
-        emit status(tr("Reference: %1 samples per pixel").arg(passes));
+    connect(m_heatMap, &QToolButton::toggled, this, [this](bool on) {
+        m_view->setHeatMapShown(on);
+        m_split->setEnabled(!on); // the split has no meaning over the heat map
     });
+    connect(m_job, &ReferenceJob::imageReady, this, &ReferencePanel::showFrame);
     connect(m_job, &ReferenceJob::failed, this, [this](const QString& message) {
         m_label->setText(tr("Reference failed: %1").arg(message));
         emit status(tr("Reference failed: %1").arg(message));
@@ -138,6 +231,29 @@ ReferencePanel::ReferencePanel(DocumentController* controller, ViewportWidget* v
 
 ReferencePanel::~ReferencePanel() = default;
 
+void ReferencePanel::showFrame(const ReferenceFrame& frame) {
+    m_passes = frame.passes;
+    m_stats = frame.stats;
+    m_view->setImages(m_snapshot, frame.image);
+    m_view->setDeltaE(frame.deltaE, frame.coverage);
+    QString text;
+    if (frame.deltaE.empty()) {
+        text = tr("Reference: %1 spp (%2)")
+                   .arg(frame.passes)
+                   .arg(m_noComparison.isEmpty() ? tr("no viewport image to compare with")
+                                                 : m_noComparison);
+    } else if (frame.stats.pixels == 0) {
+        text = tr("Reference: %1 spp (the mesh covers no whole pixel)").arg(frame.passes);
+    } else {
+        text = tr("Reference: %1 spp · ΔE2000 on the mesh: mean %2, p95 %3")
+                   .arg(frame.passes)
+                   .arg(frame.stats.mean, 0, 'f', 2)
+                   .arg(frame.stats.p95, 0, 'f', 2);
+    }
+    m_label->setText(text + tr(" (CPU path tracer; restarts when the scene or the view changes)"));
+    emit status(text);
+}
+
 void ReferencePanel::setActive(bool active) {
     if (active == m_active)
         return;
@@ -147,6 +263,7 @@ void ReferencePanel::setActive(bool active) {
     } else {
         m_restart.stop();
         m_job->stop();
+        emit status({});
     }
 }
 
@@ -160,14 +277,31 @@ void ReferencePanel::restart() {
         return;
     const QSize size = m_viewport->size();
     const int height = std::max(1, kWidth * std::max(size.height(), 1) / std::max(size.width(), 1));
-    // The viewport as it is now, at the reference's size: the left of the split.
-    m_snapshot = m_viewport->grabFramebuffer().scaled(kWidth, height, Qt::IgnoreAspectRatio,
-                                                      Qt::SmoothTransformation);
+    // The viewport as it is now, scene-linear, averaged down to the reference's size (each
+    // reference pixel integrates its footprint too) and shown through the same display transform
+    // as the reference: the left of the split and what the ΔE compares.
+    Image linear;
+    const QImage grabbed = m_viewport->grabFramebuffer(&linear);
+    const float exposure = m_viewport->frameSettings().exposureEv;
+    Image viewportDisplay;
+    std::string error;
+    // A debug view's linear image holds raw values (normals, depth…), not light.
+    const bool debugView = m_viewport->frameSettings().view != render::DebugView::Final;
+    m_noComparison = debugView ? tr("the viewport shows a debug view: no ΔE") : QString();
+    if (!linear.empty() && !debugView) {
+        const Image small = velvet::resize(linear, kWidth, height, &error, ResizeFilter::Box);
+        if (!small.empty())
+            viewportDisplay = ReferenceJob::displayImage(small, exposure);
+    }
+    m_snapshot = viewportDisplay.empty() ? grabbed.scaled(kWidth, height, Qt::IgnoreAspectRatio,
+                                                          Qt::SmoothTransformation)
+                                         : ReferenceJob::toQImage(viewportDisplay);
     Scene scene = m_controller->scene();
     scene.camera = m_viewport->viewCamera();
     m_passes = 0;
+    m_stats = {};
     m_label->setText(tr("Rendering the reference…"));
-    m_job->start(scene, kWidth, height);
+    m_job->start(scene, kWidth, height, viewportDisplay, exposure);
 }
 
 } // namespace velvet::ui

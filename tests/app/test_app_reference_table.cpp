@@ -1,0 +1,147 @@
+// The viewport against the reference (issue 15's goal, app/reference_table.h): every library
+// preset on the sphere, and three on the shader ball (a rough dielectric, a glossy one, a metal),
+// under the default HDRI alone and the three-point rig, 32x32 pixels, 256 reference samples per
+// pixel (deterministic: the reference's random streams are fixed by the seed). A case meets the
+// goal — mean ΔE2000 < 2 and 95th percentile < 5 over the mesh's pixels — unless it is one of the
+// named misses below, whose measured values may not grow by more than 10 % (+0.2). A named miss
+// that meets the goal is reported, so the list is kept honest. BENCHMARKS.md has the full table.
+#include "app/reference_table.h"
+
+#include <QtTest>
+#include <string>
+
+using namespace velvet;
+using namespace velvet::cli;
+
+namespace {
+
+struct Miss {
+    const char* preset;
+    PreviewMeshKind mesh;
+    const char* rig;
+    double mean,
+        p95; ///< as measured at 32x32, 256 spp (velvet compare --table --size 32 --spp 256)
+};
+
+constexpr PreviewMeshKind kSphere = PreviewMeshKind::Sphere;
+constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
+
+// Why they miss (BENCHMARKS.md, "The viewport against the reference"): rough metals and
+// anisotropy (the viewport's image-based light adds multiple-scattering energy the reference's
+// single-scattering GGX lacks; the bent-normal approximation of anisotropic reflections), sheen
+// under the environment (albedo x prefiltered radiance against the integrated sheen lobe), the
+// fabrics' weaves (pattern-aligned: lower relief contrast in the viewport), the shader ball's
+// cavities (the viewport reflects the environment where the mesh sees itself).
+const Miss kMisses[] = {
+    {"brushed_aluminium", kSphere, "environment", 13.85, 30.03},
+    {"brushed_aluminium", kSphere, "three-point", 8.42, 23.80},
+    {"ceramic", kSphere, "environment", 2.41, 5.36},
+    {"copper", kSphere, "environment", 4.42, 11.55},
+    {"copper", kSphere, "three-point", 3.18, 8.88},
+    {"cotton", kSphere, "environment", 5.86, 11.02},
+    {"cotton", kSphere, "three-point", 2.20, 4.95},
+    {"crimson_velvet", kSphere, "environment", 3.39, 8.23},
+    {"crimson_velvet", kSphere, "three-point", 2.34, 6.52},
+    {"crushed_velvet", kSphere, "environment", 7.32, 39.44},
+    {"crushed_velvet", kSphere, "three-point", 3.63, 15.12},
+    {"denim", kSphere, "environment", 3.31, 6.70},
+    {"denim", kSphere, "three-point", 3.65, 8.33},
+    {"gold", kSphere, "environment", 3.98, 10.57},
+    {"gold", kSphere, "three-point", 3.00, 8.26},
+    {"linen", kSphere, "environment", 5.10, 10.60},
+    {"linen", kSphere, "three-point", 2.40, 5.37},
+    {"satin", kSphere, "environment", 3.38, 11.73},
+    {"satin", kSphere, "three-point", 2.81, 9.17},
+    {"silk", kSphere, "environment", 4.70, 11.34},
+    {"terry", kSphere, "environment", 4.02, 11.79},
+    {"tweed", kSphere, "environment", 4.43, 9.06},
+    {"tweed", kSphere, "three-point", 3.04, 6.78},
+    {"wool", kSphere, "environment", 5.65, 12.69},
+    {"wool", kSphere, "three-point", 3.22, 7.95},
+    {"plastic", kBall, "environment", 7.63, 48.04},
+    {"plastic", kBall, "three-point", 5.87, 31.76},
+    {"gold", kBall, "environment", 14.46, 67.27},
+    {"gold", kBall, "three-point", 13.84, 65.02},
+};
+
+const Miss* knownMiss(const ReferenceTableCase& c) {
+    for (const Miss& m : kMisses)
+        if (c.preset == m.preset && c.mesh == m.mesh && c.rig == m.rig)
+            return &m;
+    return nullptr;
+}
+
+/// The recorded value plus the regression allowance.
+double bound(double measured) {
+    return measured * 1.1 + 0.2;
+}
+
+} // namespace
+
+class TestAppReferenceTable : public QObject {
+    Q_OBJECT
+    ReferenceTable m_table;
+    ReferenceTableOptions m_options;
+
+private slots:
+    void initTestCase() {
+        std::string error;
+        QVERIFY2(m_table.start(&error), error.c_str());
+        m_options.size = 32;
+        m_options.samples = 256;
+        QVERIFY(libraryPresets().size() >= 18);
+    }
+
+    void viewportAgainstReference_data() {
+        QTest::addColumn<QString>("preset");
+        QTest::addColumn<int>("mesh");
+        QTest::addColumn<QString>("rig");
+        const auto add = [](const std::string& preset, PreviewMeshKind mesh) {
+            for (const char* rig : {"environment", "three-point"}) {
+                const std::string name =
+                    preset + " " + std::string(previewMeshKindNames()[size_t(mesh)]) + " " + rig;
+                QTest::newRow(name.c_str())
+                    << QString::fromStdString(preset) << int(mesh) << QString::fromLatin1(rig);
+            }
+        };
+        for (const std::string& preset : libraryPresets())
+            add(preset, kSphere);
+        for (const char* preset : {"rubber", "plastic", "gold"})
+            add(preset, kBall);
+    }
+
+    void viewportAgainstReference() {
+        QFETCH(QString, preset);
+        QFETCH(int, mesh);
+        QFETCH(QString, rig);
+        const ReferenceTableCase c{preset.toStdString(), PreviewMeshKind(mesh), rig.toStdString()};
+        ReferenceTableRow row;
+        std::string error;
+        QVERIFY2(m_table.measure(c, m_options, row, &error), error.c_str());
+        // The mesh's pixels: the sphere fills about half the frame (kStageFill 0.8 of the
+        // height), the shader ball less.
+        QVERIFY2(row.stats.pixels > 200, qPrintable(QString::number(row.stats.pixels)));
+        qInfo("%s", referenceTableLine(row).c_str());
+        if (const Miss* miss = knownMiss(c)) {
+            if (meetsReferenceGoal(row.stats))
+                qWarning("%s now meets the goal (mean %.2f, p95 %.2f): take it off the misses",
+                         qPrintable(QString(QTest::currentDataTag())), row.stats.mean,
+                         row.stats.p95);
+            QVERIFY2(row.stats.mean <= bound(miss->mean) && row.stats.p95 <= bound(miss->p95),
+                     qPrintable(QStringLiteral("regressed: mean %1 (recorded %2), p95 %3 "
+                                               "(recorded %4)")
+                                    .arg(row.stats.mean)
+                                    .arg(miss->mean)
+                                    .arg(row.stats.p95)
+                                    .arg(miss->p95)));
+        } else {
+            QVERIFY2(meetsReferenceGoal(row.stats),
+                     qPrintable(QStringLiteral("mean %1 (goal < 2), p95 %2 (goal < 5)")
+                                    .arg(row.stats.mean)
+                                    .arg(row.stats.p95)));
+        }
+    }
+};
+
+QTEST_GUILESS_MAIN(TestAppReferenceTable)
+#include "test_app_reference_table.moc"
