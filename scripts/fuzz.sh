@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz) with clang into build-fuzz/, replays every seed and
-# reproducer, then fuzzes each target for FUZZ_SECONDS (default 15; .ci/run: 5 targets, 75 s in
+# reproducer, then fuzzes each target for FUZZ_SECONDS (default 15; .ci/run: 7 targets, 105 s in
 # all). Exit 1 on any crash, hang, leak or sanitizer report; libFuzzer writes the input that
 # caused it to build-fuzz/findings/<target>/ — commit it to tests/fuzz/corpus/<target>/ with
 # the fix, so it is replayed from then on. docs/reliability.md, "Fuzzed parsers".
@@ -28,7 +28,7 @@ fi
 cmake --build "$build" -j "$jobs" >/dev/null
 
 seeds=$build/seeds
-rm -rf "$seeds" && "$build/fuzz/fuzz_seeds" "$seeds"
+rm -rf "$seeds" && "$build/fuzz/fuzz_seeds" "$seeds" resources/presets
 
 # target -> read-only seed folders (besides its committed reproducers)
 declare -A seed_dirs=(
@@ -37,6 +37,8 @@ declare -A seed_dirs=(
   [fuzz_post_chain]="resources/post-chains"
   [fuzz_atlas]="$seeds/atlas"
   [fuzz_mesh_cache]="$seeds/mesh_cache"
+  [fuzz_gltf]="$seeds/gltf tests/fuzz/seeds/gltf"
+  [fuzz_mtlx]="$seeds/mtlx tests/fuzz/seeds/mtlx"
 )
 # Bounded inputs and runs: a document over 64 KiB adds nothing a small one cannot reach, and a
 # parser that spends a second on one input is a finding (a hang).
@@ -45,7 +47,7 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 failed=0
-for target in fuzz_material fuzz_scene fuzz_post_chain fuzz_atlas fuzz_mesh_cache; do
+for target in fuzz_material fuzz_scene fuzz_post_chain fuzz_atlas fuzz_mesh_cache fuzz_gltf fuzz_mtlx; do
   binary=$build/fuzz/$target
   repro=tests/fuzz/corpus/$target
   work=$build/corpus/$target

@@ -442,6 +442,14 @@ private slots:
                    "/></surfacematerial>\n"
                    "</materialx>")
             << "line ";
+        // Found by fuzz_mtlx: a name in bytes that are not UTF-8 made a preset that did not load.
+        QTest::newRow("not UTF-8")
+            << QByteArray("<materialx version=\"1.39\">\n<standard_surface name=\"S\" "
+                          "type=\"surfaceshader\" />\n<surfacematerial name=\"M\xE9\" "
+                          "type=\"material\"><input name=\"surfaceshader\" "
+                          "type=\"surfaceshader\" nodename=\"S\" /></surfacematerial>\n"
+                          "</materialx>")
+            << "line 3, column 25: not UTF-8 text (byte 0xE9)";
         QTest::newRow("not a number")
             << QByteArray(
                    "<materialx version=\"1.39\">\n<standard_surface name=\"S\" "
