@@ -21,11 +21,12 @@ if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
 generator=$(command -v ninja >/dev/null && echo Ninja || echo "Unix Makefiles")
-if [[ ! -f $build/CMakeCache.txt ]]; then
-  CXX=clang++ cmake -S . -B "$build" -G "$generator" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DVELVET_FUZZ=ON -DBUILD_TESTING=OFF "${launcher[@]}" >/dev/null
-fi
-cmake --build "$build" -j "$jobs" >/dev/null
+# The same tree holds the core tests for scripts/sanitize-core.sh (BUILD_TESTING); only the
+# fuzz targets are built here.
+CXX=clang++ cmake -S . -B "$build" -G "$generator" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DVELVET_FUZZ=ON -DBUILD_TESTING=ON "${launcher[@]}" >/dev/null
+targets=(fuzz_material fuzz_scene fuzz_post_chain fuzz_atlas fuzz_mesh_cache fuzz_gltf fuzz_mtlx)
+cmake --build "$build" -j "$jobs" --target "${targets[@]}" fuzz_seeds >/dev/null
 
 seeds=$build/seeds
 rm -rf "$seeds" && "$build/fuzz/fuzz_seeds" "$seeds" resources/presets
@@ -47,7 +48,7 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 failed=0
-for target in fuzz_material fuzz_scene fuzz_post_chain fuzz_atlas fuzz_mesh_cache fuzz_gltf fuzz_mtlx; do
+for target in "${targets[@]}"; do
   binary=$build/fuzz/$target
   repro=tests/fuzz/corpus/$target
   work=$build/corpus/$target
