@@ -49,6 +49,11 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
 export LSAN_OPTIONS=suppressions=$root/tests/sanitizers/lsan.supp
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
+# The import targets write each input to a temporary folder; libFuzzer can end without running
+# atexit handlers, so keep those folders in the build tree, emptied on every run.
+export TMPDIR=$build/tmp
+rm -rf "$TMPDIR" && mkdir -p "$TMPDIR"
+
 failed=0
 for target in "${targets[@]}"; do
   binary=$build/fuzz/$target
