@@ -32,7 +32,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Created once per process and removed at exit; a crash leaves it in /tmp, which is harmless.
+// Created once per process and removed at a normal exit; libFuzzer may end without atexit
+// handlers, so scripts/fuzz.sh points TMPDIR into the build tree and empties it each run.
 const fs::path& folder() {
     static const fs::path f = [] {
         std::string pattern = (fs::temp_directory_path() / "velvet-fuzz-import-XXXXXX").string();
