@@ -350,12 +350,16 @@ std::optional<MtlxShader> mtlxShaderFromId(std::string_view id) {
     return std::nullopt;
 }
 
-bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader shader,
-               TextureCache& textures, BuiltExport& out, std::string* error) {
+bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader shader,
+               TextureCache& textures, BuiltExport& out, std::string* error,
+               const BakedMaterialMaps* baked) {
     out = {};
     GltfTexturePlan plan;
-    if (!planGltfTextures(material, textures, plan, error, /*cutOutRegions=*/true))
+    if (!planGltfTextures(source, textures, plan, error, /*cutOutRegions=*/true))
         return false;
+    std::vector<std::string> bakeWarnings;
+    // The exported material: the graph-driven inputs' factors neutral, their slots the bake's.
+    const Material material = baked ? applyBakedMaps(source, *baked, plan, bakeWarnings) : source;
     // Grey images become RGBA as Velvet reads them (Image::rgba: RRR1), so every `extract`
     // index means the same channel whatever the file's channel count.
     for (GltfImage& image : plan.images)
@@ -371,6 +375,7 @@ bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader s
     const std::string base(baseName);
     const std::string id(mtlxShaderId(shader));
     out.warnings = mappingWarnings(material, "MaterialX " + id);
+    out.warnings.insert(out.warnings.end(), bakeWarnings.begin(), bakeWarnings.end());
     out.warnings.insert(out.warnings.end(), plan.warnings.begin(), plan.warnings.end());
 
     Builder b(plan, base);
