@@ -577,6 +577,23 @@ private slots:
             QVERIFY2(!doc.contains("images") && !doc.contains("textures"), name);
         }
     }
+    /// Without an OpenGL context the graph cannot be baked: exit 2 with a line saying so and
+    /// nothing written, while a material without a graph (which needs no GPU) still exports.
+    /// libglvnd (Debian's libEGL) finds no EGL vendor from a vendor file that does not exist.
+    void noContextIsAClearError() {
+        const QString out = m_tmp.filePath("no-context");
+        velvet::test::RunOptions options;
+        options.extraEnv["__EGL_VENDOR_LIBRARY_FILENAMES"] = m_tmp.filePath("no-vendor.json");
+        Result r = velvet::test::runVelvet(
+            {"export", preset("denim.json"), "-f", "glb", "--bake-size", "8", "-o", out}, options);
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("denim.json: cannot bake the node graph's maps: headless OpenGL"),
+                 qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(out + "/denim.glb"));
+        r = velvet::test::runVelvet({"export", preset("gold.json"), "-f", "glb", "-o", out},
+                                    options);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+    }
 };
 QTEST_GUILESS_MAIN(TestAppExport)
 #include "test_app_export.moc"
