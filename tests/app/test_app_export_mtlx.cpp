@@ -341,6 +341,21 @@ private slots:
             QCOMPARE(info.height, 32);
         }
     }
+    /// Silk's graph drives the anisotropy direction and the roughness, both baked; MaterialX's
+    /// anisotropy inputs are constants, written from the baked maps' means (with a warning), so
+    /// the stretch is kept: 1 - alpha/alpha_t at strength 0.5 and a roughness near silk's.
+    void bakedAnisotropyKeepsItsStrength() {
+        const QString out = m_tmp.filePath("baked-silk");
+        const auto r = velvet::test::runVelvet(
+            {"export", preset("silk.json"), "-f", "mtlx", "--bake-size", "32", "-o", out}, {});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(r.err.contains("graph: the anisotropy inputs are constants in MaterialX"),
+                 qPrintable(r.err));
+        const MxDocument doc = parse(out + "/silk.mtlx");
+        QVERIFY2(doc.error.isEmpty(), qPrintable(doc.error));
+        const float a = doc.nodes["SR_silk"].inputs["specular_anisotropy"].value.toFloat();
+        QVERIFY2(a > 0.3f && a < 0.9f, qPrintable(QString::number(a)));
+    }
 };
 QTEST_GUILESS_MAIN(TestAppExportMtlx)
 #include "test_app_export_mtlx.moc"
