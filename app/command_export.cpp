@@ -6,6 +6,7 @@
 #include "app/load_document.h"
 #include "core/material_export.h"
 #include "core/texture_set_export.h"
+#include "render/baked_export.h"
 #include "render/material_bake.h"
 
 #include <charconv>
@@ -38,6 +39,8 @@ const std::vector<OptionSpec> kOptions{
      "shader-ball, or a mesh file (default: the scene's mesh)"},
     {"shader", 0, true, "NAME",
      "mtlx: the shader node, standard_surface (default), open_pbr_surface or gltf_pbr"},
+    {"bake-size", 0, true, "N",
+     "glb, gltf, mtlx: width and height of the node graph's baked maps, 1 to 8192 (default 1024)"},
     {"force", 0, false, "", "replace existing files (otherwise an existing output is exit 2)"},
     kJobsOption,
     kShardOption,
@@ -46,7 +49,7 @@ const std::vector<OptionSpec> kOptions{
 
 const char* kHelp =
     "Usage: velvet export FILE... -f glb|gltf|mtlx|preset -o OUT [--mesh MESH|FILE]\n"
-    "                    [--shader NAME] [--force]\n"
+    "                    [--shader NAME] [--bake-size N] [--force]\n"
     "       velvet export FILE... -f texture-set --target ENGINE -o OUT [--size N]\n"
     "                    [--bits B] [--image png|tga|exr] [--normal opengl|directx] [--force]\n"
     "Exports the material of each FILE (a scene, or a material preset) as glTF 2.0 with the\n"
@@ -54,9 +57,11 @@ const char* kHelp =
     "extensions, on the preview mesh, as MaterialX 1.39, or as a standalone Velvet preset.\n"
     "Each FILE gives OUT/NAME.glb (or .gltf with NAME.bin and NAME_<map>.png, .mtlx with\n"
     "NAME_<map>.png, or NAME.json), NAME being FILE's name reduced to letters,\n"
-    "digits, '-' and '_', so nothing is written outside OUT. What glTF cannot carry (BRDF term\n"
-    "choices; the node graph, which only texture sets bake so far) is printed as a\n"
-    "warning. Files are written atomically; an existing file is refused unless --force.\n"
+    "digits, '-' and '_', so nothing is written outside OUT. What the node graph drives is\n"
+    "baked on the GPU into NAME_baked_<map>.png images (--bake-size, default 1024) that the\n"
+    "material reads with white factors; inputs it does not drive stay factors. What the\n"
+    "format cannot carry (BRDF term choices) is printed as a warning. Files are written\n"
+    "atomically; an existing file is refused unless --force.\n"
     "-f texture-set bakes the material on the GPU (its texture slots, atlas regions and node\n"
     "graph; constants give flat maps) into the maps ENGINE reads, with its names, channel\n"
     "packing and normal-map convention, and OUT/NAME_texture_set.json naming each file's role.\n"
@@ -88,7 +93,7 @@ bool parseInt(const std::string& text, int& v) {
 
 /// -f texture-set: each FILE's material baked and written as @p args' --target's texture set.
 int runTextureSetExport(const Arguments& args) {
-    for (const char* other : {"mesh", "shader"})
+    for (const char* other : {"mesh", "shader", "bake-size"})
         if (args.has(other))
             return usage("--" + std::string(other) + " does not apply to -f texture-set");
     if (!args.has("target"))
@@ -178,6 +183,15 @@ int runExport(const std::vector<std::string>& argv) {
                      "\"; formats: glb, gltf, mtlx, preset, texture-set");
     options.format = *format;
     options.force = args->has("force");
+    if (args->has("bake-size")) {
+        if (options.format == ExportFormat::Preset)
+            return usage("--bake-size applies to -f glb, gltf and mtlx only (a preset keeps its "
+                         "graph)");
+        if (!parseInt(args->value("bake-size"), options.bakeSize) || options.bakeSize < 1 ||
+            options.bakeSize > 8192)
+            return usage("--bake-size expects a whole number of texels from 1 to 8192, got '" +
+                         args->value("bake-size") + "'");
+    }
     if (args->has("shader")) {
         const auto shader = mtlxShaderFromId(args->value("shader"));
         if (!shader)
@@ -225,7 +239,8 @@ int runExport(const std::vector<std::string>& argv) {
             anyFailed = true;
             continue;
         }
-        const ExportOutcome outcome = exportMaterial(*scene, folder, bases[i], options);
+        const ExportOutcome outcome =
+            render::exportMaterialBaked(*scene, folder, bases[i], options);
         for (const std::string& w : outcome.warnings)
             std::cerr << "warning: " << file << ": " << w << "\n";
         if (!outcome.ok()) {

@@ -296,17 +296,20 @@ std::string glbBytes(std::string json, std::string bin) {
 
 } // namespace
 
-bool buildGltf(const Material& material, const MeshData& mesh, std::string_view baseName,
+bool buildGltf(const Material& source, const MeshData& mesh, std::string_view baseName,
                GltfContainer container, TextureCache& textures, GltfExportResult& out,
-               std::string* error) {
+               std::string* error, const BakedMaterialMaps* baked) {
     out = {};
     if (mesh.vertices.empty() || mesh.indices.empty()) {
         *error = "the mesh has no triangles";
         return false;
     }
     GltfTexturePlan plan;
-    if (!planGltfTextures(material, textures, plan, error))
+    if (!planGltfTextures(source, textures, plan, error))
         return false;
+    std::vector<std::string> bakeWarnings;
+    // The exported material: the graph-driven inputs' factors neutral, their slots the bake's.
+    const Material material = baked ? applyBakedMaps(source, *baked, plan, bakeWarnings) : source;
     const std::string base(baseName);
     const bool glb = container == GltfContainer::Glb;
 
@@ -372,6 +375,7 @@ bool buildGltf(const Material& material, const MeshData& mesh, std::string_view 
     doc["buffers"] = Json::array({bufferJson});
 
     out.warnings = mappingWarnings(material, "glTF 2.0");
+    out.warnings.insert(out.warnings.end(), bakeWarnings.begin(), bakeWarnings.end());
     out.warnings.insert(out.warnings.end(), plan.warnings.begin(), plan.warnings.end());
     if (glb) {
         out.files.push_back({base + ".glb", glbBytes(doc.dump(), std::move(buffer.bytes))});

@@ -1,25 +1,9 @@
 #include "core/mapping_warnings.h"
 
+#include "core/baked_maps.h"
 #include "core/graph/graph.h"
-#include "core/graph/node_catalogue.h"
 
 namespace velvet {
-namespace {
-
-/// The names of the material output's inputs that the graph feeds.
-std::vector<std::string> graphDrivenInputs(const graph::Graph& g) {
-    std::vector<std::string> names;
-    const graph::NodeId out = g.outputNode();
-    const graph::NodeType* type = graph::findNodeType(graph::kOutputTypeId);
-    if (out == graph::kInvalidNodeId || !type)
-        return names;
-    for (const graph::Connection& c : g.connections())
-        if (c.inNode == out && c.inPort < type->inputs.size())
-            names.emplace_back(type->inputs[c.inPort].name);
-    return names;
-}
-
-} // namespace
 
 std::vector<std::string> mappingWarnings(const Material& m, std::string_view target) {
     std::vector<std::string> w;
@@ -44,17 +28,17 @@ std::vector<std::string> mappingWarnings(const Material& m, std::string_view tar
                     "Conty-Kulla's visibility); viewers will shade with theirs");
     }
     if (m.graph) {
-        const std::vector<std::string> inputs = graphDrivenInputs(*m.graph);
+        const std::vector<std::string> inputs = graphDrivenInputs(m);
         std::string list;
         for (const std::string& s : inputs)
             list += (list.empty() ? "" : ", ") + s;
-        w.push_back(inputs.empty()
-                        ? "graph: the material's node graph (" +
-                              std::to_string(m.graph->nodes().size()) +
-                              " nodes) feeds no material input and is not exported"
-                        : "graph: the node graph drives " + list + "; not exported to " + to +
-                              " (baking what it computes to textures on the GPU is a later step of "
-                              "issue 12): the parameters' own values are exported instead");
+        w.push_back(
+            inputs.empty()
+                ? "graph: the material's node graph (" + std::to_string(m.graph->nodes().size()) +
+                      " nodes) feeds no material input and is not exported"
+                : "graph: the node graph drives " + list + "; not baked in this export to " + to +
+                      " (velvet export and File > Export… bake it on the GPU): the "
+                      "parameters' own values are exported instead");
     }
     return w;
 }

@@ -78,7 +78,8 @@ ExportOutcome exportMaterial(const Scene& scene, const std::filesystem::path& fo
         BuiltExport built;
         if (options.format == ExportFormat::Mtlx) {
             // A MaterialX document has no mesh: it is assigned in the renderer that reads it.
-            if (!buildMtlx(scene.material, base, options.shader, *textures, built, &error))
+            if (!buildMtlx(scene.material, base, options.shader, *textures, built, &error,
+                           options.baked))
                 return failure(ExportOutcome::Status::BadInput, error);
         } else {
             MeshData mesh;
@@ -86,7 +87,8 @@ ExportOutcome exportMaterial(const Scene& scene, const std::filesystem::path& fo
                 return failure(ExportOutcome::Status::BadInput, error);
             const auto container =
                 options.format == ExportFormat::Glb ? GltfContainer::Glb : GltfContainer::Gltf;
-            if (!buildGltf(scene.material, mesh, base, container, *textures, built, &error))
+            if (!buildGltf(scene.material, mesh, base, container, *textures, built, &error,
+                           options.baked))
                 return failure(ExportOutcome::Status::BadInput, error);
         }
         files = std::move(built.files);

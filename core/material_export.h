@@ -5,6 +5,7 @@
 /// a chosen preview mesh, MaterialX 1.39 (core/mtlx_export.h), or a standalone Velvet preset.
 /// docs/interchange.md.
 
+#include "core/baked_maps.h"
 #include "core/export_files.h"
 #include "core/mtlx_export.h"
 #include "core/scene.h"
@@ -35,6 +36,11 @@ struct ExportOptions {
     MtlxShader shader = MtlxShader::StandardSurface;
     /// Replace existing files; without it an existing target refuses the whole export.
     bool force = false;
+    /// Width and height of the graph's baked maps (glTF, MaterialX), 1 to 8192.
+    int bakeSize = 1024;
+    /// The graph's maps baked at bakeSize (render/baked_export.h bakes them); null: a graph is
+    /// not baked, a warning names what it drives and its inputs' parameters are exported.
+    const BakedMaterialMaps* baked = nullptr;
 };
 
 /// What an export did.

@@ -232,8 +232,10 @@ std::string mxName(std::string_view prefix, std::string_view stem) {
     return s;
 }
 
+/// The inputs of @p shader for @p m; the anisotropy inputs, constants in every shader, are
+/// @p anisotropy's (its strength, rotation and roughness).
 std::vector<MxInput> shaderInputs(MtlxShader shader, const Material& m, Builder& b,
-                                  std::vector<std::string>& warnings) {
+                                  std::vector<std::string>& warnings, const Material& anisotropy) {
     using P = ParamId;
     using S = TextureSlot;
     std::vector<MxInput> in;
@@ -245,9 +247,9 @@ std::vector<MxInput> shaderInputs(MtlxShader shader, const Material& m, Builder&
     // KHR_materials_anisotropy, written only when on (docs/interchange.md): standard_surface and
     // open_pbr_surface take the ratio of their alphas (mtlx_shader_inputs.h), standard_surface's
     // rotation is a fraction of a turn in [0, 1), gltf_pbr's is radians as glTF's.
-    const float aniso = m.scalar(P::AnisotropyStrength);
-    const float rotation = m.scalar(P::AnisotropyRotation);
-    const float mxAniso = mtlx::strengthToMtlxAnisotropy(aniso, m.scalar(P::Roughness));
+    const float aniso = anisotropy.scalar(P::AnisotropyStrength);
+    const float rotation = anisotropy.scalar(P::AnisotropyRotation);
+    const float mxAniso = mtlx::strengthToMtlxAnisotropy(aniso, anisotropy.scalar(P::Roughness));
     switch (shader) {
     case MtlxShader::StandardSurface:
         add(b.scalar("base", 1.0f));
@@ -337,6 +339,40 @@ std::vector<MxInput> shaderInputs(MtlxShader shader, const Material& m, Builder&
     return in;
 }
 
+/// The mean of channel @p c of @p image.
+float meanChannel(const Image& image, int c) {
+    double sum = 0.0;
+    for (size_t i = size_t(c); i < image.pixels.size(); i += size_t(image.channels))
+        sum += image.pixels[i];
+    return float(sum / double(size_t(image.width) * size_t(image.height)));
+}
+
+/// What the constant anisotropy inputs are written from: the material's own strength, rotation
+/// and roughness, or, where the graph drives them and they were baked into textures (which no
+/// shader's anisotropy input reads: its direction texture is not exported either), their means
+/// over the baked maps, with a warning. The rotation is the parameter's (the bake turns the
+/// direction by it, which MaterialX does not read).
+Material anisotropyOf(const Material& source, const BakedMaterialMaps* baked,
+                      std::vector<std::string>& warnings) {
+    Material m = source;
+    if (!baked)
+        return m;
+    const bool strength =
+        baked->inputs.driven[size_t(BakedMap::Anisotropy)] && !baked->maps.anisotropy.empty();
+    const bool roughness = baked->inputs.driven[size_t(BakedMap::Orm)] && !baked->maps.orm.empty();
+    if (strength)
+        m.setScalar(ParamId::AnisotropyStrength, meanChannel(baked->maps.anisotropy, 2));
+    if (roughness)
+        m.setScalar(ParamId::Roughness, meanChannel(baked->maps.orm, 1));
+    if ((strength || roughness) && m.scalar(ParamId::AnisotropyStrength) > 0.0f)
+        warnings.push_back(
+            "graph: the anisotropy inputs are constants in MaterialX; written from the baked "
+            "maps' mean anisotropy strength (" +
+            num(m.scalar(ParamId::AnisotropyStrength)) + ") and roughness (" +
+            num(m.scalar(ParamId::Roughness)) + ")");
+    return m;
+}
+
 } // namespace
 
 std::string_view mtlxShaderId(MtlxShader shader) {
@@ -350,12 +386,16 @@ std::optional<MtlxShader> mtlxShaderFromId(std::string_view id) {
     return std::nullopt;
 }
 
-bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader shader,
-               TextureCache& textures, BuiltExport& out, std::string* error) {
+bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader shader,
+               TextureCache& textures, BuiltExport& out, std::string* error,
+               const BakedMaterialMaps* baked) {
     out = {};
     GltfTexturePlan plan;
-    if (!planGltfTextures(material, textures, plan, error, /*cutOutRegions=*/true))
+    if (!planGltfTextures(source, textures, plan, error, /*cutOutRegions=*/true))
         return false;
+    std::vector<std::string> bakeWarnings;
+    // The exported material: the graph-driven inputs' factors neutral, their slots the bake's.
+    const Material material = baked ? applyBakedMaps(source, *baked, plan, bakeWarnings) : source;
     // Grey images become RGBA as Velvet reads them (Image::rgba: RRR1), so every `extract`
     // index means the same channel whatever the file's channel count.
     for (GltfImage& image : plan.images)
@@ -371,10 +411,12 @@ bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader s
     const std::string base(baseName);
     const std::string id(mtlxShaderId(shader));
     out.warnings = mappingWarnings(material, "MaterialX " + id);
+    out.warnings.insert(out.warnings.end(), bakeWarnings.begin(), bakeWarnings.end());
     out.warnings.insert(out.warnings.end(), plan.warnings.begin(), plan.warnings.end());
 
     Builder b(plan, base);
-    std::vector<MxInput> inputs = shaderInputs(shader, material, b, out.warnings);
+    std::vector<MxInput> inputs =
+        shaderInputs(shader, material, b, out.warnings, anisotropyOf(source, baked, out.warnings));
     if (plan.alphaCutout) {
         const std::string alpha = b.alpha();
         if (shader == MtlxShader::GltfPbr) {

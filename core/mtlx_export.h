@@ -6,6 +6,7 @@
 /// picked with `extract`, texture x factor with `multiply` (as glTF and Velvet combine them),
 /// normal maps through `normalmap`. Every mapping is tabled in docs/interchange.md.
 
+#include "core/baked_maps.h"
 #include "core/export_files.h"
 #include "core/material.h"
 
@@ -25,8 +26,10 @@ std::optional<MtlxShader> mtlxShaderFromId(std::string_view id);
 
 /// Builds BASE.mtlx (last) and its BASE_<map>.png images for @p material with @p shader.
 /// Atlas regions are cut out into images of their own. False + one-line @p error when a
-/// texture cannot be read.
+/// texture cannot be read. With @p baked, the graph-driven inputs read its maps as image nodes
+/// (core/baked_maps.h): no graph node is mapped to a MaterialX standard-library node.
 bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader shader,
-               TextureCache& textures, BuiltExport& out, std::string* error);
+               TextureCache& textures, BuiltExport& out, std::string* error,
+               const BakedMaterialMaps* baked = nullptr);
 
 } // namespace velvet

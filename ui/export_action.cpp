@@ -3,6 +3,7 @@
 #include "core/material_export.h"
 #include "core/mtlx_export.h"
 #include "core/texture_set_export.h"
+#include "render/baked_export.h"
 #include "render/material_bake.h"
 #include "ui/document_controller.h"
 #include "ui/log_panel.h"
@@ -12,7 +13,6 @@
 #include <QCoreApplication>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QGuiApplication>
 #include <QMessageBox>
 #include <QProgressDialog>
 #include <QSettings>
@@ -83,6 +83,24 @@ ExportOutcome exportTextureSetWithProgress(const Material& material, const QFile
             return render::exportTextureSet(material, folder, base, options, /*force=*/true);
         });
     QProgressDialog progress(tr("Baking the %1 texture set…").arg(base), QString(), 0, 0,
+                             QApplication::activeWindow());
+    progress.setWindowModality(Qt::ApplicationModal);
+    progress.setMinimumDuration(300);
+    while (job.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    return job.get();
+}
+
+/// Exports the scene's material, its node graph baked, on a worker thread (the bake makes its
+/// own headless EGL context there, as for texture sets) while a busy dialog shows progress.
+ExportOutcome exportMaterialWithProgress(const Scene& scene, const QFileInfo& info,
+                                         const ExportOptions& options) {
+    const std::string folder = info.absolutePath().toStdString();
+    auto job = std::async(std::launch::async,
+                          [scene, folder, base = info.completeBaseName().toStdString(), options] {
+                              return render::exportMaterialBaked(scene, folder, base, options);
+                          });
+    QProgressDialog progress(tr("Exporting %1…").arg(info.fileName()), QString(), 0, 0,
                              QApplication::activeWindow());
     progress.setWindowModality(Qt::ApplicationModal);
     progress.setMinimumDuration(300);
@@ -162,12 +180,8 @@ bool exportDocument(const DocumentController& controller, const QString& path,
     options.format = way->format;
     options.shader = way->shader;
     options.force = true; // the save dialog asked before replacing
-    // Texture decoding and baking can take a moment: say so rather than look frozen.
-    QGuiApplication::setOverrideCursor(Qt::WaitCursor);
-    const ExportOutcome outcome =
-        exportMaterial(controller.scene(), info.absolutePath().toStdString(),
-                       info.completeBaseName().toStdString(), options);
-    QGuiApplication::restoreOverrideCursor();
+    // Texture decoding and the graph's bake (at the CLI's default size) can take a moment.
+    const ExportOutcome outcome = exportMaterialWithProgress(controller.scene(), info, options);
     for (const std::string& warning : outcome.warnings)
         if (log)
             log->warning(tr("Export %1: %2").arg(info.fileName(), QString::fromStdString(warning)));

@@ -301,7 +301,61 @@ private slots:
         QCOMPARE(r.exitCode, 1);
         QVERIFY(!QFileInfo::exists(m_tmp.filePath("x")));
     }
+    /// A graph-driven preset (denim drives base colour, roughness, normal, occlusion): its
+    /// inputs read the baked maps through image nodes, by paths relative to the .mtlx, colour
+    /// tagged srgb_texture and data untagged (vector types are never colour-transformed:
+    /// MaterialX 1.39 Specification, "Color Spaces and Color Management"), at --bake-size.
+    void graphIsBakedToImages() {
+        const QString out = m_tmp.filePath("baked");
+        velvet::test::RunOptions options;
+        const auto r = velvet::test::runVelvet(
+            {"export", preset("denim.json"), "-f", "mtlx", "--bake-size", "32", "-o", out},
+            options);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(!r.err.contains("graph:"), qPrintable(r.err));
+        const MxDocument doc = parse(out + "/denim.mtlx");
+        QVERIFY2(doc.error.isEmpty(), qPrintable(doc.error));
+        const MxNode& sh = doc.nodes["SR_denim"];
+        auto fileOf = [&](const QString& input) {
+            const QString image = imageBehind(doc, sh.inputs[input]);
+            return image.isEmpty() ? MxInput{} : doc.nodes[image].inputs["file"];
+        };
+        const MxInput base = fileOf("base_color");
+        QCOMPARE(base.value, QString("denim_baked_baseColor.png"));
+        QCOMPARE(base.colorspace, QString("srgb_texture"));
+        QVERIFY(sh.inputs["base_color"].value.isEmpty()); // no factor: the image is the value
+        const MxInput rough = fileOf("specular_roughness");
+        QCOMPARE(rough.value, QString("denim_baked_orm.png"));
+        QCOMPARE(rough.colorspace, QString());
+        const MxNode& normal = doc.nodes[sh.inputs["normal"].nodename];
+        QCOMPARE(normal.category, QString("normalmap"));
+        const MxInput normalFile = doc.nodes[normal.inputs["in"].nodename].inputs["file"];
+        QCOMPARE(normalFile.value, QString("denim_baked_normal.png"));
+        QCOMPARE(normalFile.colorspace, QString());
+        for (const MxInput& file : {base, rough, normalFile}) {
+            velvet::ImageInfo info;
+            std::string error;
+            QVERIFY2(velvet::readImageInfo((out + "/" + file.value).toStdString(), info, &error),
+                     error.c_str());
+            QCOMPARE(info.width, 32);
+            QCOMPARE(info.height, 32);
+        }
+    }
+    /// Silk's graph drives the anisotropy direction and the roughness, both baked; MaterialX's
+    /// anisotropy inputs are constants, written from the baked maps' means (with a warning), so
+    /// the stretch is kept: 1 - alpha/alpha_t at strength 0.5 and a roughness near silk's.
+    void bakedAnisotropyKeepsItsStrength() {
+        const QString out = m_tmp.filePath("baked-silk");
+        const auto r = velvet::test::runVelvet(
+            {"export", preset("silk.json"), "-f", "mtlx", "--bake-size", "32", "-o", out}, {});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(r.err.contains("graph: the anisotropy inputs are constants in MaterialX"),
+                 qPrintable(r.err));
+        const MxDocument doc = parse(out + "/silk.mtlx");
+        QVERIFY2(doc.error.isEmpty(), qPrintable(doc.error));
+        const float a = doc.nodes["SR_silk"].inputs["specular_anisotropy"].value.toFloat();
+        QVERIFY2(a > 0.3f && a < 0.9f, qPrintable(QString::number(a)));
+    }
 };
-
 QTEST_GUILESS_MAIN(TestAppExportMtlx)
 #include "test_app_export_mtlx.moc"

@@ -3,8 +3,9 @@
 // core functions as `velvet export` / `velvet import`, and both materials are rendered in the
 // default scene at 64 x 64; the images must agree by the golden rule (DESIGN.md: a pixel differs
 // when a display channel differs by more than 5/255; at most 0.1 % of the pixels may differ).
-// The presets are those without a node graph: a graph is not exported yet (docs/interchange.md,
-// "Round trips"), so a graph-driven preset comes back as its parameters alone. A textured
+// The presets are those without a node graph: these round trips run core's exportMaterial, which
+// is given no baked maps here, so a graph-driven preset would come back as its parameters alone
+// (its baked export is checked against the graph's CPU twin in test_app_export instead). A textured
 // material with a tiled, offset and rotated slot (the MaterialX place2d) goes the same ways. Each
 // case also checks that the rule tells the material from a slightly different one, so a render
 // that ignored the material could not pass.

@@ -2,7 +2,8 @@
 // chosen filter picks the way out (glTF binary by default, MaterialX per shader node, preset),
 // the extension is added when the name has none, warnings and the result reach the Log, and a
 // target that cannot be written is refused with a message naming it, leaving the document as it
-// was (still dirty, its history intact).
+// was (still dirty, its history intact); a node graph is baked to textures as the CLI bakes it.
+#include "core/document_io.h"
 #include "core/image.h"
 #include "core/material.h"
 #include "ui/document_controller.h"
@@ -211,6 +212,32 @@ private slots:
         pressCtrlE();
         QVERIFY(QTest::qWaitFor([&] { return boxShown; }, 30000));
         QVERIFY(m_window->logPanel()->text().contains(QStringLiteral("Export failed")));
+    }
+
+    /// File > Export… bakes what the graph drives, as `velvet export` does (the same
+    /// render::exportMaterialBaked, on a worker thread): denim's base colour, ORM and normal.
+    void graphIsBakedLikeTheCli() {
+        Problems problems;
+        const auto denim =
+            loadMaterialFile(VELVET_SOURCE_DIR "/resources/presets/denim.json", problems);
+        QVERIFY(denim && denim->graph);
+        m_doc->setMaterial(*denim, "denim");
+        const QString path = m_dir.filePath(QStringLiteral("graph/denim.gltf"));
+        QString error;
+        QVERIFY2(exportDocument(*m_doc, path, QString(), m_window->logPanel(), &error),
+                 qPrintable(error));
+        for (const char* map : {"baseColor", "orm", "normal"}) {
+            ImageInfo info;
+            std::string why;
+            const QString image =
+                m_dir.filePath(QStringLiteral("graph/denim_baked_%1.png").arg(map));
+            QVERIFY2(readImageInfo(image.toStdString(), info, &why), why.c_str());
+            QCOMPARE(info.width, 1024); // the CLI's default --bake-size
+        }
+        QFile gltf(path);
+        QVERIFY(gltf.open(QIODevice::ReadOnly));
+        QVERIFY(gltf.readAll().contains("denim_baked_baseColor.png"));
+        QVERIFY(!m_window->logPanel()->text().contains(QStringLiteral("graph:")));
     }
 
 private:
