@@ -120,8 +120,17 @@ const ShaderProgram* LightingPass::specialised(Variant v, const LightingFeatures
     return it->second.program.get();
 }
 
-bool LightingPass::drawCatcher(bool emission, BackgroundMode background, std::string* error) {
-    const ShaderProgram* program = variant(Variant(kCatcher + modeIndex(background)), error);
+bool LightingPass::drawCatcher(bool emission, BackgroundMode background, std::string* error,
+                               const LightingFeatures& features, bool mayBuild) {
+    // The catcher covers most of the stage's frame: its shadow lookups cost the whole frame's
+    // worth even when no light casts a shadow (llvmpipe runs both sides of the branch), so it is
+    // specialised like the surfaces (BENCHMARKS.md, the look-dev stage).
+    const Variant v = Variant(kCatcher + modeIndex(background));
+    const ShaderProgram* program = nullptr;
+    if (!features.isGeneric())
+        program = specialised(v, features, mayBuild);
+    if (!program)
+        program = variant(v, error);
     if (!program)
         return false;
     drawSurfaces(*program, emission);

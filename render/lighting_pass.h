@@ -54,8 +54,12 @@ public:
     /// The shadow-catching ground's pixels (GroundMode::ShadowCatcher, the final image only):
     /// the background times the light it receives (lighting.frag's LIGHTING_CATCHER). The
     /// surface variants discard those pixels.
-    /// Built the first time for each background mode (null + message on failure).
-    bool drawCatcher(bool emission, BackgroundMode background, std::string* error);
+    /// Built the first time for each background mode (null + message on failure); specialised
+    /// to @p features like the surfaces (no shadowed light: no shadow lookup; occlusion off: no
+    /// occlusion fetch), under the same @p mayBuild rule.
+    bool drawCatcher(bool emission, BackgroundMode background, std::string* error,
+                     const LightingFeatures& features = LightingFeatures::generic(),
+                     bool mayBuild = true);
 
     /// Programs built since construction.
     int compileCount() const { return m_compileCount; }

@@ -338,7 +338,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.lighting.drawSurfaces(*surfaceProgram, emission);
     glDisable(GL_SCISSOR_TEST);
     if (fs.view == DebugView::Final && d.scene.environment.ground == GroundMode::ShadowCatcher &&
-        !d.lighting.drawCatcher(emission, d.stageBackground(), error)) // its own variant
+        !d.lighting.drawCatcher(emission, d.stageBackground(), error, // its own variant
+                                d.frameFeatures(fs), d.mayBuildSpecialised()))
         return false;
     glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
 

@@ -142,15 +142,23 @@ private slots:
     void specialisedDrawsTheGenericImage_data() {
         QTest::addColumn<QString>("name");
         QTest::addColumn<bool>("shadowsAndOcclusion");
-        QTest::newRow("velvet (sheen, GGX terms)") << "crimson_velvet" << false;
-        QTest::newRow("car paint (clearcoat)") << "car_paint" << true;
-        QTest::newRow("brushed aluminium (anisotropy)") << "brushed_aluminium" << false;
-        QTest::newRow("other terms") << "other-terms" << true;
-        QTest::newRow("textured (slots, atlas, lobe channels), split") << "textured" << false;
+        QTest::addColumn<int>("ground"); // GroundMode; each has its own variants
+        const int off = int(GroundMode::Off), plain = int(GroundMode::Plain),
+                  catcher = int(GroundMode::ShadowCatcher);
+        QTest::newRow("velvet (sheen, GGX terms)") << "crimson_velvet" << false << off;
+        QTest::newRow("car paint (clearcoat)") << "car_paint" << true << plain;
+        QTest::newRow("brushed aluminium (anisotropy)") << "brushed_aluminium" << false << off;
+        QTest::newRow("other terms") << "other-terms" << true << plain;
+        QTest::newRow("textured (slots, atlas, lobe channels), split")
+            << "textured" << false << off;
+        // The shadow catcher's own program is specialised too (no shadow lookup without one).
+        QTest::newRow("velvet on a shadow catcher") << "crimson_velvet" << false << catcher;
+        QTest::newRow("car paint on a shadow catcher, shadows") << "car_paint" << true << catcher;
     }
     void specialisedDrawsTheGenericImage() {
         QFETCH(QString, name);
         QFETCH(bool, shadowsAndOcclusion);
+        QFETCH(int, ground);
         Scene scene = test::shippedDefaultScene();
         if (name == "other-terms") { // every term away from its default
             scene.material = preset("leather");
@@ -173,15 +181,14 @@ private slots:
             sheen.useRegion = true; // its top-left quarter, as an atlas region
             sheen.region = {0, 0, 32, 32};
             scene.material.setTexture(TextureSlot::SheenColor, sheen);
-            b = preset("car_paint"); // B: other values, a coat, A's textures
+            b = preset("car_paint"); // B: other values, a coat, no textures of its own
         } else if (name != "other-terms") {
             scene.material = preset(name.toUtf8().constData());
         }
         for (Light& light : scene.lights)
             light.castShadows = shadowsAndOcclusion;
         scene.environment.ambientOcclusion = shadowsAndOcclusion;
-        scene.environment.ground =
-            shadowsAndOcclusion ? GroundMode::Plain : GroundMode::Off; // its own variant
+        scene.environment.ground = GroundMode(ground);
         const auto [specialised, generic] = drawBoth(scene, b ? &*b : nullptr);
         QCOMPARE(m_fx.renderer->lightingSpecialisationFailures(), 0);
         const double difference = maxRelativeDifference(specialised, generic);
