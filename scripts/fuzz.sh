@@ -5,26 +5,10 @@
 # caused it to build-fuzz/findings/<target>/ — commit it to tests/fuzz/corpus/<target>/ with
 # the fix, so it is replayed from then on. docs/reliability.md, "Fuzzed parsers".
 set -euo pipefail
-cd "$(dirname "$0")/.."
-root=$PWD
-build=${FUZZ_BUILD_DIR:-$root/build-fuzz}
+tool=fuzz
+# shellcheck source=scripts/fuzz-tree.sh
+source "$(dirname "$0")/fuzz-tree.sh"
 seconds=${FUZZ_SECONDS:-15}
-jobs=${JOBS:-$(nproc)}
-
-if ! command -v clang++ >/dev/null; then
-  echo "velvet fuzz: clang++ is missing (Debian package clang)" >&2
-  exit 1
-fi
-launcher=()
-if command -v ccache >/dev/null; then
-  export CCACHE_BASEDIR=$root
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-fi
-generator=$(command -v ninja >/dev/null && echo Ninja || echo "Unix Makefiles")
-# The same tree holds the core tests for scripts/sanitize-core.sh (BUILD_TESTING); only the
-# fuzz targets are built here.
-CXX=clang++ cmake -S . -B "$build" -G "$generator" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DVELVET_FUZZ=ON -DBUILD_TESTING=ON "${launcher[@]}" >/dev/null
 targets=(fuzz_material fuzz_scene fuzz_post_chain fuzz_atlas fuzz_mesh_cache fuzz_gltf fuzz_mtlx)
 cmake --build "$build" -j "$jobs" --target "${targets[@]}" fuzz_seeds >/dev/null
 

@@ -6,23 +6,9 @@
 # Any sanitizer report fails its test (-fno-sanitize-recover=undefined, ASan aborts).
 # The whole suite under the sanitizers is `make test-asan` (a full second build).
 set -euo pipefail
-cd "$(dirname "$0")/.."
-root=$PWD
-build=${FUZZ_BUILD_DIR:-$root/build-fuzz}
-jobs=${JOBS:-$(nproc)}
-
-if ! command -v clang++ >/dev/null; then
-  echo "velvet sanitize-core: clang++ is missing (Debian package clang)" >&2
-  exit 1
-fi
-launcher=()
-if command -v ccache >/dev/null; then
-  export CCACHE_BASEDIR=$root
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-fi
-generator=$(command -v ninja >/dev/null && echo Ninja || echo "Unix Makefiles")
-CXX=clang++ cmake -S . -B "$build" -G "$generator" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DVELVET_FUZZ=ON -DBUILD_TESTING=ON "${launcher[@]}" >/dev/null
+tool=sanitize-core
+# shellcheck source=scripts/fuzz-tree.sh
+source "$(dirname "$0")/fuzz-tree.sh"
 cmake --build "$build" -j "$jobs" >/dev/null
 cd "$build"
 QT_QPA_PLATFORM= \
