@@ -70,6 +70,19 @@ QString filterOf(const WayOut& way) {
         .arg(tr(way.label), QString::fromUtf8(ext.data(), qsizetype(ext.size())));
 }
 
+/// Runs @p work on a worker thread while a modal busy dialog titled @p text shows (after 300 ms)
+/// and the window keeps painting; its result.
+template <class Work>
+ExportOutcome withBusyDialog(const QString& text, Work work) {
+    auto job = std::async(std::launch::async, std::move(work));
+    QProgressDialog progress(text, QString(), 0, 0, QApplication::activeWindow());
+    progress.setWindowModality(Qt::ApplicationModal);
+    progress.setMinimumDuration(300);
+    while (job.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    return job.get();
+}
+
 /// Bakes and writes a texture set on a worker thread (the bake makes its own headless EGL
 /// context there, leaving the viewport's context alone) while a busy dialog shows progress.
 ExportOutcome exportTextureSetWithProgress(const Material& material, const QFileInfo& info,
@@ -78,17 +91,11 @@ ExportOutcome exportTextureSetWithProgress(const Material& material, const QFile
     if (base.endsWith(QLatin1String(kTextureSetSuffix), Qt::CaseInsensitive))
         base.chop(int(std::strlen(kTextureSetSuffix)));
     const std::string folder = info.absolutePath().toStdString();
-    auto job =
-        std::async(std::launch::async, [material, folder, base = base.toStdString(), options] {
-            return render::exportTextureSet(material, folder, base, options, /*force=*/true);
-        });
-    QProgressDialog progress(tr("Baking the %1 texture set…").arg(base), QString(), 0, 0,
-                             QApplication::activeWindow());
-    progress.setWindowModality(Qt::ApplicationModal);
-    progress.setMinimumDuration(300);
-    while (job.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    return job.get();
+    return withBusyDialog(tr("Baking the %1 texture set…").arg(base),
+                          [material, folder, base = base.toStdString(), options] {
+                              return render::exportTextureSet(material, folder, base, options,
+                                                              /*force=*/true);
+                          });
 }
 
 /// Exports the scene's material, its node graph baked, on a worker thread (the bake makes its
@@ -96,17 +103,10 @@ ExportOutcome exportTextureSetWithProgress(const Material& material, const QFile
 ExportOutcome exportMaterialWithProgress(const Scene& scene, const QFileInfo& info,
                                          const ExportOptions& options) {
     const std::string folder = info.absolutePath().toStdString();
-    auto job = std::async(std::launch::async,
+    return withBusyDialog(tr("Exporting %1…").arg(info.fileName()),
                           [scene, folder, base = info.completeBaseName().toStdString(), options] {
                               return render::exportMaterialBaked(scene, folder, base, options);
                           });
-    QProgressDialog progress(tr("Exporting %1…").arg(info.fileName()), QString(), 0, 0,
-                             QApplication::activeWindow());
-    progress.setWindowModality(Qt::ApplicationModal);
-    progress.setMinimumDuration(300);
-    while (job.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    return job.get();
 }
 
 /// The way out @p filter names, else the first whose extension @p path has.

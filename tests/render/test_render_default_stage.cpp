@@ -13,6 +13,8 @@
 #include <QElapsedTimer>
 #include <QtTest>
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 using namespace velvet;
 
@@ -65,6 +67,22 @@ float backgroundLuminance(const Scene& scene, const std::vector<bool>& mask) {
     return n ? float(sum / n) : 0.0f;
 }
 
+/// The share of the frame @p mask covers, and whether it reaches into the outer 5 % of the side
+/// on any edge (a framed mesh leaves that room).
+std::pair<float, bool> framing(const std::vector<bool>& mask) {
+    int covered = 0;
+    bool touchesBorder = false;
+    const int border = kSize / 20;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            if (mask[size_t(y) * kSize + size_t(x)]) {
+                ++covered;
+                touchesBorder |=
+                    x < border || y < border || x >= kSize - border || y >= kSize - border;
+            }
+    return {float(covered) / float(kSize * kSize), touchesBorder};
+}
+
 } // namespace
 
 class TestRenderDefaultStage : public QObject {
@@ -84,17 +102,7 @@ private slots:
                  problems.items.empty() ? "" : problems.items.front().toString().c_str());
         QCOMPARE(stage.environment.background, BackgroundMode::Blurred);
         const std::vector<bool> mask = meshMask(stage);
-        int covered = 0;
-        bool touchesBorder = false;
-        const int border = kSize / 20; // 5 % of the side on each edge stays background
-        for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x)
-                if (mask[size_t(y) * kSize + size_t(x)]) {
-                    ++covered;
-                    touchesBorder |=
-                        x < border || y < border || x >= kSize - border || y >= kSize - border;
-                }
-        const float coverage = float(covered) / float(kSize * kSize);
+        const auto [coverage, touchesBorder] = framing(mask);
         const float stageBackground = backgroundLuminance(stage, mask);
         const Scene golden = defaultScene();
         const float goldenBackground = backgroundLuminance(golden, meshMask(golden));
@@ -145,17 +153,7 @@ private slots:
             thumbnailScene(*loadMaterialFile(resources::path("presets/denim.json"), problems));
         drape.environment.ground = GroundMode::Off; // the mask is the drape's alone
         const std::vector<bool> mask = meshMask(drape);
-        int covered = 0;
-        bool touchesBorder = false;
-        const int border = kSize / 20;
-        for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x)
-                if (mask[size_t(y) * kSize + size_t(x)]) {
-                    ++covered;
-                    touchesBorder |=
-                        x < border || y < border || x >= kSize - border || y >= kSize - border;
-                }
-        const float coverage = float(covered) / float(kSize * kSize);
+        const auto [coverage, touchesBorder] = framing(mask);
         qInfo("thumbnail drape covers %.1f %% of the frame", 100.0f * coverage);
         QVERIFY2(coverage > 0.3f && coverage < 0.75f, qPrintable(QString::number(coverage)));
         QVERIFY(!touchesBorder);
