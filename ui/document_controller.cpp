@@ -5,14 +5,13 @@
 #include "core/mesh_import.h"
 #include "core/post_effects.h"
 #include "core/scene_document.h"
+#include "ui/busy_work.h"
 #include "ui/commands/atlas_commands.h"
 #include "ui/commands/post_chain_commands.h"
 #include "ui/commands/set_param_command.h"
 #include "ui/commands/set_scene_command.h"
 
-#include <QCursor>
 #include <QFileInfo>
-#include <QGuiApplication>
 #include <QUndoStack>
 #include <optional>
 
@@ -88,12 +87,15 @@ bool DocumentController::editMesh(const MeshRef& mesh, QString* error) {
     if (mesh.kind == PreviewMeshKind::Custom) {
         MeshData data;
         std::string reason;
-        QGuiApplication::setOverrideCursor(Qt::WaitCursor); // a large file takes a moment
-        const bool ok = mesh.file.empty() ? (reason = "no file given", false)
-                                          : importMesh(mesh.file, data, &reason);
-        QGuiApplication::restoreOverrideCursor();
+        const QString name = QFileInfo(QString::fromStdString(mesh.file)).fileName();
+        // In its child process, waited for off the UI thread: a large file (or a hostile one,
+        // up to the importer's 10 s limit) never freezes the window (issue 18).
+        const bool ok = mesh.file.empty()
+                            ? (reason = "no file given", false)
+                            : runWithBusyDialog(tr("Importing the mesh %1…").arg(name), [&] {
+                                  return importMesh(mesh.file, data, &reason);
+                              });
         if (!ok) {
-            const QString name = QFileInfo(QString::fromStdString(mesh.file)).fileName();
             const QString message =
                 tr("Mesh %1 refused, the mesh is unchanged: %2")
                     .arg(name.isEmpty() ? tr("(none)") : name, QString::fromStdString(reason));

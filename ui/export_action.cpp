@@ -5,6 +5,7 @@
 #include "core/texture_set_export.h"
 #include "render/baked_export.h"
 #include "render/material_bake.h"
+#include "ui/busy_work.h"
 #include "ui/document_controller.h"
 #include "ui/log_panel.h"
 #include "ui/texture_set_dialog.h"
@@ -14,12 +15,9 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMessageBox>
-#include <QProgressDialog>
 #include <QSettings>
 #include <array>
-#include <chrono>
 #include <cstring>
-#include <future>
 #include <optional>
 
 namespace velvet::ui {
@@ -70,19 +68,6 @@ QString filterOf(const WayOut& way) {
         .arg(tr(way.label), QString::fromUtf8(ext.data(), qsizetype(ext.size())));
 }
 
-/// Runs @p work on a worker thread while a modal busy dialog titled @p text shows (after 300 ms)
-/// and the window keeps painting; its result.
-template <class Work>
-ExportOutcome withBusyDialog(const QString& text, Work work) {
-    auto job = std::async(std::launch::async, std::move(work));
-    QProgressDialog progress(text, QString(), 0, 0, QApplication::activeWindow());
-    progress.setWindowModality(Qt::ApplicationModal);
-    progress.setMinimumDuration(300);
-    while (job.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-    return job.get();
-}
-
 /// Bakes and writes a texture set on a worker thread (the bake makes its own headless EGL
 /// context there, leaving the viewport's context alone) while a busy dialog shows progress.
 ExportOutcome exportTextureSetWithProgress(const Material& material, const QFileInfo& info,
@@ -91,11 +76,11 @@ ExportOutcome exportTextureSetWithProgress(const Material& material, const QFile
     if (base.endsWith(QLatin1String(kTextureSetSuffix), Qt::CaseInsensitive))
         base.chop(int(std::strlen(kTextureSetSuffix)));
     const std::string folder = info.absolutePath().toStdString();
-    return withBusyDialog(tr("Baking the %1 texture set…").arg(base),
-                          [material, folder, base = base.toStdString(), options] {
-                              return render::exportTextureSet(material, folder, base, options,
-                                                              /*force=*/true);
-                          });
+    return runWithBusyDialog(tr("Baking the %1 texture set…").arg(base),
+                             [material, folder, base = base.toStdString(), options] {
+                                 return render::exportTextureSet(material, folder, base, options,
+                                                                 /*force=*/true);
+                             });
 }
 
 /// Exports the scene's material, its node graph baked, on a worker thread (the bake makes its
@@ -103,10 +88,11 @@ ExportOutcome exportTextureSetWithProgress(const Material& material, const QFile
 ExportOutcome exportMaterialWithProgress(const Scene& scene, const QFileInfo& info,
                                          const ExportOptions& options) {
     const std::string folder = info.absolutePath().toStdString();
-    return withBusyDialog(tr("Exporting %1…").arg(info.fileName()),
-                          [scene, folder, base = info.completeBaseName().toStdString(), options] {
-                              return render::exportMaterialBaked(scene, folder, base, options);
-                          });
+    return runWithBusyDialog(
+        tr("Exporting %1…").arg(info.fileName()),
+        [scene, folder, base = info.completeBaseName().toStdString(), options] {
+            return render::exportMaterialBaked(scene, folder, base, options);
+        });
 }
 
 /// The way out @p filter names, else the first whose extension @p path has.

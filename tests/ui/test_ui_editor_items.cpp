@@ -6,7 +6,8 @@
 //   History step, the document keeps its mesh, the reason stays in the Log and in the Scene panel;
 // - F frames an imported cube by its bounds (its corners are sqrt 3 from the centre after the
 //   fit into [-1, 1]^3), and the built-in sphere as before; the cube is imported once, not once
-//   to check it and again to draw it.
+//   to check it and again to draw it; while a slow import runs (its child hangs until the
+//   importer's wall clock stops it) the window keeps processing events and shows a busy dialog.
 #include "core/graph/graph.h"
 #include "core/mesh_import.h"
 #include "ui/document_controller.h"
@@ -23,17 +24,21 @@
 #include "ui_test_util.h"
 #include "ui_test_window.h"
 
+#include <QApplication>
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDropEvent>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QGuiApplication>
 #include <QLabel>
 #include <QMimeData>
+#include <QProgressDialog>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QTimer>
 #include <QToolButton>
 #include <QUndoStack>
 #include <cmath>
@@ -70,6 +75,7 @@ private slots:
     void graphDrivenParameterLinksToItsNode();
     void garbageMeshIsRefusedAndSaidWhere();
     void frameFitsACustomMeshByItsBounds();
+    void aSlowImportKeepsTheWindowResponsive();
 
 private:
     QWindow* glWindow() const { return m_window->viewport()->glWindow(); }
@@ -216,6 +222,45 @@ void TestUiEditorItems::frameFitsACustomMeshByItsBounds() {
                             .arg(viewport->viewCamera().distance)
                             .arg(expected)));
     QCOMPARE(m_doc->undoStack()->count(), 1); // the mesh only: framing is view state
+}
+
+void TestUiEditorItems::aSlowImportKeepsTheWindowResponsive() {
+    // The real crash-isolated import, its child told to hang, stopped by a 1.5 s wall clock.
+    setMeshImportHelper(VELVET_BINARY);
+    qputenv("VELVET_IMPORT_MESH_SIMULATE_HANG", "1");
+    qputenv("VELVET_MESH_IMPORT_TIMEOUT_S", "1.5");
+    const QString cube = m_dir.filePath(QStringLiteral("slow_cube.obj"));
+    QVERIFY(writeFile(cube, kCube));
+    // A timer on the UI thread: it ticks only while the event loop runs.
+    int ticks = 0;
+    bool busyDialogShown = false;
+    QTimer timer;
+    timer.setInterval(50);
+    connect(&timer, &QTimer::timeout, this, [&] {
+        ++ticks;
+        for (QWidget* w : QApplication::topLevelWidgets())
+            if (auto* d = qobject_cast<QProgressDialog*>(w); d && d->isVisible())
+                busyDialogShown = busyDialogShown || d->labelText().contains("slow_cube.obj");
+    });
+    timer.start();
+    QElapsedTimer clock;
+    clock.start();
+    QString error;
+    const bool taken =
+        m_doc->editMesh(MeshRef{PreviewMeshKind::Custom, cube.toStdString()}, &error);
+    const qint64 ms = clock.elapsed();
+    timer.stop();
+    qunsetenv("VELVET_IMPORT_MESH_SIMULATE_HANG");
+    qunsetenv("VELVET_MESH_IMPORT_TIMEOUT_S");
+    setMeshImportHelper({});
+    QVERIFY(!taken);
+    QVERIFY2(error.contains(QStringLiteral("timed out")), qPrintable(error));
+    QCOMPARE(m_doc->undoStack()->count(), 0);
+    qInfo("import refused after %lld ms; the UI thread's 50 ms timer ticked %d times", ms, ticks);
+    // Before, the UI thread waited inside editMesh: not one tick in 1.5 s. Now the loop runs
+    // (each pass may draw a viewport frame, a few hundred ms on a loaded llvmpipe machine).
+    QVERIFY2(ticks >= 3, qPrintable(QString::number(ticks)));
+    QVERIFY(busyDialogShown);
 }
 
 int main(int argc, char** argv) {

@@ -415,7 +415,8 @@ void TestUiScene::libraryDoubleClickAppliesAndCtrlZUndoes() {
     QTRY_VERIFY(m_window->isActiveWindow());
     QTest::keyClick(m_window.get(), Qt::Key_Z, Qt::ControlModifier);
     QVERIFY(m_doc->material() == velvet);
-    QVERIFY(std::abs(centreLuma(viewportImage()) - before) < 1.0);
+    // The frame right after an edit may be the reduced interactive one; the settled frame is A's.
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(centreLuma(viewportImage()) - before) < 1.0, 10000);
 }
 
 void TestUiScene::postChainDragInWindowReordersAndRedraws() {
