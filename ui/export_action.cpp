@@ -14,6 +14,7 @@
 #include <QCoreApplication>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QMessageBox>
 #include <QSettings>
 #include <array>
@@ -25,6 +26,7 @@ namespace {
 
 constexpr const char* kLastExportDirKey = "export/lastDir";
 constexpr const char* kLastExportFilterKey = "export/lastFilter";
+constexpr const char* kLastBakeSizeKey = "export/lastBakeSize";
 /// The main file of a texture set, the manifest: NAME_texture_set.json.
 constexpr const char* kTextureSetSuffix = "_texture_set.json";
 
@@ -118,7 +120,7 @@ QStringList exportFilters() {
 
 bool exportDocument(const DocumentController& controller, const QString& path,
                     const QString& filter, LogPanel* log, QString* error,
-                    const TextureSetOptions* textureSet) {
+                    const TextureSetOptions* textureSet, int bakeSize) {
     const WayOut* way = wayOutFor(filter, path);
     if (!way) {
         if (error)
@@ -166,6 +168,8 @@ bool exportDocument(const DocumentController& controller, const QString& path,
     options.format = way->format;
     options.shader = way->shader;
     options.force = true; // the save dialog asked before replacing
+    if (bakeSize > 0)
+        options.bakeSize = bakeSize;
     // Texture decoding and the graph's bake (at the CLI's default size) can take a moment.
     const ExportOutcome outcome = exportMaterialWithProgress(controller.scene(), info, options);
     for (const std::string& warning : outcome.warnings)
@@ -208,8 +212,24 @@ bool exportDocumentInteractively(QWidget* parent, const DocumentController& cont
         dialog.remember();
         textureSet = dialog.options();
     }
+    // A node graph is baked to maps for glTF and MaterialX: at what size (as --bake-size).
+    int bakeSize = 0;
+    if (const WayOut* way = wayOutFor(filter, path); way && !way->textureSet &&
+                                                     way->format != ExportFormat::Preset &&
+                                                     controller.material().graph) {
+        bool ok = false;
+        bakeSize = QInputDialog::getInt(
+            parent, tr("Bake the node graph"),
+            tr("The node graph's maps are baked to textures for this format.\nSize (texels "
+               "square):"),
+            settings.value(kLastBakeSizeKey, 1024).toInt(), 1, 8192, 256, &ok);
+        if (!ok)
+            return false;
+        settings.setValue(kLastBakeSizeKey, bakeSize);
+    }
     QString error;
-    if (exportDocument(controller, path, filter, log, &error, textureSet ? &*textureSet : nullptr))
+    if (exportDocument(controller, path, filter, log, &error, textureSet ? &*textureSet : nullptr,
+                       bakeSize))
         return true;
     if (log)
         log->error(tr("Export failed: %1").arg(error));

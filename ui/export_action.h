@@ -25,13 +25,16 @@ QStringList exportFilters();
 /// to @p log as warnings; a failure returns false with @p error (the file and the reason), and
 /// nothing of it is left written. A texture set is baked with @p textureSet's size, file type,
 /// bits and normal convention (its target is the filter's), or the CLI's defaults when null.
+/// A glTF or MaterialX export bakes what the node graph drives at @p bakeSize texels square
+/// (0: the CLI's default, 1024).
 bool exportDocument(const DocumentController& controller, const QString& path,
                     const QString& filter, LogPanel* log, QString* error,
-                    const TextureSetOptions* textureSet = nullptr);
+                    const TextureSetOptions* textureSet = nullptr, int bakeSize = 0);
 
 /// Asks for a file (Qt's save dialog, starting in the last export folder) and, for an engine's
-/// texture set, its settings (TextureSetDialog), and exports; errors are shown in a message box
-/// and the Log. Returns whether a file was written.
+/// texture set, its settings (TextureSetDialog), or for a glTF or MaterialX export of a material
+/// with a node graph the size its maps are baked at (remembered), and exports; errors are shown
+/// in a message box and the Log. Returns whether a file was written.
 bool exportDocumentInteractively(QWidget* parent, const DocumentController& controller,
                                  LogPanel* log);
 

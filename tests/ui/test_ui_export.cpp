@@ -18,6 +18,7 @@
 #include <QComboBox>
 #include <QDir>
 #include <QFile>
+#include <QInputDialog>
 #include <QMessageBox>
 #include <QSettings>
 #include <QSpinBox>
@@ -238,6 +239,37 @@ private slots:
         QVERIFY(gltf.open(QIODevice::ReadOnly));
         QVERIFY(gltf.readAll().contains("denim_baked_baseColor.png"));
         QVERIFY(!m_window->logPanel()->text().contains(QStringLiteral("graph:")));
+    }
+
+    // Through Ctrl+E the bake size is asked for (a graph, glTF) and reaches the files.
+    void bakeSizeIsAskedForAGraph() {
+        Problems problems;
+        const auto denim =
+            loadMaterialFile(VELVET_SOURCE_DIR "/resources/presets/denim.json", problems);
+        QVERIFY(denim && denim->graph);
+        m_doc->setMaterial(*denim, "denim");
+        const QString glbFilter = exportFilters().filter(QStringLiteral(".glb")).value(0);
+        QVERIFY(!glbFilter.isEmpty());
+        const QString path = m_dir.filePath(QStringLiteral("asked/denim.glb"));
+        QVERIFY(QDir().mkpath(m_dir.filePath(QStringLiteral("asked"))));
+        test::answerFileDialog(path, glbFilter);
+        bool asked = false;
+        test::onNextModal<QInputDialog>([&asked](QInputDialog* d) {
+            asked = true;
+            d->setIntValue(48);
+            d->accept();
+        });
+        pressCtrlE();
+        QVERIFY2(QTest::qWaitFor([&] { return QFile::exists(path); }, 60000),
+                 qPrintable(m_window->logPanel()->text()));
+        QVERIFY(asked);
+        QFile glb(path);
+        QVERIFY(glb.open(QIODevice::ReadOnly));
+        const QByteArray bytes = glb.readAll();
+        // The embedded PNGs' IHDR: width and height 48 (big-endian after "IHDR").
+        const QByteArray ihdr48 = QByteArray("IHDR") + QByteArray::fromHex("0000003000000030");
+        QVERIFY2(bytes.contains(ihdr48), "the baked maps must be 48 x 48");
+        QCOMPARE(QSettings().value(QStringLiteral("export/lastBakeSize")).toInt(), 48);
     }
 
 private:
