@@ -464,11 +464,14 @@ private slots:
     /// Denim's graph (a weave under fuzz) drives base colour, roughness, normal and occlusion:
     /// each is baked into a texture read with a white factor, and the baked base colour and
     /// roughness hold what the graph's CPU twin (core/graph/graph_eval.h) computes at the texel
-    /// centres (8-bit quantisation and the GPU's float arithmetic allowed for).
+    /// centres (8-bit quantisation and the GPU's float arithmetic allowed for). At 512 texels a
+    /// thread of denim's weave (96 a unit) spans over four texels, so the Weave's footprint filter
+    /// (docs/fabric-nodes.md) leaves the pattern as the unfiltered twin computes it.
     void graphIsBakedToTextures() {
         const QString out = m_tmp.filePath("baked");
-        const Result r = runVelvet(
-            {"export", preset("denim.json"), "-f", "gltf", "--bake-size", "64", "-o", out});
+        constexpr int kBake = 512;
+        const Result r = runVelvet({"export", preset("denim.json"), "-f", "gltf", "--bake-size",
+                                    QString::number(kBake), "-o", out});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         QVERIFY2(!r.err.contains("graph:"), qPrintable(r.err)); // every input it drives is baked
         const QJsonObject doc = gltfJson(out + "/denim.gltf");
@@ -499,8 +502,8 @@ private slots:
             error.c_str());
         QVERIFY2(velvet::readImage((out + "/denim_baked_orm.png").toStdString(), orm, &error),
                  error.c_str());
-        QCOMPARE(base.width, 64);
-        QCOMPARE(base.height, 64);
+        QCOMPARE(base.width, kBake);
+        QCOMPARE(base.height, kBake);
         velvet::Problems problems;
         const auto m = velvet::loadMaterialFile(preset("denim.json").toStdString(), problems);
         QVERIFY(m && m->graph);
@@ -510,9 +513,10 @@ private slots:
         const int colour = outType->inputIndex("baseColor");
         const int roughness = outType->inputIndex("roughness");
         double worst = 0.0;
-        for (const auto [x, y] : {std::pair{5, 9}, {20, 40}, {33, 2}, {63, 63}, {47, 30}, {0, 0}}) {
+        for (const auto [x, y] :
+             {std::pair{41, 77}, {163, 322}, {265, 18}, {511, 511}, {379, 243}, {0, 0}}) {
             // Row 0 is v ~ 0 (glTF's UVs: the image's top row), texel centres.
-            const glm::vec2 uv((x + 0.5f) / 64.0f, (y + 0.5f) / 64.0f);
+            const glm::vec2 uv((x + 0.5f) / float(kBake), (y + 0.5f) / float(kBake));
             const velvet::graph::GraphSample sample = twin.evaluate(uv);
             QVERIFY(sample.outputInputs[size_t(colour)] && sample.outputInputs[size_t(roughness)]);
             const glm::vec4 c = *sample.outputInputs[size_t(colour)];
