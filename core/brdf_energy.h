@@ -21,8 +21,11 @@ namespace velvet::brdf {
 /// E(n.v, perceptual roughness) on a kSheenLutSize^2 grid laid out as sheenAlbedoLut(): row-major,
 /// index = roughnessIndex * size + NdotVIndex, cell i at i / (size - 1) (roughness clamped to
 /// kMinRoughness, n.v to 1e-4), each A + B of ibl::integrateDfg (the GPU DFG LUT's integrator and
-/// sample count). Integrated once on first use (~1M GGX samples). The GPU reads the same numbers
-/// from the alpha channel of the sheen albedo texture (render/sheen_lut.h).
+/// sample count), integrated now (~1M GGX samples, 0.1-0.2 s).
+std::vector<float> integrateSpecularAlbedo();
+/// The shipped copy of integrateSpecularAlbedo()'s table (core/specular_albedo_table.inc; `velvet
+/// specular-table` writes it, test_core_brdf checks it). The GPU reads the same numbers from the
+/// alpha channel of the sheen albedo texture (render/sheen_lut.h).
 const std::vector<float>& specularAlbedoLut();
 /// Bilinear lookup of specularAlbedoLut(), exactly as the GPU samples it (see
 /// sheenDirectionalAlbedo()).

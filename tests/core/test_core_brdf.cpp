@@ -295,6 +295,22 @@ private slots:
         }
     }
 
+    /// The shipped specular albedo table (core/specular_albedo_table.inc) is the integration's:
+    /// regenerate it with `velvet specular-table` when the DFG integrator changes.
+    void shippedSpecularTableMatchesTheIntegration() {
+        const std::vector<float> integrated = brdf::integrateSpecularAlbedo();
+        const std::vector<float>& shipped = brdf::specularAlbedoLut();
+        QCOMPARE(shipped.size(), integrated.size());
+        float worst = 0.0f;
+        for (size_t i = 0; i < shipped.size(); ++i)
+            worst = std::max(worst, std::abs(shipped[i] - integrated[i]));
+        QVERIFY2(worst < 1e-6f,
+                 qPrintable(QString("shipped table off by %1; run `velvet "
+                                    "specular-table > core/specular_albedo_table.inc`")
+                                .arg(worst)));
+        QVERIFY(*std::min_element(shipped.begin(), shipped.end()) > 0.1f); // not empty
+    }
+
     void dispatch() {
         const float NdotH = 0.9f, NdotL = 0.6f, NdotV = 0.7f, VdotH = 0.8f, alpha = 0.2f;
         QCOMPARE(brdf::distribution(Distribution::GGX, NdotH, alpha),
