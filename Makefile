@@ -12,7 +12,7 @@ export CCACHE_BASEDIR ?= $(CURDIR)
 LAUNCHER := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
 endif
 
-.PHONY: all deps configure build run test test-asan fuzz format clean goldens install package \
+.PHONY: all deps configure build run test test-asan test-asan-core fuzz format clean goldens install package \
   bench-peers
 
 all: build
@@ -45,6 +45,12 @@ test: build
 fuzz: deps
 	scripts/fuzz.sh
 
+# The core tests under AddressSanitizer and UndefinedBehaviorSanitizer, built in build-fuzz/ against
+# the velvet_core `make fuzz` instruments (no second build of the library): .ci/run's sanitizer
+# pass. docs/reliability.md, "Sanitizers".
+test-asan-core: deps
+	scripts/sanitize-core.sh
+
 # The whole suite built with AddressSanitizer and UndefinedBehaviorSanitizer in build-asan/.
 # Left out, each for a reason that is the sanitizer's and not Velvet's (docs/reliability.md):
 # the tests that run a child under setrlimit RLIMIT_AS (ASan reserves terabytes of shadow
@@ -56,7 +62,7 @@ test-asan: deps
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVELVET_SANITIZE=ON $(LAUNCHER)
 	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS)
 	cd $(ASAN_BUILD_DIR) && QT_QPA_PLATFORM= \
-	  ASAN_OPTIONS=detect_leaks=1:suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
+	  ASAN_OPTIONS=detect_leaks=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --output-on-failure -j $(JOBS) -E '$(ASAN_EXCLUDE)'

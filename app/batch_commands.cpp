@@ -124,8 +124,10 @@ const std::vector<OptionSpec> kThumbnailOptions{
 const char* kThumbnailHelp =
     "Usage: velvet thumbnails DIR|FILE... -o OUTDIR [--size N] [--jobs N] [--shard K/N]\n"
     "Renders a thumbnail of every material preset and scene (*.json, not *.atlas.json) in each\n"
-    "DIR (and its subfolders) and of each FILE, as OUTDIR/STEM.png, through velvet render (a\n"
-    "preset on the default scene). Runs --jobs renders at a time, each in its own process;\n"
+    "DIR (and its subfolders) and of each FILE, as OUTDIR/STEM.png, through velvet render\n"
+    "--thumbnail (a preset as the editor's Library shows it: fabrics and leather on the cloth\n"
+    "drape, other materials on the sphere). Runs --jobs renders at a time, each in its own "
+    "process;\n"
     "prints progress on stderr; a failed input is reported and the others go on.\n"
     "Exit codes: 0 success, 1 usage error, 2 any input failed.\n\n";
 
@@ -189,7 +191,9 @@ int runThumbnails(const std::vector<std::string>& argv) {
     }
     if (const int code = checkDistinctStems(inputs, "thumbnails"); code != Ok)
         return code;
-    std::vector<std::string> extra{"--size=" + std::to_string(size) + "x" + std::to_string(size)};
+    // --thumbnail: a preset on the scene the editor's Library shows it in (fabrics on the drape).
+    std::vector<std::string> extra{"--size=" + std::to_string(size) + "x" + std::to_string(size),
+                                   "--thumbnail"};
     if (args->has("light-rig"))
         extra.push_back("--light-rig=" + args->value("light-rig"));
     return renderEach(shardInputs(inputs, batch.shard), args->value("output"), ".png", extra,

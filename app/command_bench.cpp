@@ -46,7 +46,8 @@ const char* kHelp =
     "wall-clock time (to its last timer query) minus that of the frame without point lights;\n"
     "per-pass times are GPU timer queries (misattributed between passes on llvmpipe).\n"
     "The look-dev stage: the shader ball on a shadow catcher under the key light, the frame with\n"
-    "its shadow (and ambient occlusion) against without, and the shadow-map and occlusion passes.\n"
+    "its shadow (and ambient occlusion) against without, and the shadow-map and occlusion passes;\n"
+    "its frames also by the process's CPU time (*_cpu_ms, *_overhead_cpu), steadier under load.\n"
     "The G-buffer: the 24-byte layout with eight lobe channels beside the compact 16-byte one,\n"
     "alternate frames of two renderers, G-buffer + lighting time and frame time, for the default\n"
     "velvet and for a velvet with four lobe maps (which the compact layout draws as means).\n"
@@ -174,6 +175,11 @@ bool stageFigures(int width, int height, int frames,
     figures.emplace_back("stage_shadow_ao_overhead", stage.stageOverhead);
     figures.emplace_back("shadow_map_pass_ms", stage.shadowMapMs);
     figures.emplace_back("occlusion_pass_ms", stage.occlusionMs);
+    figures.emplace_back("stage_frame_off_cpu_ms", stage.cpuOffMs);
+    figures.emplace_back("stage_frame_shadow_cpu_ms", stage.cpuShadowMs);
+    figures.emplace_back("stage_frame_shadow_ao_cpu_ms", stage.cpuStageMs);
+    figures.emplace_back("stage_shadow_overhead_cpu", stage.cpuShadowOverhead);
+    figures.emplace_back("stage_shadow_ao_overhead_cpu", stage.cpuStageOverhead);
     return true;
 }
 

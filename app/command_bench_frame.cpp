@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iomanip>
 #include <iostream>
 
@@ -31,6 +32,20 @@ Scene peerFrameScene() {
     return scene;
 }
 
+namespace {
+
+/// CPU time of the whole process (llvmpipe's rasteriser threads included), in ms. On a machine
+/// whose other processes compete for the cores a frame's wall time swings with them; the CPU
+/// time the frame's work takes does far less (llvmpipe's threads spin little: they wait on
+/// condition variables).
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+} // namespace
+
 int runFrameBench(bool json, bool quick) {
     std::string error;
     auto context = render::HeadlessContext::create(&error);
@@ -45,9 +60,10 @@ int runFrameBench(bool json, bool quick) {
         const char* name;
         bool specialised;
         render::Renderer renderer;
-        std::vector<double> wall, gbuffer, lighting, post;
+        std::vector<double> wall, cpu, gbuffer, lighting, post;
     };
-    Variant variants[2] = {{"", true, {}, {}, {}, {}, {}}, {"generic_", false, {}, {}, {}, {}, {}}};
+    Variant variants[2] = {{"", true, {}, {}, {}, {}, {}, {}},
+                           {"generic_", false, {}, {}, {}, {}, {}, {}}};
     render::OffscreenTarget target;
     if (!target.resize(width, height, &error)) {
         std::cerr << "velvet bench: " << error << "\n";
@@ -69,17 +85,20 @@ int runFrameBench(bool json, bool quick) {
     for (int i = 0; i < frames + 2; ++i)
         for (Variant& v : variants) {
             const auto start = std::chrono::steady_clock::now();
+            const double cpuStart = processCpuMs();
             if (!v.renderer.render(fs, target.framebuffer(), &error)) {
                 std::cerr << "velvet bench: rendering failed: " << error << "\n";
                 return RenderFailure;
             }
             const render::FrameTimings t = v.renderer.lastTimings(); // waits: frame finished
+            const double cpuMs = processCpuMs() - cpuStart;
             const double ms =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                     .count();
             if (i < 2) // warm-up: llvmpipe compiles a program's machine code at its first draw
                 continue;
             v.wall.push_back(ms);
+            v.cpu.push_back(cpuMs);
             v.gbuffer.push_back(t.gbufferMs);
             v.lighting.push_back(t.lightingMs);
             v.post.push_back(t.postMs);
@@ -89,6 +108,7 @@ int runFrameBench(bool json, bool quick) {
     for (Variant& v : variants) {
         const std::string p = v.name;
         figures.emplace_back(p + "frame_wall_ms", median(v.wall));
+        figures.emplace_back(p + "frame_cpu_ms", median(v.cpu));
         figures.emplace_back(p + "gbuffer_ms", median(v.gbuffer));
         figures.emplace_back(p + "lighting_ms", median(v.lighting));
         figures.emplace_back(p + "post_ms", median(v.post));

@@ -45,6 +45,9 @@ const std::vector<OptionSpec> kOptions{
      "clearcoat, sheen, occlusion, emissive, material-id, lights-per-pixel (heat map), "
      "diffuse-only, specular-only, base-specular, sheen-only, clearcoat-only (lobe views: direct "
      "light only), anisotropy (direction x strength)"},
+    {"thumbnail", 0, false, "",
+     "show a material preset as its library thumbnail does: fabrics and leather on the cloth "
+     "drape, other materials on the sphere (what velvet thumbnails renders)"},
     {"light-rig", 0, true, "ID",
      "replace the scene's lights with a rig: key, three-point, softboxes, sun, stage-spot, "
      "coloured-points or environment (the HDRI alone)"},

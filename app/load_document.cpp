@@ -10,7 +10,8 @@
 
 namespace velvet::cli {
 
-std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Problems& problems) {
+std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Problems& problems,
+                                       PresetScene presetScene) {
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) {
         problems.error(file.string(), "", "no such file");
@@ -21,8 +22,10 @@ std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Proble
         return loadSceneFile(file, problems);
     case DocumentKind::Material:
         if (auto material = loadMaterialFile(file, problems)) {
-            // The look-dev stage, as for no FILE (core/default_stage.h).
-            Scene scene = stageSceneWithMaterial(*material);
+            // The look-dev stage, as for no FILE, or the library thumbnail's (fabrics on the
+            // drape): one rule for the editor and `velvet thumbnails` (core/default_stage.h).
+            Scene scene = presetScene == PresetScene::Thumbnail ? thumbnailScene(*material)
+                                                                : stageSceneWithMaterial(*material);
             scene.materialPreset = file.string();
             return scene;
         }
@@ -43,7 +46,9 @@ int loadSceneArguments(const Arguments& args, const char* command, std::optional
     if (args.positional.empty())
         scene = stageScene(&problems);
     else
-        scene = loadSceneOrPreset(args.positional[0], problems);
+        scene =
+            loadSceneOrPreset(args.positional[0], problems,
+                              args.has("thumbnail") ? PresetScene::Thumbnail : PresetScene::Stage);
     if (!scene || problems.hasErrors()) {
         printProblems(problems);
         return BadInput;

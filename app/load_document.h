@@ -11,13 +11,19 @@
 
 namespace velvet::cli {
 
-/// Loads @p file as a scene: a scene file as is, a material preset shown in the default scene.
+/// The scene a material preset is shown in: the look-dev stage (core/default_stage.h,
+/// stageSceneWithMaterial) or its thumbnail's (thumbnailScene: fabrics on the cloth drape).
+enum class PresetScene { Stage, Thumbnail };
+
+/// Loads @p file as a scene: a scene file as is, a material preset shown in @p presetScene.
 /// nullopt when @p problems holds errors (missing file, malformed JSON, unknown format…).
-std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Problems& problems);
+std::optional<Scene> loadSceneOrPreset(const std::filesystem::path& file, Problems& problems,
+                                       PresetScene presetScene = PresetScene::Stage);
 
 /// The scene options `velvet render` and `velvet reference` share: FILE (args.positional[0];
-/// none: the default scene) and --light-rig. Returns Ok with @p scene set, BadInput (problems
-/// printed) or UsageError (message printed, naming @p command).
+/// none: the default scene), --light-rig and, where the command has it, --thumbnail (a preset
+/// shown as its thumbnail). Returns Ok with @p scene set, BadInput (problems printed) or
+/// UsageError (message printed, naming @p command).
 int loadSceneArguments(const Arguments& args, const char* command, std::optional<Scene>& scene,
                        Problems& problems);
 /// "WxH" with each side in [1, 8192].

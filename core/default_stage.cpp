@@ -165,4 +165,19 @@ Scene stageSceneWithMaterial(Material material, Problems* problems) {
     return scene;
 }
 
+bool thumbnailOnDrape(const Material& material) {
+    return std::any_of(material.tags.begin(), material.tags.end(),
+                       [](const std::string& tag) { return tag == "fabric" || tag == "leather"; });
+}
+
+Scene thumbnailScene(Material material, Problems* problems) {
+    const bool drape = thumbnailOnDrape(material);
+    Scene scene = stageSceneWithMaterial(std::move(material), problems);
+    if (drape) {
+        scene.mesh.kind = PreviewMeshKind::ClothDrape;
+        applyStageDefaults(scene.environment, scene.mesh.kind);
+    }
+    return scene;
+}
+
 } // namespace velvet

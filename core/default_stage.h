@@ -27,6 +27,16 @@ Scene stageScene(Problems* problems = nullptr);
 /// stage with @p material, so a preset is judged in the same flattering light as a new document.
 Scene stageSceneWithMaterial(Material material, Problems* problems = nullptr);
 
+/// Whether a material preset's thumbnail shows it on the cloth drape rather than the sphere:
+/// presets tagged "fabric" or "leather" (issue 13: a cloth or a hide reads as itself where folds
+/// catch the sheen and show the weave's or the grain's scale; on a sphere it reads as plastic).
+bool thumbnailOnDrape(const Material& material);
+/// The scene of a material preset's thumbnail, the one rule of the editor's Library
+/// (ui/library/thumbnail_renderer.cpp) and `velvet thumbnails`: stageSceneWithMaterial, with the
+/// cloth drape on its stage defaults (ground and occlusion, applyStageDefaults) when
+/// thumbnailOnDrape, as the editor shows the drape when an artist picks it.
+Scene thumbnailScene(Material material, Problems* problems = nullptr);
+
 /// Environment::rotationDeg (0 to 360, whole degrees) that puts the brightest part of the
 /// backdrop of @p equirect (an equirectangular radiance map, as core/spherical_harmonics.h lays
 /// it out) behind the mesh, i.e. in the direction a camera at yaw 0 looks (-Z). The backdrop is

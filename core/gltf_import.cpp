@@ -54,6 +54,11 @@ public:
             if (const size_t p = what.find("parse error"); p != std::string::npos)
                 what = what.substr(p);
             fail(lineColumn(text, e.byte == 0 ? 0 : e.byte - 1), "broken JSON: " + what);
+        } catch (const Json::out_of_range& e) { // 1e999: beyond a double (found by fuzz_gltf)
+            std::string what = e.what();
+            if (const size_t p = what.find("number overflow"); p != std::string::npos)
+                what = what.substr(p);
+            fail("", "broken JSON: " + what);
         }
         if (!m_doc.is_object())
             fail("", "the top level is not a JSON object");
@@ -585,6 +590,9 @@ bool readGltfMaterialNames(const fs::path& file, std::vector<std::string>& names
         return true;
     } catch (const Failure& f) {
         problem = f.problem;
+        return false;
+    } catch (const Json::exception& e) { // as importGltfMaterial: never out of the reader
+        problem = {ImportProblem::Kind::Malformed, "", std::string("unexpected JSON: ") + e.what()};
         return false;
     }
 }

@@ -1,5 +1,7 @@
 #include "core/json_value.h"
 
+#include "core/utf8_text.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -64,8 +66,8 @@ std::string jsonQuoted(std::string_view s) {
     return out;
 }
 
-/// Finds the first byte that is not part of well-formed UTF-8 (RFC 3629: no overlongs, no
-/// surrogates, nothing above U+10FFFF), or a NUL, which no text document contains.
+} // namespace
+
 std::optional<size_t> firstNonText(std::string_view s) {
     size_t i = 0;
     while (i < s.size()) {
@@ -107,6 +109,8 @@ std::optional<size_t> firstNonText(std::string_view s) {
     }
     return std::nullopt;
 }
+
+namespace {
 
 std::pair<size_t, size_t> lineColumn(std::string_view s, size_t offset) {
     size_t line = 1, column = 1;

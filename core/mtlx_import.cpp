@@ -10,9 +10,11 @@
 #include "core/import_text.h"
 #include "core/mtlx_shader_inputs.h"
 #include "core/mtlx_values.h"
+#include "core/utf8_text.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <glm/trigonometric.hpp>
@@ -53,6 +55,18 @@ public:
         if (!r)
             throw Failure{{ImportProblem::Kind::Malformed, lineOf(size_t(r.offset)),
                            std::string("broken XML: ") + r.description()}};
+        // pugixml does not check UTF-8; a name read as bytes that are not text would make a
+        // preset Velvet's JSON reader refuses (found by fuzz_mtlx). Declared encodings (latin1,
+        // UTF-16) were converted to UTF-8 by pugixml already.
+        if (r.encoding == pugi::encoding_utf8)
+            if (const auto bad = firstNonText(m_text)) {
+                char byte[8];
+                std::snprintf(byte, sizeof byte, "0x%02X",
+                              static_cast<unsigned char>(m_text[*bad]));
+                throw Failure{{ImportProblem::Kind::Malformed, lineOf(*bad),
+                               std::string("not UTF-8 text (byte ") + byte +
+                                   "); declare the encoding in the XML declaration"}};
+            }
         m_root = m_doc.child("materialx");
         if (!m_root)
             fail(m_doc.first_child(), "the root element is not <materialx>");

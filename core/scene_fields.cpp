@@ -77,9 +77,22 @@ Field<S> onlyWhen(Field<S> f, bool (*relevant)(const S&)) {
     return f;
 }
 
-const NumberRange kAny{};
-const NumberRange kNonNegative = atLeast(0);
-const NumberRange kPositive = greaterThan(0);
+// Every physical quantity is bounded by what the renderer can carry (docs/file-formats.md,
+// "Bounds"): it computes in 32-bit floats and stores scene-linear radiance in half floats
+// (RGBA16F HDR buffer and environment maps, largest finite value 65504; IEEE 754-2008 binary16).
+// Lengths and positions stay within a million metres and above a tenth of a millimetre, where
+// float32 still resolves the preview mesh (spacing 0.06 m at 1e6) and a squared length neither
+// overflows nor flushes to zero; angles that wrap stay within 100 000 degrees (float32 spacing
+// 1/128 degree there; the editor wraps them into (-360, 360) anyway).
+const NumberRange kPosition = closedRange(-1e6, 1e6);
+const NumberRange kLength = closedRange(1e-4, 1e6);
+const NumberRange kWrappingAngle = closedRange(-1e5, 1e5);
+// Scene-linear colours and multipliers of radiance: at most the half-float maximum, so a colour
+// the HDR buffer cannot hold is refused where it is typed rather than rendered as infinity.
+const NumberRange kRadiance = closedRange(0, kMaxSceneRadiance);
+// Photometric intensities: lux, candela, nits or a multiplier. The sun gives about 1.2e5 lux;
+// 1e6 times a colour of 65504 still multiplies to a finite float32 in every light equation.
+const NumberRange kIntensity = closedRange(0, 1e6);
 const NumberRange kCone = closedRange(0, 90);
 
 bool isSpot(const Light& l) {
@@ -108,21 +121,22 @@ bool never(const Light&) {
     return false;
 }
 
-// Angles that wrap (yaw, environment rotation) take any value: an orbiting camera may have turned
-// several times, and refusing its saved state would lose the user's work.
+// Angles that wrap (yaw, environment rotation) take any value within kWrappingAngle: an orbiting
+// camera may have turned several times, and refusing its saved state would lose the user's work.
 const std::array<Field<Camera>, 9> kCamera{
-    vec3("target", &Camera::target, kAny, "Point the camera orbits and looks at, in metres."),
-    number("yaw", &Camera::yawDeg, kAny, "Rotation about +Y in degrees; 0 looks down -Z."),
+    vec3("target", &Camera::target, kPosition, "Point the camera orbits and looks at, in metres."),
+    number("yaw", &Camera::yawDeg, kWrappingAngle,
+           "Rotation about +Y in degrees; 0 looks down -Z."),
     number("pitch", &Camera::pitchDeg, closedRange(-90, 90),
            "Elevation in degrees; positive looks down on the target."),
-    number("distance", &Camera::distance, kPositive, "Distance from the target in metres."),
+    number("distance", &Camera::distance, kLength, "Distance from the target in metres."),
     number("fovY", &Camera::fovYDeg, NumberRange{1, 179, true, true},
            "Vertical field of view in degrees (perspective)."),
-    number("near", &Camera::nearPlane, kPositive, "Near clip distance in metres."),
-    number("far", &Camera::farPlane, kPositive,
+    number("near", &Camera::nearPlane, kLength, "Near clip distance in metres."),
+    number("far", &Camera::farPlane, kLength,
            "Far clip distance in metres; must be greater than near."),
     flag("orthographic", &Camera::orthographic, "Orthographic instead of perspective projection."),
-    number("orthoHeight", &Camera::orthoHeight, kPositive,
+    number("orthoHeight", &Camera::orthoHeight, kLength,
            "Visible height in metres (orthographic)."),
 };
 
@@ -135,14 +149,14 @@ const std::array<Field<Light>, 14> kLight = [] {
     return std::array<Field<Light>, 14>{
         typeField,
         onlyWhen(text("name", FieldKind::Text, &Light::name, "Shown in the light list."), never),
-        vec3("color", &Light::color, kNonNegative, "Scene-linear Rec.709 colour."),
-        number("intensity", &Light::intensity, kNonNegative,
+        vec3("color", &Light::color, kRadiance, "Scene-linear Rec.709 colour."),
+        number("intensity", &Light::intensity, kIntensity,
                "Lux (directional), candela (point, spot), nits (area), multiplier (ambient)."),
-        onlyWhen(vec3("position", &Light::position, kAny, "Position in metres."), hasPosition),
-        onlyWhen(vec3("direction", &Light::direction, kAny,
+        onlyWhen(vec3("position", &Light::position, kPosition, "Position in metres."), hasPosition),
+        onlyWhen(vec3("direction", &Light::direction, kPosition,
                       "The way the light travels (need not be normalised, must not be zero)."),
                  hasDirection),
-        onlyWhen(number("range", &Light::range, kPositive, "Influence radius in metres."),
+        onlyWhen(number("range", &Light::range, kLength, "Influence radius in metres."),
                  hasPosition),
         onlyWhen(number("innerCone", &Light::innerConeDeg, kCone,
                         "Half-angle in degrees of full intensity; at most outerCone."),
@@ -156,7 +170,7 @@ const std::array<Field<Light>, 14> kLight = [] {
                      [](Light& l, int i) { l.shape = static_cast<AreaShape>(i); },
                      "Shape of an area light."),
                  isArea),
-        onlyWhen(vec2("size", &Light::size, kPositive,
+        onlyWhen(vec2("size", &Light::size, kLength,
                       "Area light: radius (sphere, first number) or width and height in metres."),
                  isArea),
         onlyWhen(flag("castShadows", &Light::castShadows,
@@ -182,19 +196,19 @@ const std::array<Field<Environment>, 11> kEnvironment{
              "Equirectangular HDR or EXR image; empty for a uniform colour."),
         +[](const Environment& e) { return !e.hdri.empty(); }),
     onlyWhen(
-        vec3("color", &Environment::color, kNonNegative,
+        vec3("color", &Environment::color, kRadiance,
              "Uniform scene-linear radiance when there is no HDRI."),
         +[](const Environment& e) { return e.hdri.empty(); }),
-    number("intensity", &Environment::intensity, kNonNegative,
+    number("intensity", &Environment::intensity, kRadiance,
            "Multiplier on the environment's radiance."),
-    number("rotation", &Environment::rotationDeg, kAny, "Rotation about +Y in degrees."),
+    number("rotation", &Environment::rotationDeg, kWrappingAngle, "Rotation about +Y in degrees."),
     choice<Environment>(
         "background", backgroundModeNames(),
         [](const Environment& e) { return static_cast<int>(e.background); },
         [](Environment& e, int i) { e.background = static_cast<BackgroundMode>(i); },
         "What is seen behind the mesh."),
     onlyWhen(
-        vec3("backgroundColor", &Environment::backgroundColor, kNonNegative,
+        vec3("backgroundColor", &Environment::backgroundColor, kRadiance,
              "Scene-linear colour of the solid-color background."),
         +[](const Environment& e) { return e.background == BackgroundMode::SolidColor; }),
     choice<Environment>(

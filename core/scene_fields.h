@@ -15,6 +15,10 @@
 
 namespace velvet {
 
+/// The largest scene-linear radiance the renderer stores: the half-float maximum (its HDR buffer
+/// and environment maps are RGBA16F). Bounds colours and radiance multipliers (scene_fields.cpp).
+inline constexpr double kMaxSceneRadiance = 65504.0;
+
 enum class FieldKind {
     Number, ///< float in `range`
     Vec2,   ///< two floats, each in `range`

@@ -6,6 +6,7 @@
 #include "core/post_chain_json.h"
 #include "core/scene_fields.h"
 
+#include <algorithm>
 #include <array>
 #include <glm/geometric.hpp>
 #include <vector>
@@ -169,6 +170,20 @@ void checkLight(JsonReader& r, const std::string& path, const Light& l) {
                 "expected a non-zero direction, got " + vecText(l.direction));
 }
 
+/// A uniform environment's radiance is colour x intensity; each is bounded alone, and their
+/// product must fit the half-float environment map and HDR buffer as well (kMaxSceneRadiance).
+void checkEnvironment(JsonReader& r, const Environment& e) {
+    if (!e.hdri.empty())
+        return;
+    const double radiance =
+        double(std::max({e.color.r, e.color.g, e.color.b})) * double(e.intensity);
+    if (radiance > kMaxSceneRadiance)
+        r.error("environment.intensity",
+                "the uniform environment's radiance, colour x intensity (" +
+                    formatNumber(radiance) + "), exceeds " + formatNumber(kMaxSceneRadiance) +
+                    ", the largest the renderer's half-float buffers hold");
+}
+
 void readLights(JsonReader& r, const JsonValue& v, const fs::path& baseDir, Scene& s) {
     if (v.kind == JsonValue::Kind::Invalid)
         return;
@@ -255,8 +270,12 @@ Scene readSceneJson(JsonReader& r, const JsonValue& root, const fs::path& baseDi
     }
     if (const JsonValue* v = root.find("lights"))
         readLights(r, *v, baseDir, s);
-    if (const JsonValue* v = root.find("environment"))
+    if (const JsonValue* v = root.find("environment")) {
+        const size_t before = r.errorCount();
         readFields(r, *v, "environment", environmentFields(), baseDir, s.environment);
+        if (r.errorCount() == before)
+            checkEnvironment(r, s.environment);
+    }
     if (const JsonValue* v = root.find("mesh")) {
         const size_t before = r.errorCount();
         readFields(r, *v, "mesh", meshFields(), baseDir, s.mesh);

@@ -1,6 +1,8 @@
 #include "render/gl_util.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <epoxy/gl.h>
 #include <vector>
 
@@ -41,6 +43,56 @@ bool fail(std::string* error, const std::string& message) {
     return false;
 }
 
+namespace {
+
+/// How a framebuffer's first colour attachment stores its values: 8-bit unsigned normalised
+/// (linear encoding), 16-bit float, or anything else (read as float by the driver).
+enum class ReadFormat { Unorm8, Half, Float };
+
+ReadFormat readFormatOf(unsigned fbo) {
+    if (fbo == 0) // the default framebuffer: whatever the window system made, read as float
+        return ReadFormat::Float;
+    GLint type = 0, bits = 0, encoding = 0;
+    glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                               GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+    glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                               GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, &bits);
+    glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                               GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
+    if (type == GL_UNSIGNED_NORMALIZED && bits == 8 && encoding == GL_LINEAR)
+        return ReadFormat::Unorm8;
+    if (type == GL_FLOAT && bits == 16)
+        return ReadFormat::Half;
+    return ReadFormat::Float;
+}
+
+/// IEEE 754 binary16 to binary32, exactly (subnormals, infinities and NaN included).
+float halfToFloat(std::uint16_t h) {
+    const std::uint32_t sign = std::uint32_t(h & 0x8000u) << 16;
+    const std::uint32_t exponent = (h >> 10) & 0x1fu, mantissa = h & 0x3ffu;
+    std::uint32_t bits;
+    if (exponent == 0x1fu) // infinity or NaN
+        bits = sign | 0x7f800000u | (mantissa << 13);
+    else if (exponent != 0) // normal
+        bits = sign | ((exponent + 112u) << 23) | (mantissa << 13);
+    else if (mantissa == 0) // zero
+        bits = sign;
+    else { // subnormal: normalise
+        int e = -1;
+        std::uint32_t m = mantissa;
+        do {
+            ++e;
+            m <<= 1;
+        } while (!(m & 0x400u));
+        bits = sign | (std::uint32_t(112 - e) << 23) | ((m & 0x3ffu) << 13);
+    }
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+} // namespace
+
 Image readFramebuffer(unsigned fbo, int width, int height) {
     Image img(width, height, 4);
     if (width <= 0 || height <= 0)
@@ -49,15 +101,46 @@ Image readFramebuffer(unsigned fbo, int width, int height) {
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
     glReadBuffer(fbo ? GL_COLOR_ATTACHMENT0 : GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-    std::vector<float> rows(size_t(width) * height * 4);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rows.data());
+    // Read in the attachment's own format and widen here: the driver then copies instead of
+    // converting every value (llvmpipe's float conversion of a 1280x720 frame took most of the
+    // read-back). The results are the same floats: c / 255 for 8-bit values (the GL rule for
+    // unsigned normalised values), halves widened exactly.
+    const size_t values = size_t(width) * height * 4, rowValues = size_t(width) * 4;
+    const auto flip = [&](auto&& widen) {
+        for (int y = 0; y < height; ++y) {
+            float* out = img.pixels.data() + size_t(y) * rowValues;
+            const size_t in = size_t(height - 1 - y) * rowValues;
+            for (size_t i = 0; i < rowValues; ++i)
+                out[i] = widen(in + i);
+        }
+    };
+    switch (readFormatOf(fbo)) {
+    case ReadFormat::Unorm8: {
+        std::vector<std::uint8_t> rows(values);
+        glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+        float table[256];
+        for (int i = 0; i < 256; ++i)
+            table[i] = float(i) * (1.0f / 255.0f); // as Mesa widens (u_math.h)
+        flip([&](size_t i) { return table[rows[i]]; });
+        break;
+    }
+    case ReadFormat::Half: {
+        std::vector<std::uint16_t> rows(values);
+        glReadPixels(0, 0, width, height, GL_RGBA, GL_HALF_FLOAT, rows.data());
+        flip([&](size_t i) { return halfToFloat(rows[i]); });
+        break;
+    }
+    case ReadFormat::Float: {
+        std::vector<float> rows(values);
+        glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rows.data());
+        flip([&](size_t i) { return rows[i]; });
+        break;
+    }
+    }
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(previous));
-    const size_t rowFloats = size_t(width) * 4;
-    for (int y = 0; y < height; ++y)
-        std::copy_n(rows.data() + size_t(height - 1 - y) * rowFloats, rowFloats,
-                    img.pixels.data() + size_t(y) * rowFloats);
     return img;
 }
 

@@ -194,8 +194,17 @@ void ShadowMaps::allocate(int layers, int size) {
 
 void ShadowMaps::plan(const std::vector<Light>& lights, const BoundingSphere& casters,
                       Problems* problems) {
-    m_slots = planShadows(lights, casters, problems);
-    m_dirty = true;
+    std::vector<ShadowSlot> slots = planShadows(lights, casters, problems);
+    // A map holds the mesh's depth seen through its slot's view and projection, nothing else: an
+    // edit of a light's colour, intensity, range or source size (a slider drag) keeps every map.
+    const bool sameMaps = slots.size() == m_slots.size() &&
+                          std::equal(slots.begin(), slots.end(), m_slots.begin(),
+                                     [](const ShadowSlot& a, const ShadowSlot& b) {
+                                         return a.view == b.view && a.proj == b.proj;
+                                     });
+    m_slots = std::move(slots);
+    if (!sameMaps)
+        m_dirty = true;
 }
 
 std::vector<int> ShadowMaps::slotOfLight(size_t lightCount) const {

@@ -58,7 +58,7 @@ public:
     int compileCount() const { return m_compileCount; }
 
     /// Plans the slots for @p lights around @p casters (planShadows) and marks the maps for
-    /// drawing at the next draw().
+    /// drawing at the next draw() when a slot's view or projection changed.
     void plan(const std::vector<Light>& lights, const BoundingSphere& casters, Problems* problems);
     const std::vector<ShadowSlot>& slots() const { return m_slots; }
     /// Per scene light: its slot + 1, or 0 (no shadow); what the light buffers carry.

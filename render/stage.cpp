@@ -19,6 +19,10 @@ constexpr float kFadeStart = 1.6f, kFadeEnd = 4.0f;
 /// floor (the drape's hem) does not fight the ground for depth.
 constexpr float kGroundGap = 0.002f;
 
+float groundHalfSize(float radius) {
+    return std::max(kGroundHalfSizeRadii * radius, kGroundMinHalfSize);
+}
+
 BoundingSphere sphereOf(const MeshBounds& bounds) {
     return boundingSphere(bounds);
 }
@@ -105,6 +109,7 @@ void Stage::beginFrame(const Scene& scene, int width, int height) {
     const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
     b.ground = glm::vec4(height0, float(int(env.ground)), kFadeStart * r, kFadeEnd * r);
     b.meshSphere = glm::vec4(sphere.center, r);
+    b.groundSquare = glm::vec4(sphere.center.x, 0.0f, sphere.center.z, groundHalfSize(r));
     b.occlusion =
         glm::vec4(env.ambientOcclusion ? 1.0f : 0.0f, std::max(env.occlusionRadius, 0.0f),
                   float(OcclusionPass::halfSize(width)), float(OcclusionPass::halfSize(height)));
@@ -118,7 +123,7 @@ void Stage::drawGround(const Environment& environment) {
     const BoundingSphere sphere = sphereOf(m_bounds);
     const float r = sphere.radius;
     const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
-    const float half = std::max(kGroundHalfSizeRadii * r, kGroundMinHalfSize);
+    const float half = groundHalfSize(r);
     const int id = environment.ground == GroundMode::ShadowCatcher ? kGroundCatcherMaterialId
                                                                    : kGroundPlainMaterialId;
     glEnable(GL_DEPTH_TEST);

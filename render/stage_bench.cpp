@@ -8,10 +8,19 @@
 #include <algorithm>
 #include <chrono>
 #include <epoxy/gl.h>
+#include <sys/resource.h>
 #include <vector>
 
 namespace velvet::render {
 namespace {
+
+/// CPU time of the whole process (all threads) in milliseconds.
+double processCpuMs() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 +
+           double(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
+}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -37,10 +46,12 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     FrameSettings fs;
     fs.width = width;
     fs.height = height;
-    const auto frame = [&](const Scene& scene, ScenePart parts, double* wallMs) {
+    const auto frame = [&](const Scene& scene, ScenePart parts, double* wallMs,
+                           double* cpuMs = nullptr) {
         renderer.update(scene, parts);
         glFinish();
         const auto start = std::chrono::steady_clock::now();
+        const double cpuStart = processCpuMs();
         if (!renderer.render(fs, target.framebuffer(), error))
             return false;
         glFinish();
@@ -48,6 +59,8 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
             *wallMs =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                     .count();
+        if (cpuMs)
+            *cpuMs = processCpuMs() - cpuStart;
         return true;
     };
     renderer.setScene(full);
@@ -57,23 +70,26 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
         return false;
     // Interleaved, so the three see the same machine state; each variant's first frame after a
     // switch redraws the shadow map, so the second is timed (an orbit's frame).
-    std::vector<double> offMs, shadowMs, fullMs, mapMs, occlusionMs;
+    std::vector<double> offMs, shadowMs, fullMs, mapMs, occlusionMs, offCpu, shadowCpu, fullCpu;
     for (int i = 0; i < frames; ++i) {
-        double ms = 0.0;
+        double ms = 0.0, cpu = 0.0;
         if (!frame(off, ScenePart::Lights | ScenePart::Environment, nullptr) ||
-            !frame(off, ScenePart::None, &ms))
+            !frame(off, ScenePart::None, &ms, &cpu))
             return false;
         offMs.push_back(ms);
+        offCpu.push_back(cpu);
         if (!frame(shadow, ScenePart::Lights | ScenePart::Environment, nullptr))
             return false;
         mapMs.push_back(renderer.lastTimings().shadowMapsMs);
-        if (!frame(shadow, ScenePart::None, &ms))
+        if (!frame(shadow, ScenePart::None, &ms, &cpu))
             return false;
         shadowMs.push_back(ms);
+        shadowCpu.push_back(cpu);
         if (!frame(full, ScenePart::Lights | ScenePart::Environment, nullptr) ||
-            !frame(full, ScenePart::None, &ms))
+            !frame(full, ScenePart::None, &ms, &cpu))
             return false;
         fullMs.push_back(ms);
+        fullCpu.push_back(cpu);
         occlusionMs.push_back(renderer.lastTimings().occlusionMs);
     }
     report.frameOffMs = median(offMs);
@@ -83,6 +99,11 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     report.stageOverhead = report.frameStageMs / std::max(report.frameOffMs, 1e-6) - 1.0;
     report.shadowMapMs = median(mapMs);
     report.occlusionMs = median(occlusionMs);
+    report.cpuOffMs = median(offCpu);
+    report.cpuShadowMs = median(shadowCpu);
+    report.cpuStageMs = median(fullCpu);
+    report.cpuShadowOverhead = report.cpuShadowMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
+    report.cpuStageOverhead = report.cpuStageMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
     return true;
 }
 

@@ -16,6 +16,11 @@ struct StageBenchReport {
     double stageOverhead = 0;  ///< frameStageMs / frameOffMs - 1
     double shadowMapMs = 0;    ///< GPU time of drawing the shadow map (a light or mesh edit)
     double occlusionMs = 0;    ///< GPU time of the occlusion passes
+    /// The same three frames by the process's CPU time (getrusage: every llvmpipe thread), which
+    /// other processes' load does not inflate the way it does wall-clock time (BENCHMARKS.md).
+    double cpuOffMs = 0, cpuShadowMs = 0, cpuStageMs = 0;
+    double cpuShadowOverhead = 0; ///< cpuShadowMs / cpuOffMs - 1
+    double cpuStageOverhead = 0;  ///< cpuStageMs / cpuOffMs - 1
 };
 
 /// Median of @p frames frames each; needs a current context. False + message on failure.

@@ -15,7 +15,8 @@ static_assert(offsetof(StageBlock, ground) == 208 * kMaxShadowLights);
 static_assert(offsetof(StageBlock, meshSphere) == 208 * kMaxShadowLights + 16);
 static_assert(offsetof(StageBlock, occlusion) == 208 * kMaxShadowLights + 32);
 static_assert(offsetof(StageBlock, counts) == 208 * kMaxShadowLights + 48);
-static_assert(sizeof(StageBlock) == 208 * kMaxShadowLights + 64);
+static_assert(offsetof(StageBlock, groundSquare) == 208 * kMaxShadowLights + 64);
+static_assert(sizeof(StageBlock) == 208 * kMaxShadowLights + 80);
 
 std::string stageInterfaceGlsl() {
     const std::string n = std::to_string(kMaxShadowLights);
@@ -49,6 +50,7 @@ std::string stageInterfaceGlsl() {
          "    vec4 meshSphere; // centre, radius\n"
          "    vec4 occlusion; // on, radius, half width, half height\n"
          "    ivec4 counts; // shadow slots\n"
+         "    vec4 groundSquare; // centre x, unused, centre z, half size\n"
          "} stage;\n";
     return s;
 }

@@ -57,6 +57,9 @@ struct StageBlock {
     glm::vec4 occlusion;
     /// x: shadow slots in use, yzw unused
     glm::ivec4 counts;
+    /// The ground's square (stage.cpp): x, z its centre, w its half size (m); y unused. The
+    /// shadow lookups test a light under the floor against it (shadow_sampling.glsl).
+    glm::vec4 groundSquare;
 };
 
 /// The GLSL text of "stage_interface.glsl".

@@ -26,6 +26,8 @@ constexpr float kMaxPitchDeg = 89.0f;
 constexpr float kZoomPerNotch = 0.9f; // distance factor per 15° wheel notch
 constexpr float kMinDistance = 0.2f;
 constexpr float kMaxDistance = 50.0f;
+constexpr float kMinOrthoHeight = 0.05f;
+constexpr float kMaxOrthoHeight = 1000.0f;
 constexpr float kLookDegPerPixel = 0.2f;
 constexpr float kEnvironmentDegPerPixel = 0.5f; // a 720-pixel drag turns the HDRI once
 constexpr float kFlySpeedPerDistance = 0.8f;    // metres per second per metre of distance
@@ -234,7 +236,10 @@ bool ViewportWidget::wheel(QWheelEvent* event) {
     Camera camera = viewCamera();
     camera.distance =
         std::clamp(camera.distance * std::pow(kZoomPerNotch, notches), kMinDistance, kMaxDistance);
-    camera.orthoHeight = std::max(0.05f, camera.orthoHeight * std::pow(kZoomPerNotch, notches));
+    // Bounded as the distance is, well inside the scene schema's lengths (docs/file-formats.md,
+    // "Bounds"), so the editor never saves a view its own reader would refuse.
+    camera.orthoHeight = std::clamp(camera.orthoHeight * std::pow(kZoomPerNotch, notches),
+                                    kMinOrthoHeight, kMaxOrthoHeight);
     setViewCamera(camera);
     event->accept();
     return true;

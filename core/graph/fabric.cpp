@@ -16,7 +16,8 @@ using namespace glm;
 
 // ---- The graph compiler's noise helpers (graph_compiler.cpp, kNoiseGlsl), line for line --------
 
-// pcg2d (resources/shaders/common_hash.glsl): Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", JCGT 9(3), 21-38.
+// pcg2d (resources/shaders/common_hash.glsl): Jarzynski & Olano 2020, "Hash Functions for GPU
+// Rendering", JCGT 9(3), 21-38.
 uvec2 pcg2d(uvec2 v) {
     v = v * 1664525u + 1013904223u;
     v.x += v.y * 1664525u;
@@ -84,9 +85,16 @@ float warpUp(float i, float j, const WeaveParams& p) {
 WeaveSample weave(glm::vec2 uv, const WeaveParams& p) {
     const twin::VelvetWeave w = twin::velvetWeave(
         uv, p.pattern, p.over, p.under, p.harness, p.step, p.group, p.density, p.width, p.roundness,
-        p.warpColor, p.weftColor, p.crossingHeight, p.roughness);
+        p.warpColor, p.weftColor, p.crossingHeight, p.roughness, p.footprint);
     return {w.color,     w.height, w.normal, w.roughness, w.sheen,
             w.direction, w.thread, w.warp,   w.occlusion};
+}
+
+WeaveMean weaveMean(const WeaveParams& p) {
+    const twin::VelvetWeaveMean m =
+        twin::velvetWeaveMean(p.pattern, p.over, p.under, p.harness, p.group, p.width, p.roundness,
+                              p.warpColor, p.weftColor);
+    return {m.color, m.height, m.sheen, m.warp};
 }
 
 KnitSample knit(glm::vec2 uv, const KnitParams& p) {

@@ -34,6 +34,11 @@ struct WeaveParams {
     glm::vec3 weftColor{0.75f, 0.72f, 0.64f};
     float crossingHeight = 0.4f; ///< crown height in thread spacings (normal strength)
     float roughness = 0.8f;
+    /// Not a node input: the UV extent of one pixel along u and v, what the GPU takes from
+    /// fwidth(uv). Where a pixel spans more than a quarter of a thread the outputs but the normal
+    /// and the thread id fade to the pattern's mean (weaveMean), reached at three quarters; (0, 0):
+    /// unfiltered.
+    glm::vec2 footprint{0.0f, 0.0f};
 };
 
 /// The Weave node's outputs at one point.
@@ -48,6 +53,16 @@ struct WeaveSample {
     float warp = 0.0f;               ///< 1 where a warp end is seen
     float occlusion = 1.0f;
 };
+
+/// The Weave's colour, height, sheen and warp outputs averaged over its repeat, as the model of
+/// fabric_source.inl (velvetWeaveMean) estimates them: what a pixel spanning many threads shows.
+struct WeaveMean {
+    glm::vec3 color{0.0f};
+    float height = 0.0f;
+    float sheen = 0.0f;
+    float warp = 0.0f;
+};
+WeaveMean weaveMean(const WeaveParams& p);
 
 /// 1 where warp end @p i passes over weft pick @p j (whole numbers), 0 where under.
 float warpUp(float i, float j, const WeaveParams& p);

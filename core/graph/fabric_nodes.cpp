@@ -55,7 +55,8 @@ const NodeType& typeOf(std::string_view id) {
 }
 
 void weaveSnippet(const SnippetArgs& a, std::string& o) {
-    line(o, "VelvetWeave w = velvetWeave(" + args(a) + ");");
+    // The pixel's UV footprint filters the pattern (fabric_source.inl): fwidth of the UV input.
+    line(o, "VelvetWeave w = velvetWeave(" + args(a) + ", fwidth(" + a.in[0] + "));");
     assignOutputs(a, typeOf("fabric.weave"), "w", o);
 }
 

@@ -138,7 +138,10 @@ EditResult Graph::connect(const Connection& c) {
     return r;
 }
 
-EditResult Graph::disconnect(const Connection& c) {
+EditResult Graph::disconnect(const Connection& connection) {
+    // A copy first: callers pass references into m_connections (connectionTo(), connections()),
+    // which the erase frees before the change below is reported (ASan, test_core_graph).
+    const Connection c = connection;
     if (!m_connections.erase(c))
         return EditResult::refuse("no link " + toString(c));
     Change ch;

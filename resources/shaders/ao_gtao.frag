@@ -10,7 +10,9 @@
 layout(location = 0) out vec2 outOcclusion;
 
 const int SLICES = 2;
-const int STEPS = 4;
+// Three steps a side: the 4x4 pattern's jitter and the blur fill in between (a fourth is a third
+// more horizon samples and moved test_render_shadows' crease term only from 0.88 to 0.86).
+const int STEPS = 3;
 
 vec3 viewPositionAt(ivec2 fullPixel) {
     float depth = texelFetch(gDepthTex, fullPixel, 0).r;
@@ -22,10 +24,10 @@ void main() {
     ivec2 halfPixel = ivec2(gl_FragCoord.xy);
     ivec2 pixel = min(halfPixel * 2, ivec2(frame.viewport.xy) - 1);
     float depth = texelFetch(gDepthTex, pixel, 0).r;
-    if (depth >= 1.0) {
-        outOcclusion = vec2(1.0, 1e6);
-        return;
-    }
+    // The background: nothing to occlude. llvmpipe runs both sides of an `if` (and past a
+    // `return`) but leaves a loop once no pixel of its block is in it, so the work below is a
+    // loop whose count is 0 for the background and where the radius is under a pixel.
+    bool background = depth >= 1.0;
     vec3 P = viewPositionAt(pixel);
     vec3 N = normalize(mat3(frame.viewMatrix) * octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg));
     bool ortho = frame.cameraPosition.w > 0.5;
@@ -34,10 +36,7 @@ void main() {
     // The radius in full-resolution pixels: the projection's y scale over the depth.
     float pixelsPerMetre = 0.5 * frame.viewport.y * frame.projMatrix[1][1] / (ortho ? 1.0 : -P.z);
     float radiusPixels = radius * pixelsPerMetre;
-    if (radiusPixels < 1.0) {
-        outOcclusion = vec2(1.0, -P.z);
-        return;
-    }
+    int slices = background || radiusPixels < 1.0 ? 0 : SLICES;
     radiusPixels = min(radiusPixels, 0.25 * frame.viewport.y);
     // A 4x4 pattern of slice rotations and step offsets, which the blur averages away.
     int cell = (halfPixel.x & 3) + 4 * (halfPixel.y & 3);
@@ -45,7 +44,7 @@ void main() {
     float jitter = float((cell * 11 + 5) & 15) / 16.0;
     float falloffFrom = 0.6 * radius;
     float visibility = 0.0;
-    for (int slice = 0; slice < SLICES; ++slice) {
+    for (int slice = 0; slice < slices; ++slice) {
         float phi = rotation + float(slice) * PI / float(SLICES);
         vec2 omega = vec2(cos(phi), sin(phi));
         vec3 direction = vec3(omega, 0.0);
@@ -89,5 +88,10 @@ void main() {
     }
     // Not clamped to 1 yet: one pixel's two slices over- or under-estimate a tilted plane, and
     // only the blur's average over the 4x4 rotations comes back to 1 (ao_blur.frag clamps).
-    outOcclusion = vec2(clamp(visibility / float(SLICES), 0.0, 2.0), -P.z);
+    if (background)
+        outOcclusion = vec2(1.0, 1e6);
+    else if (slices == 0)
+        outOcclusion = vec2(1.0, -P.z);
+    else
+        outOcclusion = vec2(clamp(visibility / float(SLICES), 0.0, 2.0), -P.z);
 }

@@ -41,11 +41,31 @@ float shadowStoredDepth(int s, float dist) {
     return clamp(d, 0.0, 1.0);
 }
 
+// Whether the ground (stage.ground, a square stage.groundSquare) stands between posWorld and shadow
+// slot s's light: a light under the floor does not light what stands on it (docs/shadows.md, "The
+// ground as a caster"). Analytic, so the ground needs no room in the maps: where the segment
+// towards the light crosses the ground's plane, inside the square. Off with the ground.
+bool groundBlocksLight(int s, vec3 posWorld) {
+    float h = stage.ground.x;
+    vec4 L = stage.shadowLight[s];
+    if (stage.ground.y < 0.5 || posWorld.y <= h)
+        return false;
+    // Directional: L.xyz is the way towards the light, crossing where y falls by posWorld.y - h.
+    // Local: the fraction of the way to the light's centre at which y reaches h.
+    vec3 toLight = L.w < 0.5 ? L.xyz : L.xyz - posWorld;
+    bool below = L.w < 0.5 ? L.y < 0.0 : L.y < h;
+    if (!below)
+        return false;
+    vec2 crossing = posWorld.xz + toLight.xz * ((posWorld.y - h) / max(-toLight.y, 1e-6));
+    return all(lessThanEqual(abs(crossing - stage.groundSquare.xz), vec2(stage.groundSquare.w)));
+}
+
 // Fraction of shadow slot s's light that reaches posWorld (normal n, unit l towards the light);
-// 0 facing away, 1 outside the map (no caster there). noise in [0, 1) rotates the taps.
+// 0 facing away or with the ground in between, 1 outside the map (no caster there). noise in
+// [0, 1) rotates the taps.
 float shadowVisibility(int s, vec3 posWorld, vec3 n, vec3 l, float noise) {
     float NdotL = dot(n, l);
-    if (NdotL <= 0.0)
+    if (NdotL <= 0.0 || groundBlocksLight(s, posWorld))
         return 0.0;
     vec4 P = stage.shadowParams[s];
     vec4 Q = stage.shadowScale[s];

@@ -51,6 +51,8 @@ private slots:
                               "stage_frame_off_ms",
                               "stage_frame_shadow_ms",
                               "stage_shadow_overhead",
+                              "stage_shadow_overhead_cpu",
+                              "stage_frame_shadow_cpu_ms",
                               "shadow_map_pass_ms",
                               "occlusion_pass_ms"};
         for (const char* k : keys)

@@ -31,7 +31,10 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // after direct light and the reference gained the multiple-scattering energy the image-based
 // light has, which lowered them by 0.01-0.4), sheen
 // under the environment (albedo x prefiltered radiance against the integrated sheen lobe), the
-// fabrics' weaves (pattern-aligned: lower relief contrast in the viewport), the shader ball's
+// fabrics' weaves (pattern-aligned: lower relief contrast in the viewport; and where a thread
+// is finer than a pixel the viewport shows the weave's mean with a flat normal, issue 13's
+// filtering, which lacks the bumps' brighter rim: cotton, denim and tweed under the HDRI and
+// satin under the rig were re-measured with it), the shader ball's
 // cavities (the viewport reflects the environment where the mesh sees itself).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 13.45, 29.48},
@@ -39,23 +42,23 @@ const Miss kMisses[] = {
     {"ceramic", kSphere, "environment", 2.41, 5.36},
     {"copper", kSphere, "environment", 4.38, 11.51},
     {"copper", kSphere, "three-point", 3.15, 8.80},
-    {"cotton", kSphere, "environment", 5.86, 11.02},
-    {"cotton", kSphere, "three-point", 2.20, 4.95},
+    {"cotton", kSphere, "environment", 6.95, 12.82},
+    {"cotton", kSphere, "three-point", 2.23, 5.69},
     {"crimson_velvet", kSphere, "environment", 3.39, 8.23},
     {"crimson_velvet", kSphere, "three-point", 2.34, 6.52},
     {"crushed_velvet", kSphere, "environment", 7.32, 39.44},
     {"crushed_velvet", kSphere, "three-point", 3.63, 15.12},
-    {"denim", kSphere, "environment", 3.31, 6.70},
+    {"denim", kSphere, "environment", 3.98, 7.90},
     {"denim", kSphere, "three-point", 3.65, 8.33},
     {"gold", kSphere, "environment", 3.97, 10.56},
     {"gold", kSphere, "three-point", 2.99, 8.23},
     {"linen", kSphere, "environment", 5.10, 10.60},
     {"linen", kSphere, "three-point", 2.40, 5.37},
     {"satin", kSphere, "environment", 3.38, 11.73},
-    {"satin", kSphere, "three-point", 2.81, 9.17},
+    {"satin", kSphere, "three-point", 3.28, 10.90},
     {"silk", kSphere, "environment", 4.70, 11.34},
     {"terry", kSphere, "environment", 4.02, 11.79},
-    {"tweed", kSphere, "environment", 4.43, 9.06},
+    {"tweed", kSphere, "environment", 5.05, 10.33},
     {"tweed", kSphere, "three-point", 3.04, 6.78},
     {"wool", kSphere, "environment", 5.65, 12.69},
     {"wool", kSphere, "three-point", 3.22, 7.95},

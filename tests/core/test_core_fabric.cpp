@@ -4,7 +4,8 @@
 // floats span N - 1 picks, plain weave is a checkerboard, warp and weft directions are
 // orthogonal, the normal is the height's gradient (finite differences), a knit repeats once per
 // stitch, fuzz streaks are `stretch` times longer along the yarn than across, and pile tilts by
-// atan(lean) towards its lay direction.
+// atan(lean) towards its lay direction. Filtered by a pixel's footprint, the Weave fades to its
+// mean, which is the measured average of the unfiltered pattern.
 #include "core/graph/fabric.h"
 
 #include <QtTest>
@@ -319,6 +320,115 @@ private slots:
               along / acrossLength);
         QVERIFY(acrossLength > 0.0);
         QVERIFY(std::abs(along / acrossLength / f.stretch - 1.0) < 0.25);
+    }
+
+    // Filtering (fabric_source.inl): where a pixel spans three quarters of a thread or more, the
+    // Weave shows the same values everywhere — its mean — and that mean is the measured average
+    // of the unfiltered pattern over a whole repeat within 0.02 (colour per channel, height,
+    // sheen) and 0.01 (warp share); the normal is flat, and the roughness takes the relief's
+    // slopes (GGX alpha^2 grows by their variance, Toksvig 2005), modelled within 35 % of the
+    // measured mean squared slope.
+    void filteredWeaveIsItsMeasuredMean_data() {
+        QTest::addColumn<int>("pattern");
+        QTest::addColumn<float>("width");
+        QTest::addColumn<float>("roundness");
+        QTest::newRow("plain, w 1, r 1") << 0 << 1.0f << 1.0f;
+        QTest::newRow("plain, w 0.6, r 0.5") << 0 << 0.6f << 0.5f;
+        QTest::newRow("twill 3/1, w 0.85, r 1") << 1 << 0.85f << 1.0f;
+        QTest::newRow("twill 3/1, w 0.9, r 1.2 (denim)") << 1 << 0.9f << 1.2f;
+        QTest::newRow("satin 5, w 1, r 0.5") << 2 << 1.0f << 0.5f;
+        QTest::newRow("satin 5, w 0.85, r 2") << 2 << 0.85f << 2.0f;
+        QTest::newRow("basket 2, w 0.85, r 1") << 3 << 0.85f << 1.0f;
+        QTest::newRow("herringbone 2/2, w 0.92, r 1") << 4 << 0.92f << 1.0f;
+    }
+    void filteredWeaveIsItsMeasuredMean() {
+        QFETCH(int, pattern);
+        QFETCH(float, width);
+        QFETCH(float, roundness);
+        WeaveParams p;
+        p.pattern = float(pattern);
+        p.over = pattern == 4 ? 2.0f : 3.0f;
+        p.under = pattern == 4 ? 2.0f : 1.0f;
+        p.harness = 5.0f;
+        p.step = pattern == 2 ? 2.0f : 1.0f;
+        p.group = pattern == 4 ? 4.0f : 2.0f;
+        p.density = {1.0f, 1.0f};
+        p.width = width;
+        p.roundness = roundness;
+        p.warpColor = {0.9f, 0.1f, 0.4f};
+        p.weftColor = {0.05f, 0.7f, 0.3f};
+        p.roughness = 0.5f;
+        p.crossingHeight = 0.2f; // alpha^4 stays under 1 (no clamp) with the slopes added
+        // One whole repeat along u and v (herringbone: two stripes of 4 ends), 64 x 64 samples a
+        // cell (yarn edges are sharp: coarser sampling misplaces them by a whole sample).
+        const int kCells = pattern == 4 ? 8 : pattern == 2 ? 5 : 4, kPer = 64;
+        glm::dvec3 color(0.0);
+        double height = 0.0, sheen = 0.0, warp = 0.0, slope2 = 0.0;
+        for (int a = 0; a < kCells * kPer; ++a)
+            for (int b = 0; b < kCells * kPer; ++b) {
+                const WeaveSample w = weave({(a + 0.5f) / kPer, (b + 0.5f) / kPer}, p);
+                color += glm::dvec3(w.color);
+                height += w.height, sheen += w.sheen, warp += w.warp;
+                slope2 +=
+                    (w.normal.x * w.normal.x + w.normal.y * w.normal.y) / (w.normal.z * w.normal.z);
+            }
+        const double n = double(kCells * kPer) * double(kCells * kPer);
+        color /= n, height /= n, sheen /= n, warp /= n, slope2 /= n;
+
+        WeaveParams filtered = p;
+        filtered.footprint = {0.75f, 0.5f}; // three quarters of a thread along u
+        const WeaveSample a = weave({0.13f, 0.71f}, filtered);
+        const WeaveSample b = weave({3.6f, 1.27f}, filtered);
+        QCOMPARE(a.color, b.color);
+        QCOMPARE(a.height, b.height);
+        QCOMPARE(a.normal, glm::vec3(0.0f, 0.0f, 1.0f));
+        QCOMPARE(b.normal, glm::vec3(0.0f, 0.0f, 1.0f));
+        const WeaveMean mean = weaveMean(p);
+        QCOMPARE(a.color, mean.color);
+        QCOMPARE(a.sheen, mean.sheen);
+        QCOMPARE(a.warp, mean.warp);
+        QCOMPARE(a.occlusion, 0.45f + 0.55f * mean.height);
+        qInfo("measured colour (%.4f %.4f %.4f) height %.4f sheen %.4f warp %.4f; model (%.4f "
+              "%.4f %.4f) %.4f %.4f %.4f",
+              color.x, color.y, color.z, height, sheen, warp, mean.color.x, mean.color.y,
+              mean.color.z, mean.height, mean.sheen, mean.warp);
+        for (int c = 0; c < 3; ++c)
+            QVERIFY(std::abs(mean.color[c] - color[c]) < 0.02);
+        QVERIFY(std::abs(mean.height - height) < 0.02);
+        QVERIFY(std::abs(mean.sheen - sheen) < 0.02);
+        QVERIFY(std::abs(mean.warp - warp) < 0.01);
+        // Toksvig: alpha^4 (alpha = roughness^2) of the filtered weave less that of the mean
+        // roughness is the modelled slope variance; against the measured one.
+        const float base = std::clamp(p.roughness + 0.15f * (1.0f - mean.height), 0.0f, 1.0f);
+        const double modelled = std::pow(double(a.roughness), 4.0) - std::pow(double(base), 4.0);
+        qInfo("mean squared slope: measured %.4f, modelled %.4f", slope2, modelled);
+        QVERIFY(modelled > 0.65 * slope2 && modelled < 1.35 * slope2);
+    }
+
+    // A pixel spanning a quarter of a thread or less sees the pattern unfiltered; between a
+    // quarter and three quarters it fades monotonically from the pattern to the mean.
+    void weaveFadesWithTheFootprint() {
+        WeaveParams p = twill(3, 1, 1, {40.0f, 30.0f});
+        p.warpColor = {0.02f, 0.05f, 0.2f};
+        p.weftColor = {0.8f, 0.8f, 0.75f};
+        const WeaveMean mean = weaveMean(p);
+        for (int k = 0; k < 50; ++k) {
+            const glm::vec2 uv(0.013f * k + 0.002f, 0.029f * k + 0.011f);
+            const WeaveSample sharp = weave(uv, p);
+            WeaveParams q = p;
+            q.footprint = glm::vec2(0.25f / 40.0f); // a quarter of an end, a third of a pick
+            const WeaveSample same = weave(uv, q);
+            QCOMPARE(same.color, sharp.color);
+            QCOMPARE(same.normal, sharp.normal);
+            QCOMPARE(same.height, sharp.height);
+            float last = std::abs(sharp.color.x - mean.color.x);
+            for (float cells : {0.35f, 0.5f, 0.65f}) {
+                q.footprint = glm::vec2(cells / 40.0f);
+                const float off = std::abs(weave(uv, q).color.x - mean.color.x);
+                QVERIFY(off <= last + 1e-6f);
+                last = off;
+            }
+        }
     }
 
     // Uncrushed pile tilts every normal by atan(lean) towards the lay direction; crushed velvet

@@ -254,6 +254,11 @@ private slots:
                    "%1",
                    R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [2, 0, 0]}}})")
             << "materials[0].extensions.KHR_materials_sheen.sheenColorFactor[0]";
+        // Found by fuzz_gltf: nlohmann-json throws out_of_range, not parse_error, for a number
+        // beyond a double, and it escaped the reader (the editor ended in std::terminate).
+        QTest::newRow("number beyond a double")
+            << QByteArray(R"({"asset": {"version": "2.0"}, "x": 1e999, "materials": [{}]})")
+            << "broken JSON: number overflow";
         QTest::newRow("no materials") << QByteArray(R"({"asset": {"version": "2.0"}})") << "";
         QTest::newRow("nested too deep")
             << QByteArray(R"({"asset": {"version": "2.0"}, "x": )") + QByteArray(100000, '[') << "";
@@ -442,6 +447,14 @@ private slots:
                    "/></surfacematerial>\n"
                    "</materialx>")
             << "line ";
+        // Found by fuzz_mtlx: a name in bytes that are not UTF-8 made a preset that did not load.
+        QTest::newRow("not UTF-8")
+            << QByteArray("<materialx version=\"1.39\">\n<standard_surface name=\"S\" "
+                          "type=\"surfaceshader\" />\n<surfacematerial name=\"M\xE9\" "
+                          "type=\"material\"><input name=\"surfaceshader\" "
+                          "type=\"surfaceshader\" nodename=\"S\" /></surfacematerial>\n"
+                          "</materialx>")
+            << "line 3, column 25: not UTF-8 text (byte 0xE9)";
         QTest::newRow("not a number")
             << QByteArray(
                    "<materialx version=\"1.39\">\n<standard_surface name=\"S\" "

@@ -46,8 +46,12 @@ private slots:
     }
 
     void aimedLightsPointAtTheMesh() {
-        for (const LightRig& rig : lightRigs())
-            for (const Light& light : *lightRigLights(rig.id)) {
+        for (const LightRig& rig : lightRigs()) {
+            // Held here: a range-for over *lightRigLights(...) would iterate a destroyed
+            // temporary (ASan: stack-use-after-scope).
+            const std::optional<std::vector<Light>> lights = lightRigLights(rig.id);
+            QVERIFY(lights);
+            for (const Light& light : *lights) {
                 if (light.type == LightType::Spot ||
                     (light.type == LightType::Area && light.shape == AreaShape::Rectangle)) {
                     // From the light towards the origin, within a degree.
@@ -58,6 +62,7 @@ private slots:
                 if (light.type == LightType::Directional)
                     QVERIFY2(light.direction.y < 0.0f, light.name.c_str()); // from above
             }
+        }
     }
 
     void colouredPointsAreManyDistinctAndReachTheMesh() {

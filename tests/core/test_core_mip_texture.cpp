@@ -19,6 +19,16 @@
 #include <fstream>
 #include <thread>
 
+// clang says AddressSanitizer through __has_feature, GCC through __SANITIZE_ADDRESS__.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VELVET_HAS_ASAN 1
+#endif
+#endif
+#ifndef VELVET_HAS_ASAN
+#define VELVET_HAS_ASAN 0
+#endif
+
 using namespace velvet;
 namespace fs = std::filesystem;
 
@@ -253,6 +263,11 @@ private slots:
     // Peak memory of a first load of a 2048² RGBA8 map (no float copy): under twice its GPU
     // size with mips (the levels themselves are one such size).
     void peakMemoryStaysUnderTwiceTheGpuSize() {
+#if defined(__SANITIZE_ADDRESS__) || VELVET_HAS_ASAN
+        // ASan's redzones and freed-memory quarantine add to the resident peak (2.24x measured
+        // under make test-asan-core): the figure is the allocator's, not the loader's.
+        QSKIP("peak memory is not Velvet's under AddressSanitizer");
+#endif
         const fs::path file = path("big.png");
         std::string error;
         QVERIFY(writeImage(file, pattern(2048, 2048), PixelFormat::UInt8, &error));

@@ -1,8 +1,10 @@
 // The look-dev stage new documents start on (core/default_stage.h), measured as an artist would
 // judge it: the background is readable (not near-black), the mesh covers a sensible share of the
 // frame with room around it, and each shipped HDRI's default rotation puts its bright side behind
-// the mesh — checked end to end through the shader's environment lookup on a synthetic map.
+// the mesh — checked end to end through the shader's environment lookup on a synthetic map. A
+// preset's thumbnail scene puts fabrics and leather on the cloth drape, framed.
 #include "core/default_stage.h"
+#include "core/document_io.h"
 #include "core/image.h"
 #include "core/resources.h"
 #include "render/offscreen.h"
@@ -103,6 +105,60 @@ private slots:
         QVERIFY2(!touchesBorder, "the framed mesh must leave room at the frame's edges");
         QVERIFY2(stageBackground > 0.2f, qPrintable(QString::number(stageBackground)));
         QVERIFY(stageBackground > goldenBackground);
+    }
+
+    // A preset's thumbnail (the editor's Library and `velvet thumbnails` share thumbnailScene):
+    // every shipped fabric and the leather on the cloth drape, on the drape's stage defaults
+    // (ground, occlusion), framed with room; every other preset as the stage shows it.
+    void thumbnailsShowFabricsOnTheDrape() {
+        const QStringList fabrics{"crimson_velvet", "crushed_velvet", "silk",   "satin",
+                                  "denim",          "cotton",         "wool",   "linen",
+                                  "tweed",          "terry",          "leather"};
+        int draped = 0, others = 0;
+        for (const auto& entry : std::filesystem::directory_iterator(resources::path("presets"))) {
+            Problems problems;
+            const auto material = loadMaterialFile(entry.path(), problems);
+            QVERIFY2(material, entry.path().c_str());
+            const QString stem = QString::fromStdString(entry.path().stem().string());
+            const Scene scene = thumbnailScene(*material);
+            Scene stage = stageSceneWithMaterial(*material);
+            if (fabrics.contains(stem)) {
+                QVERIFY2(thumbnailOnDrape(*material), qPrintable(stem));
+                QCOMPARE(scene.mesh.kind, PreviewMeshKind::ClothDrape);
+                QVERIFY(hasStageDefaults(scene.environment, PreviewMeshKind::ClothDrape));
+                QCOMPARE(scene.environment.ground, GroundMode::ShadowCatcher);
+                stage.mesh.kind = PreviewMeshKind::ClothDrape;
+                applyStageDefaults(stage.environment, stage.mesh.kind);
+                ++draped;
+            } else {
+                QVERIFY2(!thumbnailOnDrape(*material), qPrintable(stem));
+                ++others;
+            }
+            QVERIFY2(scene == stage, qPrintable(stem)); // otherwise the stage, unchanged
+        }
+        QCOMPARE(draped, fabrics.size());
+        QVERIFY(others >= 5); // gold, copper, plastic, …
+
+        // The drape is framed as the sphere is: in the frame with room at its edges.
+        Problems problems;
+        Scene drape =
+            thumbnailScene(*loadMaterialFile(resources::path("presets/denim.json"), problems));
+        drape.environment.ground = GroundMode::Off; // the mask is the drape's alone
+        const std::vector<bool> mask = meshMask(drape);
+        int covered = 0;
+        bool touchesBorder = false;
+        const int border = kSize / 20;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                if (mask[size_t(y) * kSize + size_t(x)]) {
+                    ++covered;
+                    touchesBorder |=
+                        x < border || y < border || x >= kSize - border || y >= kSize - border;
+                }
+        const float coverage = float(covered) / float(kSize * kSize);
+        qInfo("thumbnail drape covers %.1f %% of the frame", 100.0f * coverage);
+        QVERIFY2(coverage > 0.3f && coverage < 0.75f, qPrintable(QString::number(coverage)));
+        QVERIFY(!touchesBorder);
     }
 
     // Every shipped HDRI's default rotation gives a readable background, at least 90 % as bright

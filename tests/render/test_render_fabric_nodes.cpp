@@ -3,7 +3,9 @@
 // graph compiler (render/graph_preview.h) and compared, pixel centre by pixel centre, with the
 // twin evaluated at the same UV. Thumbnails are 8-bit: floats and normals as data, colours
 // sRGB-encoded, so values agree within a few 1/255; the few pixels that straddle a yarn's edge
-// may pick the other yarn on one side (float rounding), which the budget below allows.
+// may pick the other yarn on one side (float rounding), which the budget below allows. Weaves
+// finer than the thumbnail's pixels check the footprint filtering (fwidth on the GPU, the twin's
+// footprint on the CPU).
 #include "core/graph/fabric.h"
 #include "core/graph/graph.h"
 #include "render/graph_preview.h"
@@ -130,6 +132,10 @@ private slots:
         QTest::newRow("satin 5, step 2") << 2 << 12.0f << 20.0f;
         QTest::newRow("basket 2x2") << 3 << 16.0f << 16.0f;
         QTest::newRow("herringbone") << 4 << 16.0f << 10.0f;
+        // Finer than the thumbnail's pixels: half-way to the mean (half a thread a pixel), and
+        // the mean itself (two threads a pixel), as the GPU's fwidth(uv) footprint decides.
+        QTest::newRow("plain, half filtered") << 0 << 32.0f << 32.0f;
+        QTest::newRow("twill 3/1, filtered") << 1 << 128.0f << 96.0f;
     }
     void weaveMatchesTwin() {
         QFETCH(int, pattern);
@@ -148,6 +154,7 @@ private slots:
         p.weftColor = {0.8f, 0.78f, 0.7f};
         p.crossingHeight = 0.35f;
         p.roughness = 0.7f;
+        p.footprint = glm::vec2(1.0f / kSide); // a thumbnail pixel's UV extent (fwidth(uv))
         Graph g;
         const NodeId n = g.addNode("fabric.weave").node;
         set(g, n, "pattern", glm::vec4(p.pattern, 0, 0, 0));

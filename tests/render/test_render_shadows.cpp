@@ -16,38 +16,43 @@ using namespace velvet;
 
 namespace {
 
-struct Rig {
-    render::Renderer renderer;
-    render::OffscreenTarget target;
-};
-Rig* rig() {
-    static std::unique_ptr<Rig> r;
-    if (!r) {
-        r = std::make_unique<Rig>();
-        std::string error;
-        if (!r->renderer.initialize(&error))
+/// The test::OffscreenRenderer fixture, resized per test (renderLinear).
+std::unique_ptr<test::OffscreenRenderer> fx;
+test::OffscreenRenderer* rig() {
+    if (!fx) {
+        fx = std::make_unique<test::OffscreenRenderer>();
+        const std::string error = fx->start(128);
+        if (!error.empty())
             qFatal("renderer: %s", error.c_str());
     }
-    return r.get();
+    return fx.get();
 }
 
-Image renderLinear(const Scene& scene, int size, render::DebugView view = render::DebugView::Final,
-                   render::LightPath path = render::LightPath::Auto) {
-    Rig* r = rig();
+/// The next frame of @p r's renderer (its scene as it stands) in @p view, linear.
+Image drawLinear(test::OffscreenRenderer* r, int size,
+                 render::DebugView view = render::DebugView::Final,
+                 render::LightPath path = render::LightPath::Auto) {
     std::string error;
-    if (!r->target.resize(size, size, &error))
+    if (!r->target->resize(size, size, &error))
         qFatal("target: %s", error.c_str());
+    r->size = size;
     render::FrameSettings fs;
     fs.width = fs.height = size;
     fs.view = view;
     fs.lightPath = path;
+    if (!r->renderer->render(fs, r->target->framebuffer(), &error))
+        qFatal("render failed: %s", error.c_str());
+    return r->renderer->readLinear();
+}
+
+Image renderLinear(const Scene& scene, int size, render::DebugView view = render::DebugView::Final,
+                   render::LightPath path = render::LightPath::Auto) {
+    test::OffscreenRenderer* r = rig();
     Problems problems;
-    r->renderer.setScene(scene, &problems);
+    r->renderer->setScene(scene, &problems);
     for (const Problem& p : problems.items)
         qWarning("%s", p.toString().c_str());
-    if (!r->renderer.render(fs, r->target.framebuffer(), &error))
-        qFatal("render failed: %s", error.c_str());
-    return r->renderer.readLinear();
+    return drawLinear(r, size, view, path);
 }
 
 /// A black environment, an orthographic camera looking down on the origin at 55°.
@@ -125,6 +130,19 @@ void checkGroundShadow(const Scene& lit, const std::function<float(glm::vec3)>& 
     QVERIFY(open >= 200);
 }
 
+/// The unit sphere on a ground at y = -1 seen from the front, a little above (orthographic).
+Scene frontScene(GroundMode ground) {
+    Scene scene = test::blackOrthographicScene();
+    scene.mesh.kind = PreviewMeshKind::Sphere;
+    scene.camera.pitchDeg = 20.0f;
+    scene.camera.orthoHeight = 3.0f;
+    scene.camera.target = {0.0f, -0.2f, 0.0f};
+    scene.environment.ground = ground;
+    scene.environment.groundColor = glm::vec3(0.5f);
+    scene.environment.groundRoughness = 1.0f;
+    return scene;
+}
+
 } // namespace
 
 class TestRenderShadows : public QObject {
@@ -133,6 +151,10 @@ private slots:
     void initTestCase() {
         std::string error;
         QVERIFY2(test::headlessContext(&error), error.c_str());
+    }
+    void cleanupTestCase() {
+        if (fx)
+            fx->stop(); // while the context is current
     }
 
     void directionalShadowOfSphereOnGround() {
@@ -224,12 +246,127 @@ private slots:
             l.castShadows = true;
             scene.lights.push_back(l);
         }
-        Rig* r = rig();
         Problems problems;
-        r->renderer.setScene(scene, &problems);
+        rig()->renderer->setScene(scene, &problems);
         QCOMPARE(problems.items.size(), size_t(1));
         QCOMPARE(problems.items[0].path, std::string("lights[0]"));
         qInfo("%s", problems.items[0].toString().c_str());
+    }
+
+    // The shadow maps depend on the lights and the mesh only: an orbit, a material edit or a
+    // light's intensity reuse them (and draw the same image as maps drawn afresh for that view),
+    // a light's new direction or another mesh draws them again.
+    void shadowMapIsReusedUntilALightOrTheMeshMoves() {
+        Scene scene = stageScene(PreviewMeshKind::Sphere);
+        scene.environment.ground = GroundMode::Plain;
+        Light sun = test::analyticKeyLight();
+        sun.direction = {0.45f, -1.0f, 0.3f};
+        sun.castShadows = true;
+        scene.lights = {sun};
+        test::OffscreenRenderer* r = rig();
+        render::Renderer& renderer = *r->renderer;
+        const int size = 64;
+        const auto mapDrawn = [&](const Scene& s, ScenePart parts) {
+            renderer.update(s, parts);
+            drawLinear(r, size);
+            return renderer.lastTimings().shadowMapsMs > 0.0;
+        };
+        QVERIFY2(mapDrawn(scene, ScenePart::All), "the first frame draws the map");
+        QVERIFY(!mapDrawn(scene, ScenePart::None));
+        Scene orbit = scene;
+        orbit.camera.yawDeg += 70.0f;
+        orbit.camera.pitchDeg = 30.0f;
+        QVERIFY2(!mapDrawn(orbit, ScenePart::Camera), "an orbit redrew the shadow map");
+        const Image cached = drawLinear(r, size);
+        Scene edited = orbit;
+        edited.material.setScalar(ParamId::Roughness, 0.3f);
+        QVERIFY2(!mapDrawn(edited, ScenePart::MaterialValues), "a material edit redrew the map");
+        Scene brighter = edited;
+        brighter.lights[0].intensity *= 2.0f;
+        brighter.lights[0].color = {0.5f, 0.7f, 1.0f};
+        QVERIFY2(!mapDrawn(brighter, ScenePart::Lights), "a light's intensity redrew the map");
+        Scene turned = brighter;
+        turned.lights[0].direction = {-0.45f, -1.0f, 0.3f};
+        QVERIFY2(mapDrawn(turned, ScenePart::Lights), "a turned light kept its old map");
+        Scene cube = turned;
+        cube.mesh.kind = PreviewMeshKind::Cube;
+        QVERIFY2(mapDrawn(cube, ScenePart::Mesh), "another mesh kept the old map");
+        QVERIFY(!mapDrawn(cube, ScenePart::Camera));
+
+        // The orbit's frame with the reused map against one whose map was drawn for it.
+        const Image fresh = renderLinear(orbit, size);
+        QVERIFY(renderer.lastTimings().shadowMapsMs > 0.0);
+        float worst = 0.0f;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x)
+                worst = std::max(worst, glm::length(cached.rgba(x, y) - fresh.rgba(x, y)));
+        QVERIFY2(worst < 1e-5f, qPrintable(QString("reused map differs by %1").arg(worst)));
+    }
+
+    // The ground as a caster: a light under the floor lights nothing standing on it (the ground
+    // blocks every ray from the sphere down to it), with a plain ground or a shadow catcher, for a
+    // directional light (full-screen pass) and a point light (local-light passes); a light above
+    // the floor lights the sphere as without a ground.
+    void groundBlocksALightUnderTheFloor_data() {
+        QTest::addColumn<int>("ground");
+        QTest::addColumn<bool>("point");
+        QTest::newRow("plain, directional") << int(GroundMode::Plain) << false;
+        QTest::newRow("catcher, directional") << int(GroundMode::ShadowCatcher) << false;
+        QTest::newRow("plain, point") << int(GroundMode::Plain) << true;
+    }
+    void groundBlocksALightUnderTheFloor() {
+        QFETCH(int, ground);
+        QFETCH(bool, point);
+        const auto lightAt = [point](float height) {
+            // From the camera's side (+z), 20 degrees below or above the horizon.
+            Light l;
+            l.castShadows = true;
+            l.color = glm::vec3(1.0f);
+            if (point) {
+                l.type = LightType::Point;
+                l.position = {0.0f, height * 1.1f, 3.0f};
+                l.intensity = 20.0f;
+                l.range = 50.0f;
+            } else {
+                l.type = LightType::Directional;
+                l.direction = {0.0f, -height * 0.364f, -1.0f};
+                l.intensity = 2.0f;
+            }
+            return l;
+        };
+        const int size = 96;
+        for (float height : {-1.0f, 1.0f}) { // under the floor (y = -1), then above it
+            Scene open = frontScene(GroundMode::Off);
+            open.lights = {lightAt(height * (point ? 2.5f : 1.0f))};
+            Scene floor = open;
+            floor.environment.ground = GroundMode(ground);
+            const Image pos = renderLinear(open, size, render::DebugView::Position);
+            const Image without = renderLinear(open, size);
+            const Image with = renderLinear(floor, size);
+            int lit = 0;
+            float worst = height < 0.0f ? 0.0f : 1.0f;
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x) {
+                    const glm::vec3 p = glm::vec3(pos.rgba(x, y));
+                    if (std::abs(glm::length(p) - 1.0f) > 0.02f || p.y < -0.95f)
+                        continue; // not the sphere, or at its foot (the contact)
+                    const float full = luminance(without.rgba(x, y));
+                    if (full < 1e-3f)
+                        continue;
+                    ++lit;
+                    const float ratio = luminance(with.rgba(x, y)) / full;
+                    worst = height < 0.0f ? std::max(worst, ratio) : std::min(worst, ratio);
+                }
+            qInfo("light %s the floor: %d lit sphere pixels, with the ground %s %.4f of the "
+                  "light without",
+                  height < 0.0f ? "under" : "above", lit, height < 0.0f ? "at most" : "at least",
+                  double(worst));
+            QVERIFY(lit > 300);
+            if (height < 0.0f)
+                QVERIFY2(worst < 0.01f, "a light under the floor lights the sphere on it");
+            else
+                QVERIFY2(worst > 0.995f, "the ground darkens a light above it");
+        }
     }
 
     // The occlusion term alone (the occlusion view: material occlusion x GTAO).

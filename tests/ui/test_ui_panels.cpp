@@ -3,7 +3,8 @@
 // toggling an effect with its check box (Space) is undoable; a stage conflict is explained on its
 // row; a parameter drag is one command; chain presets load (errors name file and JSON path);
 // library presets apply as one undoable command; the search filters by name and tag; thumbnails
-// render in the background and a second panel loads them from the disk cache without rendering.
+// render in the background and a second panel loads them from the disk cache without rendering;
+// `velvet thumbnails` writes the same pixels as the Library's (fabrics on the cloth drape).
 // In the real main window, selecting an effect shows its parameters in the Properties dock; a
 // slider drag there is one command that changes the chain and the viewport, and undo restores
 // both.
@@ -12,6 +13,7 @@
 // mouse events do not reach under xvfb, so the drop half of a drag is driven by sending
 // QDragEnter/QDragMove/QDropEvent to the viewport (PostChainListView handles drops of its own
 // rows whatever the drag's source), and the keyboard alternative is tested with key clicks.
+#include "../app/run_velvet.h"
 #include "core/document_io.h"
 #include "core/image.h"
 #include "core/post_effects.h"
@@ -603,6 +605,43 @@ void TestUiPanels::thumbnailsRenderThenComeFromCache() {
             QCOMPARE(info.bitsPerSample, 8);
             QCOMPARE(info.width, ThumbnailRenderer::kSize);
         }
+        // `velvet thumbnails` renders what the Library shows (one rule, core/default_stage.h's
+        // thumbnailScene): denim's CLI thumbnail at the Library's size is its cached one, pixel
+        // for pixel (both are the renderer's display-encoded frame written as an 8-bit PNG; a
+        // 1/255 step is allowed for a rounding difference between the two paths).
+        QFile denim(presets + QStringLiteral("/denim.json"));
+        QVERIFY(denim.open(QIODevice::ReadOnly));
+        Image library, cli;
+        std::string error;
+        QVERIFY2(readImage(panel.thumbnails()->cachePath(denim.readAll()).toStdString(), library,
+                           &error),
+                 error.c_str());
+        const QString cliDir = m_tmp.filePath(QStringLiteral("thumb-cli"));
+        test::RunOptions run;
+        run.timeoutMs = kThumbnailTimeoutMs;
+        const test::Result r = test::runVelvet(
+            {QStringLiteral("thumbnails"), denim.fileName(), QStringLiteral("-o"), cliDir,
+             QStringLiteral("--size"), QString::number(ThumbnailRenderer::kSize)},
+            run);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(readImage((cliDir + QStringLiteral("/denim.png")).toStdString(), cli, &error),
+                 error.c_str());
+        QCOMPARE(cli.width, library.width);
+        QCOMPARE(cli.height, library.height);
+        float worst = 0.0f;
+        double sum = 0.0;
+        for (int y = 0; y < cli.height; ++y)
+            for (int x = 0; x < cli.width; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const float d = std::abs(cli.rgba(x, y)[c] - library.rgba(x, y)[c]);
+                    worst = std::max(worst, d);
+                    sum += d;
+                }
+        const double mean = sum / (3.0 * cli.width * cli.height);
+        qInfo("denim thumbnail, CLI against Library: mean |difference| %.4f, worst %.4f", mean,
+              worst);
+        QVERIFY2(mean < 0.5 / 255.0 && worst < 1.5f / 255.0f,
+                 qPrintable(QStringLiteral("mean %1 worst %2").arg(mean).arg(worst)));
     }
 
     LibraryPanel second(&controller, options);

@@ -1,5 +1,6 @@
 #include "ui/library/thumbnail_renderer.h"
 
+#include "core/default_stage.h"
 #include "core/document_io.h"
 #include "core/image.h"
 #include "render/headless_context.h"
@@ -113,14 +114,9 @@ private:
             *error = QString::fromStdString(message);
             return {};
         }
-        // A fabric reads as cloth on the drape (folds catch the sheen and show the weave's scale);
-        // every other material on the sphere.
-        const bool fabric = std::find(material->tags.begin(), material->tags.end(), "fabric") !=
-                            material->tags.end();
-        Scene scene = sceneWithMaterial(std::move(*material));
-        if (fabric)
-            scene.mesh.kind = PreviewMeshKind::ClothDrape;
+        // The rule `velvet thumbnails` uses too (core/default_stage.h): fabrics on the drape.
         Problems sceneProblems; // a missing texture falls back; the thumbnail still helps
+        const Scene scene = thumbnailScene(std::move(*material), &sceneProblems);
         m_renderer->setScene(scene, &sceneProblems);
         m_renderer->finishEnvironment();
         m_renderer->finishGraph(); // one frame: it must show this preset's graph

@@ -2,7 +2,8 @@
 /// @file thumbnail_renderer.h
 /// Material preset thumbnails rendered by Velvet itself (issue 5, "Library"): a worker QThread
 /// with its own headless OpenGL context (render::HeadlessContext, made once on that thread and
-/// destroyed there) renders sceneWithMaterial(preset) at kSize x kSize, one preset after the
+/// destroyed there) renders thumbnailScene(preset) (core/default_stage.h, the rule `velvet
+/// thumbnails` shares: fabrics on the cloth drape) at kSize x kSize, one preset after the
 /// other, and writes a PNG into the cache folder keyed by a hash of the preset file's contents and
 /// kRendererVersion, so later starts load them without rendering. No GL calls here: the worker
 /// only uses render/ (HeadlessContext, Renderer, OffscreenTarget).
@@ -24,8 +25,9 @@ public:
     static constexpr int kSize = 96;
     /// Bump when the renderer's look changes (shaders, default scene) so cached thumbnails
     /// are rendered again.
-    /// Bumped when thumbnails change look (2: fabrics on the cloth drape; lobes per pixel).
-    static constexpr const char* kRendererVersion = "velvet-thumbnails-2";
+    /// Bumped when thumbnails change look (2: fabrics on the cloth drape; lobes per pixel;
+    /// 3: the look-dev stage of core/default_stage.h, shared with `velvet thumbnails`).
+    static constexpr const char* kRendererVersion = "velvet-thumbnails-3";
 
     /// @p cacheDir: where PNGs are kept; empty: QStandardPaths::CacheLocation/thumbnails.
     explicit ThumbnailRenderer(const QString& cacheDir = {}, QObject* parent = nullptr);
