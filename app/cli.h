@@ -81,5 +81,7 @@ int runImportMesh(const std::vector<std::string>& args);
 int runPostCatalogue(const std::vector<std::string>& args);
 /// Hidden: prints core/sheen_albedo_table.inc (command_schema.cpp).
 int runSheenTable(const std::vector<std::string>& args);
+/// Hidden: prints core/specular_albedo_table.inc (command_schema.cpp).
+int runSpecularTable(const std::vector<std::string>& args);
 
 } // namespace velvet::cli

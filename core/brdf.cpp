@@ -1,5 +1,6 @@
 #include "core/brdf.h"
 
+#include "core/brdf_energy.h"
 #include "core/lights.h"
 
 #include <algorithm>
@@ -459,8 +460,14 @@ glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
         s.specularWeight * fresnelDielectric(s.fresnel, dielectricF0(s), s.ior, VdotH);
     const glm::vec3 fMetal = fresnelConductor(s.fresnel, s.baseColor, VdotH);
     const glm::vec3 diffuseLobe = diffuse(s.diffuse, s.baseColor, rough, NdotL, NdotV, VdotH);
-    const glm::vec3 dielectric = (1.0f - max3(fDielectric)) * diffuseLobe + fDielectric * specular;
-    const glm::vec3 metal = fMetal * specular;
+    // Turquin 2019 (core/brdf_energy.h): the energy single scattering loses, per F0 of each.
+    const glm::vec3 dielectric =
+        (1.0f - max3(fDielectric)) * diffuseLobe +
+        fDielectric * specular *
+            multipleScatteringFactor(dielectricF0(s), NdotV, rough, s.multipleScattering);
+    const glm::vec3 metal =
+        fMetal * specular *
+        multipleScatteringFactor(s.baseColor, NdotV, rough, s.multipleScattering);
     glm::vec3 f = glm::mix(dielectric, metal, s.metallic);
 
     // KHR_materials_sheen: sheen on top, base scaled by the albedo of the sheen lobe drawn (one
@@ -539,8 +546,12 @@ Lobes evalLobes(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 lDiffuse, 
             s.specularWeight * fresnelDielectric(s.fresnel, dielectricF0(s), s.ior, VdotH);
         const glm::vec3 fMetal = fresnelConductor(s.fresnel, s.baseColor, VdotH);
         const float scaling = hasSheen ? sheenScaling(NdotL) : 1.0f;
-        o.specular = glm::mix(fDielectric, fMetal, s.metallic) * specular * scaling *
-                     coatAttenuation * NdotL;
+        o.specular = glm::mix(fDielectric * multipleScatteringFactor(dielectricF0(s), NdotV, rough,
+                                                                     s.multipleScattering),
+                              fMetal * multipleScatteringFactor(s.baseColor, NdotV, rough,
+                                                                s.multipleScattering),
+                              s.metallic) *
+                     specular * scaling * coatAttenuation * NdotL;
         if (s.clearcoat > 0.0f) {
             const float cr = std::max(s.clearcoatRoughness, kMinRoughness);
             const float ca = cr * cr;

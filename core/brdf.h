@@ -181,6 +181,10 @@ struct Surface {
     Fresnel fresnel = Fresnel::Schlick;
     Diffuse diffuse = Diffuse::Lambert;
     SheenModel sheenModel = SheenModel::CharlieContyKulla;
+    /// Turquin 2019's multiple-scattering energy compensation of the base specular lobe
+    /// (core/brdf_energy.h), as FrameSettings::specularMultiScatter switches it on the GPU; off:
+    /// the single-scattering lobe.
+    bool multipleScattering = true;
 };
 /// The material's values; anisotropyDirection stays at its default (no geometry here).
 Surface surfaceFromMaterial(const Material& m);
@@ -195,7 +199,8 @@ float specularDV(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l, glm::v
 glm::vec3 dielectricF0(const Surface& s);
 
 /// Outgoing radiance towards @p v per unit illuminance from direction @p l (towards the light):
-/// f(l, v) * max(n.l, 0), all lobes layered. Vectors unit length, world space.
+/// f(l, v) * max(n.l, 0), all lobes layered, the base specular lobe with its multiple-scattering
+/// compensation (Surface::multipleScattering). Vectors unit length, world space.
 glm::vec3 evalDirectional(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l);
 
 /// The layered BRDF split into its lobes (twin of Lobes / shadeLobes() in

@@ -1,6 +1,7 @@
 #include "render/sheen_lut.h"
 
 #include "core/brdf.h"
+#include "core/brdf_energy.h"
 
 #include <epoxy/gl.h>
 #include <vector>
@@ -18,6 +19,11 @@ unsigned createSheenAlbedoLut() {
         for (size_t i = 0; i < t.size(); ++i)
             rgba[i * 4 + size_t(m)] = t[i];
     }
+    // Alpha: the base specular lobe's E for the direct light's multiple-scattering compensation
+    // (core/brdf_energy.h), on the same grid; every pass that shades light binds this texture.
+    const auto& e = brdf::specularAlbedoLut();
+    for (size_t i = 0; i < e.size(); ++i)
+        rgba[i * 4 + 3] = e[i];
     GLuint lut = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &lut);
     glTextureStorage2D(lut, 1, GL_RGBA32F, N, N);

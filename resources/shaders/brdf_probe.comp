@@ -2,6 +2,8 @@
 // BRDF probe (render/brdf_probe.h): evaluates the layered BRDF of common_brdf.glsl and each of
 // its selectable terms at arbitrary (n, l, v, material) samples, so tests can compare the GPU
 // functions with their C++ twins in core/brdf.cpp at sampled points rather than through pixels.
+// The twin (brdf::Surface::multipleScattering) compensates by default; no IblBlock is bound here.
+#define FIXED_MULTIPLE_SCATTERING 1
 #include "common_brdf.glsl"
 
 layout(local_size_x = 64) in;

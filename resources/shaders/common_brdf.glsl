@@ -254,6 +254,33 @@ float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, int model) {
     return textureLod(uSheenLut, uv, 0.0)[clamp(model, 0, 2)];
 }
 
+// Directional albedo E(n.v, roughness) of the single-scattering base specular lobe with F = 1
+// (the DFG LUT's A + B, default GGX model), tabulated on the CPU (core/brdf_energy.cpp) into the
+// sheen texture's alpha channel, so every pass that shades direct light already has it bound.
+float specularDirectionalAlbedo(float NdotV, float perceptualRoughness) {
+    vec2 uv = (vec2(saturate(NdotV), saturate(perceptualRoughness)) * (SHEEN_LUT_SIZE - 1.0) + 0.5) /
+              SHEEN_LUT_SIZE;
+    return textureLod(uSheenLut, uv, 0.0).a;
+}
+
+// Turquin 2019, "Practical multiple scattering compensation for microfacet models" (eq. 8): the
+// base specular lobe of Fresnel F0 scaled by 1 + F0 (1 - E) / E, so a white rough metal reflects
+// all the direct light it receives, as the image-based light's Fdez-Aguera 2019 term does
+// (specularAlbedo() in common_environment.glsl). Off (FrameSettings::specularMultiScatter, the
+// IblBlock's state.w or FIXED_MULTIPLE_SCATTERING 0): 1. Mirrors
+// velvet::brdf::multipleScatteringFactor().
+vec3 multipleScatteringFactor(vec3 f0, float NdotV, float rough) {
+#ifdef FIXED_MULTIPLE_SCATTERING
+    const bool multiple = FIXED_MULTIPLE_SCATTERING == 1;
+#else
+    bool multiple = ibl.state.w > 0.5;
+#endif
+    if (!multiple)
+        return vec3(1.0);
+    float e = specularDirectionalAlbedo(NdotV, rough);
+    return 1.0 + f0 * ((1.0 - e) / e);
+}
+
 // ---- Dispatch ----
 // Term choice per material: a uniform branch on GpuMaterial.terms (no recompilation). The
 // clearcoat lobe keeps KHR_materials_clearcoat's fixed terms (GGX, separable Smith-GGX, Schlick
@@ -454,8 +481,10 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
         s.specularWeight * fresnelDielectric(s.terms.z, dielectricF0(s), s.ior, VdotH);
     vec3 fMetal = fresnelConductor(s.terms.z, s.baseColor, VdotH);
     vec3 diffuseLobe = diffuse(s.terms.w, s.baseColor, rough, NdotL, NdotV, VdotH); // l.h = v.h
-    vec3 dielectric = (1.0 - max3(fDielectric)) * diffuseLobe + fDielectric * specular;
-    vec3 metal = fMetal * specular;
+    // Turquin 2019: the energy single scattering loses, per F0 (multipleScatteringFactor).
+    vec3 dielectric = (1.0 - max3(fDielectric)) * diffuseLobe +
+                      fDielectric * specular * multipleScatteringFactor(dielectricF0(s), NdotV, rough);
+    vec3 metal = fMetal * specular * multipleScatteringFactor(s.baseColor, NdotV, rough);
     vec3 f = mix(dielectric, metal, s.metallic);
 
 #if WITH_SHEEN

@@ -70,7 +70,10 @@ Lobes shadeLobes(Surface s, vec3 n, vec3 v, vec3 lDiffuse, vec3 lSpecular, float
         if (hasSheen)
             scaling = min(1.0 - max3(s.sheenColor) * sheenAlbedoV,
                           1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness, s.sheenModel));
-        o.specular = mix(fDielectric, fMetal, s.metallic) * specular * scaling * coatAttenuation * NdotL;
+        // Turquin 2019's multiple-scattering energy (common_brdf.glsl), per F0.
+        o.specular = mix(fDielectric * multipleScatteringFactor(dielectricF0(s), NdotV, rough),
+                         fMetal * multipleScatteringFactor(s.baseColor, NdotV, rough), s.metallic) *
+                     specular * scaling * coatAttenuation * NdotL;
         if (s.clearcoat > 0.0) {
             // Through the coat's own normal (KHR_materials_clearcoat); n when it has none.
             float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);

@@ -26,9 +26,10 @@ struct Miss {
 constexpr PreviewMeshKind kSphere = PreviewMeshKind::Sphere;
 constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 
-// Why they miss (BENCHMARKS.md, "The viewport against the reference"): rough metals and
-// anisotropy (the viewport's image-based light adds multiple-scattering energy the reference's
-// single-scattering GGX lacks; the bent-normal approximation of anisotropic reflections), sheen
+// Why they miss (BENCHMARKS.md, "The viewport against the reference"): metals and anisotropy
+// (the bent-normal approximation of anisotropic reflections; the metals' rows were re-recorded
+// after direct light and the reference gained the multiple-scattering energy the image-based
+// light has, which lowered them by 0.01-0.4), sheen
 // under the environment (albedo x prefiltered radiance against the integrated sheen lobe), the
 // fabrics' weaves (pattern-aligned: lower relief contrast in the viewport; and where a thread
 // is finer than a pixel the viewport shows the weave's mean with a flat normal, issue 13's
@@ -36,11 +37,11 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // satin under the rig were re-measured with it), the shader ball's
 // cavities (the viewport reflects the environment where the mesh sees itself).
 const Miss kMisses[] = {
-    {"brushed_aluminium", kSphere, "environment", 13.85, 30.03},
-    {"brushed_aluminium", kSphere, "three-point", 8.42, 23.80},
+    {"brushed_aluminium", kSphere, "environment", 13.45, 29.48},
+    {"brushed_aluminium", kSphere, "three-point", 8.09, 23.51},
     {"ceramic", kSphere, "environment", 2.41, 5.36},
-    {"copper", kSphere, "environment", 4.42, 11.55},
-    {"copper", kSphere, "three-point", 3.18, 8.88},
+    {"copper", kSphere, "environment", 4.38, 11.51},
+    {"copper", kSphere, "three-point", 3.15, 8.80},
     {"cotton", kSphere, "environment", 6.95, 12.82},
     {"cotton", kSphere, "three-point", 2.23, 5.69},
     {"crimson_velvet", kSphere, "environment", 3.39, 8.23},
@@ -49,8 +50,8 @@ const Miss kMisses[] = {
     {"crushed_velvet", kSphere, "three-point", 3.63, 15.12},
     {"denim", kSphere, "environment", 3.98, 7.90},
     {"denim", kSphere, "three-point", 3.65, 8.33},
-    {"gold", kSphere, "environment", 3.98, 10.57},
-    {"gold", kSphere, "three-point", 3.00, 8.26},
+    {"gold", kSphere, "environment", 3.97, 10.56},
+    {"gold", kSphere, "three-point", 2.99, 8.23},
     {"linen", kSphere, "environment", 5.10, 10.60},
     {"linen", kSphere, "three-point", 2.40, 5.37},
     {"satin", kSphere, "environment", 3.38, 11.73},
@@ -63,8 +64,8 @@ const Miss kMisses[] = {
     {"wool", kSphere, "three-point", 3.22, 7.95},
     {"plastic", kBall, "environment", 7.63, 48.04},
     {"plastic", kBall, "three-point", 5.87, 31.76},
-    {"gold", kBall, "environment", 14.46, 67.27},
-    {"gold", kBall, "three-point", 13.84, 65.02},
+    {"gold", kBall, "environment", 14.44, 67.03},
+    {"gold", kBall, "three-point", 13.82, 65.02},
 };
 
 const Miss* knownMiss(const ReferenceTableCase& c) {

@@ -4,6 +4,7 @@
 // Fresnel stays close to Schlick at IOR 1.5, Burley reduces to Lambert where it should, the two
 // sheen forms that coincide do coincide, and the energy the GGX specular lobe loses is reported.
 #include "core/brdf.h"
+#include "core/brdf_energy.h"
 
 #include <QtTest>
 #include <array>
@@ -73,6 +74,31 @@ double specularAlbedoGgx(float roughness, float NdotV) {
             const double f = double(brdf::distributionGGX(float(ct), alpha)) *
                              double(brdf::visibilitySmithGGXSeparable(float(l.z), NdotV, alpha));
             sum += f * l.z * 4.0 * VdotH * st;
+        }
+    }
+    return sum * (0.5 * kPi / kTheta) * (kPi / kPhi) * 2.0;
+}
+
+/// Directional albedo of evalDirectional (which includes n.l) towards @p v, n = +Z, integrated
+/// over half vectors as specularAlbedoGgx() (d omega_l = 4 (v.h) d omega_h); the red channel.
+double layeredAlbedo(const brdf::Surface& s, float NdotV) {
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    const glm::vec3 v(std::sqrt(1.0f - NdotV * NdotV), 0.0f, NdotV);
+    constexpr int kTheta = 1024, kPhi = 256;
+    double sum = 0.0;
+    for (int a = 0; a < kTheta; ++a) {
+        const double theta = (a + 0.5) / kTheta * 0.5 * kPi;
+        const double ct = std::cos(theta), st = std::sin(theta);
+        for (int b = 0; b < kPhi; ++b) {
+            const double phi = (b + 0.5) / kPhi * kPi;
+            const glm::vec3 h(float(st * std::cos(phi)), float(st * std::sin(phi)), float(ct));
+            const float VdotH = glm::dot(v, h);
+            if (VdotH <= 0.0f)
+                continue;
+            const glm::vec3 l = glm::normalize(2.0f * VdotH * h - v);
+            if (l.z <= 0.0f)
+                continue;
+            sum += double(brdf::evalDirectional(s, n, v, l).x) * 4.0 * VdotH * st;
         }
     }
     return sum * (0.5 * kPi / kTheta) * (kPi / kPhi) * 2.0;
@@ -269,6 +295,22 @@ private slots:
         }
     }
 
+    /// The shipped specular albedo table (core/specular_albedo_table.inc) is the integration's:
+    /// regenerate it with `velvet specular-table` when the DFG integrator changes.
+    void shippedSpecularTableMatchesTheIntegration() {
+        const std::vector<float> integrated = brdf::integrateSpecularAlbedo();
+        const std::vector<float>& shipped = brdf::specularAlbedoLut();
+        QCOMPARE(shipped.size(), integrated.size());
+        float worst = 0.0f;
+        for (size_t i = 0; i < shipped.size(); ++i)
+            worst = std::max(worst, std::abs(shipped[i] - integrated[i]));
+        QVERIFY2(worst < 1e-6f,
+                 qPrintable(QString("shipped table off by %1; run `velvet "
+                                    "specular-table > core/specular_albedo_table.inc`")
+                                .arg(worst)));
+        QVERIFY(*std::min_element(shipped.begin(), shipped.end()) > 0.1f); // not empty
+    }
+
     void dispatch() {
         const float NdotH = 0.9f, NdotL = 0.6f, NdotV = 0.7f, VdotH = 0.8f, alpha = 0.2f;
         QCOMPARE(brdf::distribution(Distribution::GGX, NdotH, alpha),
@@ -300,8 +342,8 @@ private slots:
     }
 
     // White furnace of the GGX specular lobe (default D and V) with F = 1: the single-scattering
-    // model loses energy as roughness grows (no multiple-scattering compensation). Reported, not
-    // hidden; each albedo must lie in (0, 1].
+    // lobe loses energy as roughness grows (what multipleScatteringCompensation() gives back).
+    // Reported, not hidden; each albedo must lie in (0, 1].
     void specularFurnaceEnergyLoss() {
         for (float rough : {0.25f, 0.5f, 1.0f}) {
             QString line = QString("GGX specular furnace, roughness %1:").arg(rough, 0, 'f', 2);
@@ -332,6 +374,62 @@ private slots:
         // Known answer: at alpha = 1, D = 1/pi and the separable V = 1 / (2 (1 + n.l)) seen
         // head-on, so E = integral_0^1 mu / (1 + mu) dmu = 1 - ln 2.
         QVERIFY(std::abs(specularAlbedoGgx(1.0f, 1.0f) - (1.0 - std::log(2.0))) < 1e-3);
+    }
+
+    // Turquin 2019's compensation (core/brdf_energy.h). Known answers: its E is the GGX lobe's
+    // albedo (independent quadrature above; 1 - ln 2 at roughness 1 head-on); the factor is 1 for
+    // F0 = 0, at roughness 0 and when switched off; and a white rough metal in direct light,
+    // integrated over the hemisphere of light directions, reflects all of it (white furnace).
+    void multipleScatteringCompensation() {
+        // The table against the quadrature, on its grid (i / 31) and between nodes.
+        for (float rough : {0.5f, 1.0f, 0.3f})
+            for (float mu : {1.0f, 0.5f, 0.2f}) {
+                const double e = brdf::specularDirectionalAlbedo(mu, rough);
+                const double q = specularAlbedoGgx(rough, mu);
+                QVERIFY2(std::abs(e - q) < 0.01 * q,
+                         qPrintable(QString("E(%1, %2): table %3, quadrature %4")
+                                        .arg(mu)
+                                        .arg(rough)
+                                        .arg(e)
+                                        .arg(q)));
+            }
+        QVERIFY(std::abs(brdf::specularDirectionalAlbedo(1.0f, 1.0f) - (1.0 - std::log(2.0))) <
+                3e-3);
+        for (float mu : {1.0f, 0.5f, 0.25f}) {
+            QVERIFY(std::abs(brdf::multipleScatteringFactor(glm::vec3(1.0f), mu, 0.0f).x - 1.0f) <
+                    2e-3f);
+            QCOMPARE(brdf::multipleScatteringFactor(glm::vec3(0.0f), mu, 0.7f), glm::vec3(1.0f));
+            QCOMPARE(brdf::multipleScatteringFactor(glm::vec3(1.0f), mu, 0.7f, false),
+                     glm::vec3(1.0f));
+        }
+        // Head-on at roughness 1, F0 = 1: 1 + (1 - E) / E = 1 / E = 1 / (1 - ln 2) = 3.26.
+        QVERIFY(std::abs(brdf::multipleScatteringFactor(glm::vec3(1.0f), 1.0f, 1.0f).x -
+                         1.0 / (1.0 - std::log(2.0))) < 0.02);
+
+        brdf::Surface metal;
+        metal.baseColor = glm::vec3(1.0f);
+        metal.metallic = 1.0f;
+        for (float rough : {0.25f, 0.5f, 1.0f}) {
+            metal.roughness = rough;
+            QString line =
+                QString("white metal furnace, direct light, roughness %1:").arg(rough, 0, 'f', 2);
+            for (float mu : {1.0f, 0.7f, 0.4f, 0.2f}) {
+                metal.multipleScattering = true;
+                const double compensated = layeredAlbedo(metal, mu);
+                metal.multipleScattering = false;
+                const double single = layeredAlbedo(metal, mu);
+                line += QString(" n.v %1 %2 (single %3)")
+                            .arg(mu, 0, 'f', 1)
+                            .arg(compensated, 0, 'f', 4)
+                            .arg(single, 0, 'f', 4);
+                QVERIFY2(
+                    std::abs(compensated - 1.0) < 0.01,
+                    qPrintable(
+                        QString("roughness %1 n.v %2: %3").arg(rough).arg(mu).arg(compensated)));
+                QVERIFY(single < compensated);
+            }
+            qInfo("%s", qPrintable(line));
+        }
     }
 };
 

@@ -1,5 +1,6 @@
 // Known answers of the deferred renderer: what each case proves is stated on the case.
 #include "core/brdf.h"
+#include "core/brdf_energy.h"
 #include "core/mesh.h"
 #include "render/camera.h"
 #include "render/gbuffer_layout.h"
@@ -22,10 +23,12 @@ struct Frame {
     Image linear, display;
 };
 
-Frame renderScene(const Scene& scene, int size, render::DebugView view = render::DebugView::Final) {
+Frame renderScene(const Scene& scene, int size, render::DebugView view = render::DebugView::Final,
+                  bool multiScatter = true) {
     render::FrameSettings fs;
     fs.width = fs.height = size;
     fs.view = view;
+    fs.specularMultiScatter = multiScatter;
     Frame f;
     std::string error;
     Problems problems;
@@ -184,6 +187,93 @@ private slots:
         qInfo("%d lit pixels match the CPU twin; worst relative difference %.4f", checked,
               worstRel);
         QVERIFY(checked >= 20);
+    }
+
+    // (b'') Direct light's multiple-scattering compensation (Turquin 2019, core/brdf_energy.h) on
+    // a white metal at roughness 1 under the analytic key light: with FrameSettings::
+    // specularMultiScatter on, each lit pixel is the compensated twin; off, the single-scattering
+    // twin (the image before the compensation). Their ratio is 1 + F0 (1 - E) / E = 1 / E(n.v)
+    // for F0 = 1, which head-on is 1 / (1 - ln 2) = 3.26 (E = 1 - ln 2 at alpha = 1, analytic).
+    void directLightMultipleScattering() {
+        Scene scene = test::blackOrthographicScene();
+        const Light light = test::analyticKeyLight();
+        scene.lights = {light};
+        Material& m = scene.material;
+        m.setColor(ParamId::BaseColor, glm::vec3(1.0f));
+        m.setScalar(ParamId::Metallic, 1.0f);
+        m.setScalar(ParamId::Roughness, 1.0f);
+        m.setScalar(ParamId::SheenWeight, 0.0f);
+        m.setScalar(ParamId::ClearcoatWeight, 0.0f);
+        const int size = 64;
+        const Frame on = renderScene(scene, size);
+        const Frame off = renderScene(scene, size, render::DebugView::Final, false);
+        const Frame normal = renderScene(scene, size, render::DebugView::Normal);
+        const glm::vec3 v = glm::normalize(render::cameraEye(scene.camera) - scene.camera.target);
+        const glm::vec3 l = -glm::normalize(light.direction);
+        const glm::vec3 E = light.color * light.intensity;
+        int checked = 0;
+        double worstRel = 0.0, worstRatio = 0.0;
+        for (int y = 2; y < size; y += 5)
+            for (int x = 2; x < size; x += 5) {
+                const glm::vec3 n = glm::vec3(normal.linear.rgba(x, y));
+                if (glm::length(n) < 0.5f || glm::dot(n, l) < 0.1f || glm::dot(n, v) < 0.1f)
+                    continue;
+                const glm::vec3 nn = glm::normalize(n);
+                brdf::Surface s = brdf::surfaceFromMaterial(m);
+                const glm::vec3 compensated = brdf::evalDirectional(s, nn, v, l) * E;
+                s.multipleScattering = false;
+                const glm::vec3 single = brdf::evalDirectional(s, nn, v, l) * E;
+                for (const auto& [frame, expected] :
+                     {std::pair{&on, compensated}, std::pair{&off, single}}) {
+                    const QString mismatch =
+                        compareWithTwin(glm::vec3(frame->linear.rgba(x, y)), expected, 0.02,
+                                        1.0 / 255.0, x, y, worstRel);
+                    if (!mismatch.isEmpty())
+                        QFAIL(qPrintable(mismatch));
+                }
+                // The ratio the GPU shows is the analytic factor 1 / E(n.v) of the table.
+                const double ratio = on.linear.rgba(x, y).x / off.linear.rgba(x, y).x;
+                const double factor = 1.0 / brdf::specularDirectionalAlbedo(glm::dot(nn, v), 1.0f);
+                worstRatio = std::max(worstRatio, std::abs(ratio / factor - 1.0));
+                ++checked;
+            }
+        // Head-on (n = v): ratio 1 / (1 - ln 2).
+        const double headOn = 1.0 / brdf::specularDirectionalAlbedo(1.0f, 1.0f);
+        qInfo("%d lit pixels match both twins (worst relative %.4f); on / off = 1 / E(n.v) within "
+              "%.4f; head-on factor %.3f (analytic %.3f)",
+              checked, worstRel, worstRatio, headOn, 1.0 / (1.0 - std::log(2.0)));
+        QVERIFY(checked >= 20);
+        QVERIFY(worstRatio < 0.02);
+        QVERIFY(std::abs(headOn - 1.0 / (1.0 - std::log(2.0))) < 0.02);
+
+        // A point light (the many-light paths, light_lobes.glsl) follows the same switch: on / off
+        // is the same 1 / E(n.v) whatever the light's falloff.
+        Light point;
+        point.type = LightType::Point;
+        point.position = {-1.2f, 1.5f, 2.0f};
+        point.intensity = 8.0f;
+        point.range = 10.0f;
+        scene.lights = {point};
+        const Frame pointOn = renderScene(scene, size);
+        const Frame pointOff = renderScene(scene, size, render::DebugView::Final, false);
+        int pointChecked = 0;
+        double pointWorst = 0.0;
+        for (int y = 2; y < size; y += 5)
+            for (int x = 2; x < size; x += 5) {
+                const glm::vec3 n = glm::vec3(normal.linear.rgba(x, y));
+                const float single = pointOff.linear.rgba(x, y).x;
+                if (glm::length(n) < 0.5f || glm::dot(n, v) < 0.1f || single < 0.01f)
+                    continue;
+                const double factor =
+                    1.0 / brdf::specularDirectionalAlbedo(glm::dot(glm::normalize(n), v), 1.0f);
+                pointWorst = std::max(
+                    pointWorst, std::abs(pointOn.linear.rgba(x, y).x / single / factor - 1.0));
+                ++pointChecked;
+            }
+        qInfo("point light: %d lit pixels, on / off = 1 / E(n.v) within %.4f", pointChecked,
+              pointWorst);
+        QVERIFY(pointChecked >= 20);
+        QVERIFY(pointWorst < 0.02);
     }
 
     // (b') KHR_materials_anisotropy on the analytic sphere, for several strengths and rotations:
