@@ -87,8 +87,9 @@ public:
         if (auto it = done.find(key); it != done.end())
             return it->second;
         const graph::Node* n = m_g.node(id);
-        if (!n || ++m_depth > 256)
+        if (!n || m_depth >= 256)
             return std::nullopt;
+        ++m_depth;
         std::optional<std::string> r = build(*n, port, colour);
         --m_depth;
         if (r)
