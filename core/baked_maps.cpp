@@ -103,9 +103,11 @@ std::vector<std::string> graphDrivenInputs(const Material& material) {
     return names;
 }
 
-BakedInputs bakedInputsOf(const Material& material) {
+BakedInputs bakedInputsOf(const Material& material, const std::set<std::string>& skip) {
     BakedInputs in;
     for (const std::string& name : graphDrivenInputs(material)) {
+        if (skip.count(name))
+            continue;
         const BakedMap map = mapOf(name);
         if (map == BakedMap::Count)
             in.unbakeable.push_back(name);

@@ -12,6 +12,7 @@
 #include "core/texture_set_export.h"
 
 #include <array>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,9 @@ struct BakedInputs {
 
 /// The inputs of @p material's graph's material output that a link feeds (empty without a graph).
 std::vector<std::string> graphDrivenInputs(const Material& material);
-/// graphDrivenInputs grouped into the baked maps that carry them.
-BakedInputs bakedInputsOf(const Material& material);
+/// graphDrivenInputs grouped into the baked maps that carry them, less those in @p skip (the
+/// inputs a MaterialX export writes as a nodegraph: core/mtlx_graph_export.h).
+BakedInputs bakedInputsOf(const Material& material, const std::set<std::string>& skip = {});
 
 /// The maps baked for an export and the size they were baked at.
 struct BakedMaterialMaps {

@@ -7,7 +7,10 @@
 #include "core/mtlx_export.h"
 
 #include "core/gltf_textures.h"
+#include "core/graph/graph.h"
+#include "core/graph/node_catalogue.h"
 #include "core/mapping_warnings.h"
+#include "core/mtlx_graph_export.h"
 #include "core/mtlx_shader_inputs.h"
 #include "core/mtlx_values.h"
 
@@ -63,6 +66,7 @@ std::string xmlEscape(std::string_view s) {
 
 struct MxInput {
     std::string name, type, value, nodename, colorspace;
+    std::string nodegraph, output; ///< a nodegraph's output (core/mtlx_graph_export.h)
 };
 struct MxNode {
     std::string category, name, type;
@@ -394,8 +398,26 @@ bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader sha
     if (!planGltfTextures(source, textures, plan, error, /*cutOutRegions=*/true))
         return false;
     std::vector<std::string> bakeWarnings;
-    // The exported material: the graph-driven inputs' factors neutral, their slots the bake's.
-    const Material material = baked ? applyBakedMaps(source, *baked, plan, bakeWarnings) : source;
+    const std::string id(mtlxShaderId(shader));
+    // The graph-driven inputs MaterialX's standard nodes express, as a nodegraph; the bake
+    // (render/baked_export.cpp) left them out.
+    mtlx::GraphExport graphOut;
+    if (!mtlx::exportGraph(source, baseName, id, graphOut, error))
+        return false;
+    // The exported material: the baked inputs' factors neutral, their slots the bake's.
+    Material material = baked ? applyBakedMaps(source, *baked, plan, bakeWarnings) : source;
+    if (!baked && material.graph && !graphOut.outputs.empty()) {
+        // The warning below names only what is neither a nodegraph output nor baked.
+        graph::Graph rest = *material.graph;
+        const graph::NodeType* output = graph::findNodeType(graph::kOutputTypeId);
+        for (const graph::Connection& c : material.graph->connections())
+            if (c.inNode == rest.outputNode() &&
+                graphOut.outputs.count(std::string(output->inputs[c.inPort].name)))
+                rest.disconnect(c);
+        material.graph = graphOut.outputs.size() == graphDrivenInputs(source).size()
+                             ? SharedGraph()
+                             : SharedGraph(std::make_shared<const graph::Graph>(std::move(rest)));
+    }
     // Grey images become RGBA as Velvet reads them (Image::rgba: RRR1), so every `extract`
     // index means the same channel whatever the file's channel count.
     for (GltfImage& image : plan.images)
@@ -409,7 +431,6 @@ bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader sha
             image.pixels = std::move(rgba);
         }
     const std::string base(baseName);
-    const std::string id(mtlxShaderId(shader));
     out.warnings = mappingWarnings(material, "MaterialX " + id);
     out.warnings.insert(out.warnings.end(), bakeWarnings.begin(), bakeWarnings.end());
     out.warnings.insert(out.warnings.end(), plan.warnings.begin(), plan.warnings.end());
@@ -417,6 +438,18 @@ bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader sha
     Builder b(plan, base);
     std::vector<MxInput> inputs =
         shaderInputs(shader, material, b, out.warnings, anisotropyOf(source, baked, out.warnings));
+    for (MxInput& in : inputs) { // the nodegraph's outputs replace the parameters' values
+        const auto t = mtlx::targetsOf(id).find(in.name);
+        if (t == mtlx::targetsOf(id).end() || t->second.normal)
+            continue;
+        const int port = graph::outputInputForParam(t->second.param);
+        if (port < 0)
+            continue;
+        const std::string name(
+            graph::findNodeType(graph::kOutputTypeId)->inputs[size_t(port)].name);
+        if (const auto o = graphOut.outputs.find(name); o != graphOut.outputs.end())
+            in = MxInput{in.name, in.type, {}, {}, {}, graphOut.name, o->second};
+    }
     if (plan.alphaCutout) {
         const std::string alpha = b.alpha();
         if (shader == MtlxShader::GltfPbr) {
@@ -445,7 +478,9 @@ bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader sha
         xml += ">\n";
         for (const MxInput& i : n.inputs) {
             xml += "    <input name=\"" + i.name + "\" type=\"" + i.type + "\"";
-            if (!i.nodename.empty())
+            if (!i.nodegraph.empty())
+                xml += " nodegraph=\"" + xmlEscape(i.nodegraph) + "\" output=\"" + i.output + "\"";
+            else if (!i.nodename.empty())
                 xml += " nodename=\"" + xmlEscape(i.nodename) + "\"";
             else
                 xml += " value=\"" + xmlEscape(i.value) + "\"";
@@ -455,6 +490,7 @@ bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader sha
         }
         xml += "  </" + n.category + ">\n";
     };
+    xml += graphOut.xml;
     for (const MxNode& n : b.nodes())
         writeNode(n);
     const std::string shaderName = mxName("SR_", base);
@@ -472,6 +508,8 @@ bool buildMtlx(const Material& source, std::string_view baseName, MtlxShader sha
             return false;
         out.files.push_back({b.imageFile(index), std::move(png)});
     }
+    for (ExportFile& f : graphOut.files)
+        out.files.push_back(std::move(f));
     out.files.push_back({base + ".mtlx", std::move(xml)});
     return true;
 }

@@ -26,8 +26,9 @@ std::optional<MtlxShader> mtlxShaderFromId(std::string_view id);
 
 /// Builds BASE.mtlx (last) and its BASE_<map>.png images for @p material with @p shader.
 /// Atlas regions are cut out into images of their own. False + one-line @p error when a
-/// texture cannot be read. With @p baked, the graph-driven inputs read its maps as image nodes
-/// (core/baked_maps.h): no graph node is mapped to a MaterialX standard-library node.
+/// texture cannot be read. Graph-driven inputs whose nodes all have standard-library
+/// counterparts are a <nodegraph> (core/mtlx_graph_export.h); with @p baked, the other
+/// graph-driven inputs read its maps as image nodes (core/baked_maps.h).
 bool buildMtlx(const Material& material, std::string_view baseName, MtlxShader shader,
                TextureCache& textures, BuiltExport& out, std::string* error,
                const BakedMaterialMaps* baked = nullptr);

@@ -1,5 +1,7 @@
 #include "render/baked_export.h"
 
+#include "core/mtlx_export.h"
+#include "core/mtlx_graph_export.h"
 #include "render/material_bake.h"
 
 namespace velvet::render {
@@ -8,13 +10,19 @@ ExportOutcome exportMaterialBaked(const Scene& scene, const std::filesystem::pat
                                   std::string_view baseName, const ExportOptions& options,
                                   TextureCache* textures) {
     BakedMaterialMaps baked;
-    baked.inputs = bakedInputsOf(scene.material);
+    // MaterialX writes what its standard nodes express as a nodegraph, and bakes the rest.
+    baked.inputs = bakedInputsOf(
+        scene.material,
+        options.format == ExportFormat::Mtlx && scene.material.graph
+            ? mtlx::mappableGraphInputs(scene.material, std::string(mtlxShaderId(options.shader)))
+            : std::set<std::string>());
     if (options.format == ExportFormat::Preset || !scene.material.graph)
         return exportMaterial(scene, folder, baseName, options, textures);
     ExportOutcome outcome;
     Problems problems;
     std::string error;
-    // A graph driving only inputs no map carries (the IOR) needs no bake: applyBakedMaps says so.
+    // A graph driving only inputs no map carries (the IOR) or only nodegraph inputs needs no
+    // bake (nor an OpenGL context): applyBakedMaps says so.
     if (baked.inputs.any() && !bakeMaterialMaps(scene.material, options.bakeSize, options.bakeSize,
                                                 baked.maps, &problems, &error)) {
         outcome.status = ExportOutcome::Status::Failed;

@@ -9,6 +9,7 @@
 #include "export_fixtures.h"
 #include "run_velvet.h"
 
+#include <QDir>
 #include <QFileInfo>
 #include <QMap>
 #include <QTemporaryDir>
@@ -340,6 +341,44 @@ private slots:
             QCOMPARE(info.width, 32);
             QCOMPARE(info.height, 32);
         }
+    }
+    /// Issue 12: a graph input whose nodes all have MaterialX standard-library counterparts
+    /// (a mix of two constants) is a nodegraph connected to the shader, with no baked image;
+    /// beside it a roughness driven by a fabric node (Weave, no counterpart) is baked, alone.
+    void mappableGraphIsANodegraphFabricIsBaked() {
+        const QString preset = m_tmp.filePath("mixed.json");
+        QFile f(preset);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(R"({"format": "velvet.material", "version": 2, "name": "mixed", "graph": {
+  "nodes": [{"id": 1, "type": "output.material", "position": [900, 0]},
+            {"id": 2, "type": "constant.color", "position": [0, 0], "inputs": {"color": [0.8, 0.1, 0.1]}},
+            {"id": 3, "type": "constant.color", "position": [0, 200], "inputs": {"color": [0.1, 0.2, 0.9]}},
+            {"id": 4, "type": "math.mix", "position": [300, 0], "inputs": {"factor": 0.25}},
+            {"id": 5, "type": "fabric.weave", "position": [300, 300]}],
+  "links": [{"from": 2, "output": "color", "to": 4, "input": "a"},
+            {"from": 3, "output": "color", "to": 4, "input": "b"},
+            {"from": 4, "output": "result", "to": 1, "input": "baseColor"},
+            {"from": 5, "output": "roughness", "to": 1, "input": "roughness"}]}})");
+        f.close();
+        const QString out = m_tmp.filePath("mixed-out");
+        const auto r = velvet::test::runVelvet(
+            {"export", preset, "-f", "mtlx", "--bake-size", "16", "-o", out}, {});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(QDir(out).entryList(QDir::Files, QDir::Name),
+                 (QStringList{"mixed.mtlx", "mixed_baked_orm.png"}));
+        const MxDocument doc = parse(out + "/mixed.mtlx");
+        QVERIFY2(doc.error.isEmpty(), qPrintable(doc.error));
+        QCOMPARE(doc.nodes["NG_mixed"].category, QString("nodegraph"));
+        int mixes = 0;
+        for (const MxNode& n : doc.nodes)
+            mixes += n.category == "mix";
+        QCOMPARE(mixes, 1);
+        QFile text(out + "/mixed.mtlx");
+        QVERIFY(text.open(QIODevice::ReadOnly));
+        const QByteArray xml = text.readAll();
+        QVERIFY(xml.contains(
+            R"(<input name="base_color" type="color3" nodegraph="NG_mixed" output="out_baseColor" />)"));
+        QVERIFY(imageBehind(doc, doc.nodes["SR_mixed"].inputs["specular_roughness"]) != "");
     }
     /// Silk's graph drives the anisotropy direction and the roughness, both baked; MaterialX's
     /// anisotropy inputs are constants, written from the baked maps' means (with a warning), so
