@@ -299,7 +299,9 @@ void TestUiGraph::nodeInputsInPropertiesAreUniformEdits() {
     // The viewport changes through the uniform block: nothing is compiled.
     frames.clear();
     QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), kFrameTimeoutMs);
-    QTRY_VERIFY_WITH_TIMEOUT(maxDifference(pixelBefore, centrePixel(viewportImage())) > 4.0,
+    // Metallic 0.5 -> 0.9 at a pixel near white after the tone map: 3.6/255 with the direct
+    // light's multiple-scattering energy (15 before it); an unchanged frame differs by 0.
+    QTRY_VERIFY_WITH_TIMEOUT(maxDifference(pixelBefore, centrePixel(viewportImage())) > 2.5,
                              kFrameTimeoutMs);
     QCOMPARE(viewport->renderer()->shaderCompileCount(), compiles);
 
