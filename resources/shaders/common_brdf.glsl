@@ -254,6 +254,17 @@ float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, int model) {
     return textureLod(uSheenLut, uv, 0.0)[clamp(model, 0, 2)];
 }
 
+// Whether multiple-scattering energy is on, for direct and image-based light alike
+// (FrameSettings::specularMultiScatter: the IblBlock's state.w, or compiled in as
+// FIXED_MULTIPLE_SCATTERING by render/lighting_features.h).
+bool multipleScatteringOn() {
+#ifdef FIXED_MULTIPLE_SCATTERING
+    return FIXED_MULTIPLE_SCATTERING == 1;
+#else
+    return ibl.state.w > 0.5;
+#endif
+}
+
 // Directional albedo E(n.v, roughness) of the single-scattering base specular lobe with F = 1
 // (the DFG LUT's A + B, default GGX model), tabulated on the CPU (core/brdf_energy.cpp) into the
 // sheen texture's alpha channel, so every pass that shades direct light already has it bound.
@@ -270,12 +281,7 @@ float specularDirectionalAlbedo(float NdotV, float perceptualRoughness) {
 // IblBlock's state.w or FIXED_MULTIPLE_SCATTERING 0): 1. Mirrors
 // velvet::brdf::multipleScatteringFactor().
 vec3 multipleScatteringFactor(vec3 f0, float NdotV, float rough) {
-#ifdef FIXED_MULTIPLE_SCATTERING
-    const bool multiple = FIXED_MULTIPLE_SCATTERING == 1;
-#else
-    bool multiple = ibl.state.w > 0.5;
-#endif
-    if (!multiple)
+    if (!multipleScatteringOn())
         return vec3(1.0);
     float e = specularDirectionalAlbedo(NdotV, rough);
     return 1.0 + f0 * ((1.0 - e) / e);

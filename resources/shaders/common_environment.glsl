@@ -94,12 +94,7 @@ vec2 environmentDfg(float NdotV, float perceptualRoughness) {
 // Lighting" (eq. 16) when enabled. Mirrors velvet::ibl::specularAlbedo().
 vec3 specularAlbedo(vec3 f0, vec2 dfg) {
     vec3 single = f0 * dfg.x + dfg.y;
-#ifdef FIXED_MULTIPLE_SCATTERING
-    const bool multiple = FIXED_MULTIPLE_SCATTERING == 1;
-#else
-    bool multiple = ibl.state.w > 0.5;
-#endif
-    if (!multiple)
+    if (!multipleScatteringOn()) // common_brdf.glsl
         return single;
     float ems = 1.0 - (dfg.x + dfg.y);
     vec3 favg = f0 + (1.0 - f0) / 21.0;
