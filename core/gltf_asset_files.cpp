@@ -7,6 +7,7 @@
 #include "core/import_text.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <unistd.h>
 
@@ -80,9 +81,10 @@ void setColor(Material& material, ParamId id, glm::vec3 c, const std::string& pl
     material.setColor(id, c);
 }
 
-AssetFiles::AssetFiles(fs::path file, fs::path imageFolder, std::string imageStem)
-    : m_file(std::move(file)), m_imageFolder(std::move(imageFolder)), m_stem(std::move(imageStem)) {
-}
+AssetFiles::AssetFiles(fs::path file, fs::path imageFolder, std::string imageStem,
+                       std::vector<std::string>& warnings)
+    : m_file(std::move(file)), m_imageFolder(std::move(imageFolder)), m_stem(std::move(imageStem)),
+      m_warnings(&warnings) {}
 
 std::string AssetFiles::load() {
     std::string reason;
@@ -110,7 +112,7 @@ void AssetFiles::addBuffer(size_t i, BufferDesc buffer) {
     } else if (buffer.uri->rfind("data:", 0) == 0) {
         have = dataUri(*buffer.uri, at(p, "uri")).size();
     } else {
-        const fs::path f = resolve(*buffer.uri);
+        const fs::path f = resolve(*buffer.uri, at(p, "uri"));
         std::error_code ec;
         if (!fs::is_regular_file(f, ec))
             fail(at(p, "uri"), "missing buffer file " + f.string());
@@ -145,8 +147,31 @@ std::string AssetFiles::dataUri(const std::string& uri, const std::string& place
     return *bytes;
 }
 
-fs::path AssetFiles::resolve(const std::string& uri) const {
-    return (m_file.parent_path() / percentDecode(uri)).lexically_normal();
+fs::path AssetFiles::resolve(const std::string& uri, const std::string& place) {
+    // RFC 3986 section 3.1: a scheme is a letter, then letters, digits, '+', '-' or '.', then ':'.
+    // (A Windows drive, "C:/", reads as one too, and is refused as the absolute path it is.)
+    const size_t colon = uri.find(':');
+    const bool hasScheme =
+        colon != std::string::npos && colon > 0 && std::isalpha((unsigned char)uri[0]) &&
+        std::all_of(uri.begin(), uri.begin() + colon, [](char c) {
+            return std::isalnum((unsigned char)c) || c == '+' || c == '-' || c == '.';
+        });
+    if (hasScheme)
+        fail(place, "\"" + uri.substr(0, 64) +
+                        "\" is not a relative path: Velvet reads relative paths and data: URIs "
+                        "only (glTF 2.0 section 3.6.1)");
+    const fs::path relative(percentDecode(uri));
+    if (relative.is_absolute() || relative.has_root_path())
+        fail(place, "\"" + uri.substr(0, 64) +
+                        "\" is an absolute path: glTF URIs are relative to the asset (glTF 2.0 "
+                        "section 3.6.1)");
+    const fs::path folder = m_file.parent_path().lexically_normal();
+    const fs::path f = (folder / relative).lexically_normal();
+    const fs::path inside = f.lexically_relative(folder);
+    if (inside.empty() || *inside.begin() == "..")
+        m_warnings->push_back(place + ": reads " + f.string() + ", outside the asset's folder " +
+                              folder.string());
+    return f;
 }
 
 std::string AssetFiles::bufferBytes(size_t buffer) {
@@ -160,7 +185,8 @@ std::string AssetFiles::bufferBytes(size_t buffer) {
         bytes = dataUri(*b.uri, at(at("buffers", buffer), "uri"));
     } else {
         std::string reason;
-        auto read = readFileWithLimit(resolve(*b.uri), kMaxFileBytes, &reason);
+        const fs::path f = (m_file.parent_path() / percentDecode(*b.uri)).lexically_normal();
+        auto read = readFileWithLimit(f, kMaxFileBytes, &reason); // checked by addBuffer
         if (!read)
             fail(at(at("buffers", buffer), "uri"), reason);
         bytes = std::move(*read);
@@ -180,7 +206,7 @@ std::string AssetFiles::imageFile(size_t i, const ImageDesc& image,
     const std::string p = at("images", i);
     std::string bytes, ext;
     if (image.uri && image.uri->rfind("data:", 0) != 0) {
-        const fs::path f = resolve(*image.uri);
+        const fs::path f = resolve(*image.uri, at(p, "uri"));
         std::error_code ec;
         if (!fs::is_regular_file(f, ec))
             fail(at(p, "uri"), "missing image file " + f.string());

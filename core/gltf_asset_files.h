@@ -67,8 +67,9 @@ struct ImageDesc {
 
 class AssetFiles {
 public:
-    AssetFiles(std::filesystem::path file, std::filesystem::path imageFolder,
-               std::string imageStem);
+    /// @p warnings receives the lines the files give rise to (a file outside the asset's folder).
+    AssetFiles(std::filesystem::path file, std::filesystem::path imageFolder, std::string imageStem,
+               std::vector<std::string>& warnings);
 
     /// Reads the file (2 GiB at most) and returns its JSON text: a .glb's JSON chunk (glTF 2.0
     /// section 4.4, its BIN chunk kept for buffer 0), else the whole file.
@@ -100,11 +101,16 @@ public:
 
 private:
     std::string dataUri(const std::string& uri, const std::string& place) const;
-    std::filesystem::path resolve(const std::string& uri) const;
+    /// The file a relative-path URI names (glTF 2.0 section 3.6.1: relative to the asset). An
+    /// absolute path or another scheme than data: fails at @p place; a path that leaves the
+    /// asset's folder is read with a warning (shared texture folders are common, but a file from
+    /// outside should not pass unnoticed: docs/reliability.md).
+    std::filesystem::path resolve(const std::string& uri, const std::string& place);
     std::string bufferBytes(size_t buffer);
 
     std::filesystem::path m_file, m_imageFolder;
     std::string m_stem;
+    std::vector<std::string>* m_warnings;
     std::string m_bin;
     bool m_hasBin = false;
     std::vector<BufferDesc> m_buffers;

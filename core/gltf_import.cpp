@@ -32,7 +32,7 @@ constexpr double kPi = 3.14159265358979323846;
 class Reader {
 public:
     Reader(fs::path file, fs::path imageFolder, std::string imageStem)
-        : m_files(std::move(file), std::move(imageFolder), std::move(imageStem)) {}
+        : m_files(std::move(file), std::move(imageFolder), std::move(imageStem), m_warnings) {}
 
     /// Reads the container (glTF 2.0 section 4.4 for GLB) and the JSON, checks the asset.
     void load() {
@@ -570,13 +570,14 @@ private:
         }
     }
 
+public:
+    std::vector<std::string> m_warnings; // before m_files, which appends to it
+
+private:
     gltf::AssetFiles m_files;
     Json m_doc;
     ImportedMaterial* m_out = nullptr;
     float m_baseAlpha = 1.0f;
-
-public:
-    std::vector<std::string> m_warnings;
 };
 
 } // namespace

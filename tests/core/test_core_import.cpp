@@ -245,6 +245,17 @@ private slots:
             << QByteArray(
                    R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "gone.bin", "byteLength": 4}], "materials": [{}]})")
             << "buffers[0].uri";
+        // glTF 2.0 section 3.6.1: relative paths and data: URIs. A file from outside must not
+        // be read through an absolute path or another scheme (docs/reliability.md).
+        QTest::newRow("absolute buffer path")
+            << QByteArray(
+                   R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "/etc/hostname", "byteLength": 1}], "materials": [{}]})")
+            << "buffers[0].uri: \"/etc/hostname\" is an absolute path";
+        QTest::newRow("file scheme image")
+            << QByteArray(kMinimal).replace(
+                   "%1",
+                   R"({"normalTexture": {"index": 0}}], "textures": [{"source": 0}], "images": [{"uri": "file:/etc/passwd"}], "x": [{})")
+            << "images[0].uri: \"file:/etc/passwd\" is not a relative path";
         QTest::newRow("view outside buffer")
             << QByteArray(
                    R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "data:application/octet-stream;base64,AAAA", "byteLength": 3}], "bufferViews": [{"buffer": 0, "byteOffset": 2, "byteLength": 4}], "materials": [{}]})")
@@ -270,6 +281,27 @@ private slots:
         const ImportOutcome o = import(file);
         QCOMPARE(o.status, ImportOutcome::Status::Malformed);
         QVERIFY2(QString::fromStdString(o.error).startsWith(file + ": " + place), o.error.c_str());
+    }
+
+    /// A relative path that leaves the asset's folder is read (shared texture folders are common)
+    /// and named in a warning.
+    void gltfImageOutsideTheFolderIsNamed() {
+        QDir(m_dir.path()).mkpath("asset");
+        QDir(m_dir.path()).mkpath("shared");
+        QFile png(m_dir.path() + "/shared/grain.png");
+        QVERIFY(png.open(QIODevice::WriteOnly));
+        png.write(QByteArray::fromBase64(pngBase64()));
+        png.close();
+        const QString file = write(
+            m_dir.path() + "/asset", "outside.gltf",
+            QByteArray(kMinimal).replace(
+                "%1",
+                R"({"normalTexture": {"index": 0}}], "textures": [{"source": 0}], "images": [{"uri": "../shared/grain.png"}], "x": [{})"));
+        const ImportOutcome o = import(file);
+        QCOMPARE(o.status, ImportOutcome::Status::Ok);
+        QVERIFY2(hasWarning(o, "images[0].uri: reads ") &&
+                     hasWarning(o, "shared/grain.png, outside the asset's folder"),
+                 o.warnings.empty() ? "no warning" : o.warnings[0].c_str());
     }
 
     void mtlxStandardSurfaceConstants() {
