@@ -173,24 +173,29 @@ private:
                         (hi > 1e8 ? std::string("inf") : std::to_string(hi)) + "]");
         return d;
     }
-    glm::vec3 vec3(const Json& o, std::string_view key, const std::string& place, double lo,
-                   double hi, glm::vec3 fallback) const {
+    /// An array of N numbers in [@p lo, @p hi] (a colour factor, baseColorFactor's RGBA).
+    template <int N>
+    glm::vec<N, float> numbers(const Json& o, std::string_view key, const std::string& place,
+                               double lo, double hi, glm::vec<N, float> fallback) const {
         const Json* v = find(o, key);
         if (!v)
             return fallback;
         const std::string p = at(place, key);
-        if (!v->is_array() || v->size() != 3)
-            fail(p, "expected an array of 3 numbers, got " + v->dump());
-        glm::vec3 out;
-        for (size_t i = 0; i < 3; ++i) {
-            const Json& c = (*v)[i];
+        if (!v->is_array() || v->size() != size_t(N))
+            fail(p, "expected an array of " + std::to_string(N) + " numbers, got " + v->dump());
+        for (int i = 0; i < N; ++i) {
+            const Json& c = (*v)[size_t(i)];
             if (!c.is_number() || c.get<double>() < lo || c.get<double>() > hi)
-                fail(at(p, i), c.dump() + " is outside the glTF range [" + std::to_string(lo) +
-                                   ", " + (hi > 1e8 ? std::string("inf") : std::to_string(hi)) +
-                                   "]");
-            out[int(i)] = c.get<float>();
+                fail(at(p, size_t(i)),
+                     c.dump() + " is outside the glTF range [" + std::to_string(lo) + ", " +
+                         (hi > 1e8 ? std::string("inf") : std::to_string(hi)) + "]");
+            fallback[i] = c.get<float>();
         }
-        return out;
+        return fallback;
+    }
+    glm::vec3 vec3(const Json& o, std::string_view key, const std::string& place, double lo,
+                   double hi, glm::vec3 fallback) const {
+        return numbers<3>(o, key, place, lo, hi, fallback);
     }
     /// An index into the top-level array @p array: a dangling one is malformed.
     size_t index(const Json& o, std::string_view key, const std::string& place,
@@ -224,6 +229,18 @@ private:
     }
     void setColor(ParamId id, glm::vec3 c, const std::string& place) {
         gltf::setColor(m_out->material, id, c, place, m_warnings);
+    }
+
+    /// @p key of @p o (glTF range [@p lo, @p hi], default @p fallback) into @p id.
+    void scalarInto(ParamId id, const Json& o, std::string_view key, const std::string& place,
+                    double lo, double hi, double fallback) {
+        setScalar(id, number(o, key, place, lo, hi, fallback), at(place, key));
+    }
+    /// The textureInfo @p key of @p o, when present, into @p slot.
+    void textureInto(TextureSlot slot, const Json& o, std::string_view key,
+                     const std::string& place) {
+        if (const Json* t = find(o, key))
+            texture(*t, at(place, key), slot, {});
     }
 
     // ---- Buffers and images -------------------------------------------------------------------
@@ -363,29 +380,13 @@ private:
         checkKeys(pbr, p,
                   {"baseColorFactor", "baseColorTexture", "metallicFactor", "roughnessFactor",
                    "metallicRoughnessTexture", "extensions", "extras"});
-        setColor(ParamId::BaseColor, glm::vec3(1.0f), at(p, "baseColorFactor"));
-        if (const Json* f = find(pbr, "baseColorFactor")) {
-            if (!f->is_array() || f->size() != 4)
-                fail(at(p, "baseColorFactor"), "expected an array of 4 numbers, got " + f->dump());
-            glm::vec4 c;
-            for (size_t i = 0; i < 4; ++i) {
-                const Json& x = (*f)[i];
-                if (!x.is_number() || x.get<double>() < 0 || x.get<double>() > 1)
-                    fail(at(at(p, "baseColorFactor"), i),
-                         x.dump() + " is outside the glTF range [0, 1]");
-                c[int(i)] = x.get<float>();
-            }
-            setColor(ParamId::BaseColor, glm::vec3(c), at(p, "baseColorFactor"));
-            m_baseAlpha = c.a;
-        }
-        if (const Json* t = find(pbr, "baseColorTexture"))
-            texture(*t, at(p, "baseColorTexture"), TextureSlot::BaseColor, {});
-        setScalar(ParamId::Metallic, number(pbr, "metallicFactor", p, 0, 1, 1.0),
-                  at(p, "metallicFactor"));
-        setScalar(ParamId::Roughness, number(pbr, "roughnessFactor", p, 0, 1, 1.0),
-                  at(p, "roughnessFactor"));
-        if (const Json* t = find(pbr, "metallicRoughnessTexture"))
-            texture(*t, at(p, "metallicRoughnessTexture"), TextureSlot::MetallicRoughness, {});
+        const glm::vec4 c = numbers<4>(pbr, "baseColorFactor", p, 0, 1, glm::vec4(1.0f));
+        setColor(ParamId::BaseColor, glm::vec3(c), at(p, "baseColorFactor"));
+        m_baseAlpha = c.a;
+        textureInto(TextureSlot::BaseColor, pbr, "baseColorTexture", p);
+        scalarInto(ParamId::Metallic, pbr, "metallicFactor", p, 0, 1, 1.0);
+        scalarInto(ParamId::Roughness, pbr, "roughnessFactor", p, 0, 1, 1.0);
+        textureInto(TextureSlot::MetallicRoughness, pbr, "metallicRoughnessTexture", p);
     }
 
     void readAlpha(const Json& m, const std::string& place) {
@@ -419,20 +420,9 @@ private:
         if (hasPbr)
             warn(p + ": converted; the material's pbrMetallicRoughness fallback is not read");
         SpecGloss f;
-        float alpha = 1.0f;
-        if (const Json* d = find(sg, "diffuseFactor")) {
-            if (!d->is_array() || d->size() != 4)
-                fail(at(p, "diffuseFactor"), "expected an array of 4 numbers");
-            for (size_t i = 0; i < 4; ++i) {
-                const Json& x = (*d)[i];
-                if (!x.is_number() || x.get<double>() < 0 || x.get<double>() > 1)
-                    fail(at(at(p, "diffuseFactor"), i), x.dump() + " is outside [0, 1]");
-                if (i < 3)
-                    f.diffuse[int(i)] = x.get<float>();
-                else
-                    alpha = x.get<float>();
-            }
-        }
+        const glm::vec4 diffuse = numbers<4>(sg, "diffuseFactor", p, 0, 1, glm::vec4(1.0f));
+        f.diffuse = glm::vec3(diffuse);
+        const float alpha = diffuse.a;
         f.specular = vec3(sg, "specularFactor", p, 0, 1, glm::vec3(1.0f));
         f.glossiness = float(number(sg, "glossinessFactor", p, 0, 1, 1.0));
         m_baseAlpha = alpha;
@@ -489,8 +479,7 @@ private:
             return; // read first
         if (name == "KHR_materials_emissive_strength") {
             checkKeys(e, p, {"emissiveStrength"});
-            setScalar(ParamId::EmissiveStrength, number(e, "emissiveStrength", p, 0, 1e12, 1.0),
-                      at(p, "emissiveStrength"));
+            scalarInto(ParamId::EmissiveStrength, e, "emissiveStrength", p, 0, 1e12, 1.0);
         } else if (name == "KHR_materials_ior") {
             checkKeys(e, p, {"ior"});
             const double ior = number(e, "ior", p, 0, 1e12, 1.5);
@@ -504,29 +493,20 @@ private:
             checkKeys(e, p,
                       {"specularFactor", "specularTexture", "specularColorFactor",
                        "specularColorTexture"});
-            setScalar(ParamId::SpecularWeight, number(e, "specularFactor", p, 0, 1, 1.0),
-                      at(p, "specularFactor"));
+            scalarInto(ParamId::SpecularWeight, e, "specularFactor", p, 0, 1, 1.0);
             setColor(ParamId::SpecularColor,
                      vec3(e, "specularColorFactor", p, 0, 1e12, glm::vec3(1.0f)),
                      at(p, "specularColorFactor"));
-            if (const Json* t = find(e, "specularTexture"))
-                texture(*t, at(p, "specularTexture"), TextureSlot::Specular, {});
-            if (const Json* t = find(e, "specularColorTexture"))
-                texture(*t, at(p, "specularColorTexture"), TextureSlot::SpecularColor, {});
+            textureInto(TextureSlot::Specular, e, "specularTexture", p);
+            textureInto(TextureSlot::SpecularColor, e, "specularColorTexture", p);
         } else if (name == "KHR_materials_clearcoat") {
             checkKeys(e, p,
                       {"clearcoatFactor", "clearcoatTexture", "clearcoatRoughnessFactor",
                        "clearcoatRoughnessTexture", "clearcoatNormalTexture"});
-            setScalar(ParamId::ClearcoatWeight, number(e, "clearcoatFactor", p, 0, 1, 0.0),
-                      at(p, "clearcoatFactor"));
-            setScalar(ParamId::ClearcoatRoughness,
-                      number(e, "clearcoatRoughnessFactor", p, 0, 1, 0.0),
-                      at(p, "clearcoatRoughnessFactor"));
-            if (const Json* t = find(e, "clearcoatTexture"))
-                texture(*t, at(p, "clearcoatTexture"), TextureSlot::Clearcoat, {});
-            if (const Json* t = find(e, "clearcoatRoughnessTexture"))
-                texture(*t, at(p, "clearcoatRoughnessTexture"), TextureSlot::ClearcoatRoughness,
-                        {});
+            scalarInto(ParamId::ClearcoatWeight, e, "clearcoatFactor", p, 0, 1, 0.0);
+            scalarInto(ParamId::ClearcoatRoughness, e, "clearcoatRoughnessFactor", p, 0, 1, 0.0);
+            textureInto(TextureSlot::Clearcoat, e, "clearcoatTexture", p);
+            textureInto(TextureSlot::ClearcoatRoughness, e, "clearcoatRoughnessTexture", p);
             if (const Json* t = find(e, "clearcoatNormalTexture")) {
                 const std::string tp = at(p, "clearcoatNormalTexture");
                 texture(*t, tp, TextureSlot::ClearcoatNormal, {"scale"});
@@ -544,29 +524,23 @@ private:
             m.setScalar(ParamId::SheenWeight, w);
             if (w > 0.0f)
                 m.setColor(ParamId::SheenColor, c / w);
-            setScalar(ParamId::SheenRoughness, number(e, "sheenRoughnessFactor", p, 0, 1, 0.0),
-                      at(p, "sheenRoughnessFactor"));
-            if (const Json* t = find(e, "sheenColorTexture"))
-                texture(*t, at(p, "sheenColorTexture"), TextureSlot::SheenColor, {});
-            if (const Json* t = find(e, "sheenRoughnessTexture"))
-                texture(*t, at(p, "sheenRoughnessTexture"), TextureSlot::SheenRoughness, {});
+            scalarInto(ParamId::SheenRoughness, e, "sheenRoughnessFactor", p, 0, 1, 0.0);
+            textureInto(TextureSlot::SheenColor, e, "sheenColorTexture", p);
+            textureInto(TextureSlot::SheenRoughness, e, "sheenRoughnessTexture", p);
         } else if (name == "KHR_materials_anisotropy") {
             checkKeys(e, p, {"anisotropyStrength", "anisotropyRotation", "anisotropyTexture"});
-            setScalar(ParamId::AnisotropyStrength, number(e, "anisotropyStrength", p, 0, 1, 0.0),
-                      at(p, "anisotropyStrength"));
+            scalarInto(ParamId::AnisotropyStrength, e, "anisotropyStrength", p, 0, 1, 0.0);
             // Radians in the file, degrees in Velvet, wrapped into [-180, 180] (a whole turn
             // changes nothing).
             const double rad = number(e, "anisotropyRotation", p, -1e9, 1e9, 0.0);
             m.setScalar(ParamId::AnisotropyRotation,
                         float(std::remainder(rad * 180.0 / std::numbers::pi, 360.0)));
-            if (const Json* t = find(e, "anisotropyTexture"))
-                texture(*t, at(p, "anisotropyTexture"), TextureSlot::Anisotropy, {});
+            textureInto(TextureSlot::Anisotropy, e, "anisotropyTexture", p);
         } else {
             // KHR_materials_transmission, _volume, _iridescence, _unlit, …: Velvet
             // has no counterpart (yet); the material is imported without it.
             warn(p + ": " + name +
-                 " is not mapped (Velvet has no counterpart); imported without "
-                 "it");
+                 " is not mapped (Velvet has no counterpart); imported without it");
         }
     }
 
