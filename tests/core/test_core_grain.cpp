@@ -84,7 +84,7 @@ private slots:
     // One cell per grid square, whatever the jitter: the bake holds scale^2 cells per UV^2, so
     // the mean spacing sqrt(area / count) is 1 / scale. A regular grid (irregularity 0) gives
     // exactly the 30 x 30 window's 900 cells; jittered ones within 1 % (cells whose centroid
-    // falls across the window's edge come and go), measured 900 to 906.
+    // falls across the window's edge come and go), measured 898 to 905.
     void cellSpacingIsOneOverScale_data() {
         QTest::addColumn<float>("scale");
         QTest::addColumn<float>("irregularity");
