@@ -73,6 +73,7 @@ float velvetGraphFbm(vec2 p, float octaves, float lacunarity, float gain) {
 #define VELVET_OUT(T) T&
 #define VELVET_FABRIC_SOURCE(...) __VA_ARGS__
 #include "core/graph/fabric_source.inl"
+#include "core/graph/grain_source.inl"
 #undef VELVET_FABRIC_SOURCE
 #undef VELVET_OUT
 
@@ -112,6 +113,18 @@ FuzzSample fuzz(glm::vec2 uv, const FuzzParams& p) {
 PileSample pile(glm::vec2 uv, const PileParams& p) {
     const twin::VelvetPile s = twin::velvetPile(uv, p.angle, p.lean, p.crush, p.scale);
     return {s.normal, s.sheen, s.roughness, s.crush};
+}
+
+GrainSample grain(glm::vec2 uv, const GrainParams& p) {
+    const twin::VelvetGrain g =
+        twin::velvetGrain(uv, p.scale, p.irregularity, p.creaseWidth, p.dome, p.depth, p.color,
+                          p.creaseColor, p.roughness, p.creaseRoughness, p.footprint);
+    return {g.color, g.height, g.normal, g.roughness, g.cavity, g.occlusion, g.cell};
+}
+
+GrainMean grainMean(const GrainParams& p) {
+    const twin::VelvetGrainMean m = twin::velvetGrainMean(p.irregularity, p.creaseWidth, p.dome);
+    return {m.height, m.crease, m.slope2};
 }
 
 float perlin01(glm::vec2 p) {

@@ -1,9 +1,10 @@
 #pragma once
 /// @file fabric.h
-/// The C++ twins of the fabric nodes of the material graph (Weave, Knit, Fibre fuzz, Pile): the
-/// same statements as the GLSL the graph compiler emits for them, compiled for the CPU, for bakes
-/// and for tests. Both are built from one source, core/graph/fabric_source.inl; the node table
-/// is core/graph/fabric_nodes.cpp, the patterns' definitions docs/fabric-nodes.md.
+/// The C++ twins of the fabric nodes of the material graph (Weave, Knit, Fibre fuzz, Pile and the
+/// leather Grain): the same statements as the GLSL the graph compiler emits for them, compiled for
+/// the CPU, for bakes and for tests. Both are built from one source, core/graph/fabric_source.inl
+/// and grain_source.inl; the node table is core/graph/fabric_nodes.cpp, the patterns' definitions
+/// docs/fabric-nodes.md.
 ///
 /// Coordinates: warp ends run along +V and are counted along U (warp density: ends per UV unit),
 /// weft picks run along +U and are counted along V. Heights are in [0, 1]; normals are unit
@@ -115,6 +116,41 @@ struct PileSample {
     float crush = 0.0f;
 };
 PileSample pile(glm::vec2 uv, const PileParams& p);
+
+/// The Grain node's inputs (pebbled leather, grain_source.inl); the defaults are the node's.
+struct GrainParams {
+    float scale = 12.0f;        ///< cells per UV unit along u and v (a cell spacing of 1 / scale)
+    float irregularity = 0.85f; ///< jitter of the cells' points: 0 a square grid, 1 random
+    float creaseWidth = 0.2f;   ///< width of a crease's shoulder, in cell spacings
+    float dome = 0.8f;          ///< how domed the cells' tops are (0: flat with rounded edges)
+    float depth = 0.12f;        ///< relief in cell spacings (normal strength)
+    glm::vec3 color{0.2f, 0.075f, 0.03f};        ///< the cells' tops (linear)
+    glm::vec3 creaseColor{0.08f, 0.03f, 0.013f}; ///< the creases (linear)
+    float roughness = 0.45f;                     ///< the cells' tops (polished by wear)
+    float creaseRoughness = 0.75f;               ///< the creases
+    /// Not a node input: a pixel's UV extent (fwidth(uv) on the GPU). Where a pixel spans more
+    /// than a quarter of a cell the outputs fade to the cells' means (grainMean), reached at
+    /// three quarters, the normal to flat and its slopes into the roughness; (0, 0): unfiltered.
+    glm::vec2 footprint{0.0f, 0.0f};
+};
+struct GrainSample {
+    glm::vec3 color{0.0f};
+    float height = 0.0f;
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    float roughness = 0.0f;
+    float cavity = 0.0f; ///< 1 at the bottom of a crease, 0 past its shoulder
+    float occlusion = 1.0f;
+    float cell = 0.0f; ///< per-cell value in [0, 1)
+};
+GrainSample grain(glm::vec2 uv, const GrainParams& p);
+/// The means over the cells that the filtered Grain fades to (velvetGrainMean's model): the
+/// height, the crease profile (1 - cavity) and the squared slope of the height per unit depth.
+struct GrainMean {
+    float height = 0.0f;
+    float crease = 0.0f;
+    float slope2 = 0.0f;
+};
+GrainMean grainMean(const GrainParams& p);
 
 /// @name The graph compiler's noise helpers on the CPU (velvetGraphPerlin01, velvetGraphFbm)
 /// @{

@@ -1,6 +1,7 @@
-// The fabric nodes of the material graph (category "Fabric"): their inputs with metadata, their
-// outputs and the GLSL they compile to. The functions they call are core/graph/fabric_source.inl,
-// stringified here for the GPU and compiled as C++ in fabric.cpp for the CPU twin.
+// The fabric nodes of the material graph (category "Fabric", the leather Grain with them): their
+// inputs with metadata, their outputs and the GLSL they compile to. The functions they call are
+// core/graph/fabric_source.inl and grain_source.inl, stringified here for the GPU and compiled as
+// C++ in fabric.cpp for the CPU twin.
 #include "core/graph/fabric.h"
 #include "core/graph/node_builders.h"
 
@@ -11,10 +12,13 @@ std::string_view fabricGlsl() {
 #define VELVET_FABRIC_SOURCE(...) #__VA_ARGS__
     // The macro argument arrives as one line with comments removed (the C preprocessor's
     // stringification); GLSL reads it the same. VELVET_OUT is what C++ spells as a reference.
-    static const std::string text = std::string("// Fabric nodes: core/graph/fabric_source.inl.\n"
-                                                "#define VELVET_OUT(T) out T\n") +
+    static const std::string text =
+        std::string("// Fabric nodes: core/graph/fabric_source.inl.\n"
+                    "#define VELVET_OUT(T) out T\n") +
 #include "core/graph/fabric_source.inl"
-                                    +"\n";
+        +std::string("\n// The leather grain: core/graph/grain_source.inl.\n") +
+#include "core/graph/grain_source.inl"
+        +"\n";
 #undef VELVET_FABRIC_SOURCE
     return text;
 }
@@ -73,6 +77,12 @@ void fuzzSnippet(const SnippetArgs& a, std::string& o) {
 void pileSnippet(const SnippetArgs& a, std::string& o) {
     line(o, "VelvetPile p = velvetPile(" + args(a) + ");");
     assignOutputs(a, typeOf("fabric.pile"), "p", o);
+}
+
+void grainSnippet(const SnippetArgs& a, std::string& o) {
+    // Filtered by the pixel's UV footprint, as the Weave (grain_source.inl).
+    line(o, "VelvetGrain g = velvetGrain(" + args(a) + ", fwidth(" + a.in[0] + "));");
+    assignOutputs(a, typeOf("fabric.grain"), "g", o);
 }
 
 constexpr unsigned kHelpers = HelperNoise | HelperFabric;
@@ -199,6 +209,43 @@ NodeType pileType() {
                 pileSnippet, kHelpers);
 }
 
+NodeType grainType() {
+    const fabric::GrainParams d;
+    return make(
+        "fabric.grain", "Leather grain", "Fabric",
+        "Pebbled leather: domed cells of a cellular (Voronoi) pattern parted by creases, with "
+        "their relief, colour, roughness and a crease (cavity) mask.",
+        {uvIn(),
+         scalarIn("scale", "Scale", d.scale, 0.01f, kBig,
+                  "Cells per UV unit along U and V (the mean cell spacing is 1 / scale).", true,
+                  200),
+         scalarIn("irregularity", "Irregularity", d.irregularity, 0, 1,
+                  "How far each cell's centre strays from a square grid (0: squares)."),
+         scalarIn("creaseWidth", "Crease width", d.creaseWidth, 0.01f, 0.5f,
+                  "Width of a crease's rounded shoulder, as a fraction of the cell spacing."),
+         scalarIn("dome", "Dome", d.dome, 0, 1,
+                  "How domed the cells' tops are (0: flat tops with rounded edges)."),
+         scalarIn("depth", "Depth", d.depth, 0, 2,
+                  "Height of a cell's top over its creases, in cell spacings: the relief of the "
+                  "normal.",
+                  true, 0.5f),
+         rgbIn("color", "Colour", d.color, "Colour of the cells' tops (linear)."),
+         rgbIn("creaseColor", "Crease colour", d.creaseColor,
+               "Colour at the bottom of the creases (linear)."),
+         scalarIn("roughness", "Roughness", d.roughness, 0, 1,
+                  "Roughness of the cells' tops (polished by wear)."),
+         scalarIn("creaseRoughness", "Crease roughness", d.creaseRoughness, 0, 1,
+                  "Roughness at the bottom of the creases.")},
+        {{"color", "Base colour", PortType::Color},
+         {"height", "Height", PortType::Float},
+         {"normal", "Normal", PortType::Normal},
+         {"roughness", "Roughness", PortType::Float},
+         {"cavity", "Cavity", PortType::Float},
+         {"occlusion", "Occlusion", PortType::Float},
+         {"cell", "Cell id", PortType::Float}},
+        grainSnippet, kHelpers);
+}
+
 } // namespace
 
 void appendFabricNodes(std::vector<NodeType>& types) {
@@ -206,6 +253,7 @@ void appendFabricNodes(std::vector<NodeType>& types) {
     types.push_back(knitType());
     types.push_back(fuzzType());
     types.push_back(pileType());
+    types.push_back(grainType());
 }
 
 } // namespace detail

@@ -247,6 +247,23 @@ const std::map<std::string_view, EvalFn>& evaluators() {
                            {"roughness", vec4(q.roughness, 0, 0, 0)},
                            {"crush", vec4(q.crush, 0, 0, 0)}});
          }},
+        {"fabric.grain",
+         [](const Step& s, NodeIo io, vec2, const GraphTextures&) {
+             const auto& in = io.in;
+             fabric::GrainParams p;
+             p.scale = in[1].x, p.irregularity = in[2].x, p.creaseWidth = in[3].x;
+             p.dome = in[4].x, p.depth = in[5].x, p.color = vec3(in[6]);
+             p.creaseColor = vec3(in[7]), p.roughness = in[8].x, p.creaseRoughness = in[9].x;
+             const fabric::GrainSample g = fabric::grain(vec2(in[0]), p);
+             assignByName(s, io.out,
+                          {{"color", vec4(g.color, 0)},
+                           {"height", vec4(g.height, 0, 0, 0)},
+                           {"normal", vec4(g.normal, 0)},
+                           {"roughness", vec4(g.roughness, 0, 0, 0)},
+                           {"cavity", vec4(g.cavity, 0, 0, 0)},
+                           {"occlusion", vec4(g.occlusion, 0, 0, 0)},
+                           {"cell", vec4(g.cell, 0, 0, 0)}});
+         }},
     };
     return table;
 }

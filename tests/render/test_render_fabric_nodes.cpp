@@ -1,11 +1,11 @@
 // The fabric nodes on the GPU against their C++ twins (core/graph/fabric.h): every output of
-// Weave (each pattern), Knit, Fibre fuzz and Pile rendered as a 64x64 node thumbnail through the
-// graph compiler (render/graph_preview.h) and compared, pixel centre by pixel centre, with the
-// twin evaluated at the same UV. Thumbnails are 8-bit: floats and normals as data, colours
-// sRGB-encoded, so values agree within a few 1/255; the few pixels that straddle a yarn's edge
-// may pick the other yarn on one side (float rounding), which the budget below allows. Weaves
-// finer than the thumbnail's pixels check the footprint filtering (fwidth on the GPU, the twin's
-// footprint on the CPU).
+// Weave (each pattern), Knit, Fibre fuzz, Pile and the leather Grain rendered as a 64x64 node
+// thumbnail through the graph compiler (render/graph_preview.h) and compared, pixel centre by pixel
+// centre, with the twin evaluated at the same UV. Thumbnails are 8-bit: floats and normals as data,
+// colours sRGB-encoded, so values agree within a few 1/255; the few pixels that straddle a yarn's
+// edge may pick the other yarn on one side (float rounding), which the budget below allows. Weaves
+// and grains finer than the thumbnail's pixels check the footprint filtering (fwidth on the GPU,
+// the twin's footprint on the CPU).
 #include "core/graph/fabric.h"
 #include "core/graph/graph.h"
 #include "render/graph_preview.h"
@@ -173,6 +173,53 @@ private slots:
             g, n, [&](glm::vec2 uv, std::string_view o) { return weaveOut(fab::weave(uv, p), o); },
             QTest::currentDataTag());
         QVERIFY2(worst <= 0.01, "more than 1 % of a Weave output's pixels differ from the twin");
+    }
+
+    void grainMatchesTwin_data() {
+        QTest::addColumn<float>("scale");
+        QTest::addColumn<float>("irregularity");
+        QTest::addColumn<float>("dome");
+        QTest::newRow("default (12 cells)")
+            << fab::GrainParams{}.scale << fab::GrainParams{}.irregularity
+            << fab::GrainParams{}.dome;
+        QTest::newRow("square grid, flat tops") << 6.0f << 0.0f << 0.0f;
+        // Finer than the thumbnail's pixels: 3/8 of a cell a pixel (a quarter of the way to the
+        // mean) and a whole cell a pixel (the mean).
+        QTest::newRow("irregular, part filtered") << 24.0f << 1.0f << 0.5f;
+        QTest::newRow("filtered") << 64.0f << 0.85f << 0.8f;
+    }
+    void grainMatchesTwin() {
+        QFETCH(float, scale);
+        QFETCH(float, irregularity);
+        QFETCH(float, dome);
+        fab::GrainParams p;
+        p.scale = scale;
+        p.irregularity = irregularity;
+        p.dome = dome;
+        p.creaseWidth = 0.25f;
+        p.depth = 0.3f;
+        p.footprint = glm::vec2(1.0f / kSide);
+        Graph g;
+        const NodeId n = g.addNode("fabric.grain").node;
+        set(g, n, "scale", glm::vec4(p.scale, 0, 0, 0));
+        set(g, n, "irregularity", glm::vec4(p.irregularity, 0, 0, 0));
+        set(g, n, "dome", glm::vec4(p.dome, 0, 0, 0));
+        set(g, n, "creaseWidth", glm::vec4(p.creaseWidth, 0, 0, 0));
+        set(g, n, "depth", glm::vec4(p.depth, 0, 0, 0));
+        const double worst = compareAll(
+            g, n,
+            [&](glm::vec2 uv, std::string_view o) {
+                const fab::GrainSample s = fab::grain(uv, p);
+                return o == "color"       ? s.color
+                       : o == "height"    ? glm::vec3(s.height)
+                       : o == "normal"    ? s.normal
+                       : o == "roughness" ? glm::vec3(s.roughness)
+                       : o == "cavity"    ? glm::vec3(s.cavity)
+                       : o == "occlusion" ? glm::vec3(s.occlusion)
+                                          : glm::vec3(s.cell);
+            },
+            QTest::currentDataTag());
+        QVERIFY2(worst <= 0.01, "more than 1 % of a Grain output's pixels differ from the twin");
     }
 
     // The nodes' defaults are the twin's defaults (the node table reads them from fabric.h), so

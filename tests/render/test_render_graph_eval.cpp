@@ -10,11 +10,11 @@
 #include "render_test_util.h"
 
 #include <QtTest>
+#include <algorithm>
+#include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
-#include <algorithm>
-#include <cmath>
 
 using namespace velvet;
 using namespace velvet::graph;
@@ -109,6 +109,7 @@ private slots:
         const NodeId knit = add(g, "fabric.knit");
         const NodeId fuzz = add(g, "fabric.fuzz");
         const NodeId pile = add(g, "fabric.pile");
+        const NodeId grain = add(g, "fabric.grain");
         QVERIFY(g.setInputValue(checker, in(g, checker, "scale"), glm::vec4(3.0f)));
         QVERIFY(g.setInputValue(gradient, in(g, gradient, "angle"), glm::vec4(30.0f)));
         QVERIFY(g.setInputValue(constant, 0, glm::vec4(0.2f, 0.5f, 0.9f, 0)));
@@ -150,6 +151,7 @@ private slots:
             {weave, "direction"},  {weave, "thread"},   {weave, "sheen"},     {knit, "color"},
             {knit, "normal"},      {fuzz, "color"},     {fuzz, "mask"},       {pile, "normal"},
             {pile, "sheen"},       {pile, "roughness"}, {uv, "uv"},           {image, "alpha"},
+            {grain, "color"},      {grain, "normal"},   {grain, "roughness"}, {grain, "cavity"},
         };
         std::vector<render::PreviewRequest> requests;
         for (const Probe& p : probes)
