@@ -1,15 +1,12 @@
 #include "core/image_ops.h"
 
 #include "core/image.h"
+#include "core/image_codec.h"
 #include "core/mip_filter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-// OpenImageIO stays inside .cpp files (DESIGN.md, "Layers").
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 namespace velvet {
 namespace {
@@ -54,14 +51,13 @@ Image resize(const Image& image, int width, int height, std::string* error, Resi
         return image;
 
     const int channels = image.channels;
-    // Wraps the caller's pixels without copying (ImageBuf over application memory).
-    OIIO::ImageSpec srcSpec(image.width, image.height, channels, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf src(srcSpec, const_cast<float*>(image.pixels.data()));
+    std::string why;
+    const codec::ImageCodec* imageCodec = codec::imageCodec(&why); // ImageBufAlgo::resize
+    if (!imageCodec)
+        return setError(error, "resize: " + why), Image();
     Image out(width, height, channels);
-    OIIO::ImageSpec dstSpec(width, height, channels, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf dst(dstSpec, out.pixels.data());
-    if (!OIIO::ImageBufAlgo::resize(dst, src, filterName(filter)))
-        return setError(error, "resize: " + dst.geterror()), Image();
+    if (!imageCodec->resize(image, out, filterName(filter), error))
+        return Image();
 
     // Clamp to the source's range per channel: no ringing outside the data's own values.
     float lo[4], hi[4];

@@ -8,6 +8,8 @@
 /// and checked on read, so a hash collision or a stale file is a miss, never a wrong image.
 /// Written to a temporary beside the entry and renamed into place (atomic).
 
+#include "core/content_hash.h" // fileContentHash, named the entries
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -15,10 +17,6 @@
 namespace velvet {
 
 struct MipTexture;
-
-/// A 64-bit hash (xxHash64, chained over 1 MiB blocks) of @p file's bytes, as 16 hex digits;
-/// "" and @p error set when the file cannot be read.
-std::string fileContentHash(const std::filesystem::path& file, std::string* error);
 
 /// The entry file for @p key in @p dir.
 std::filesystem::path mipCacheEntry(const std::filesystem::path& dir, const std::string& key);

@@ -1,6 +1,8 @@
 #include "core/mip_texture.h"
 
+#include "core/cache_dir.h"
 #include "core/color_management.h"
+#include "core/half_float.h"
 #include "core/image_ops.h"
 #include "core/mip_cache.h"
 #include "core/mip_filter.h"
@@ -13,9 +15,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <system_error>
-
-// OpenImageIO stays inside .cpp files (its conversions give half without linking Imath).
-#include <OpenImageIO/imageio.h>
 
 namespace velvet {
 namespace {
@@ -168,7 +167,10 @@ std::shared_ptr<MipTexture> build8(std::vector<std::uint8_t>&& rgba, int width, 
 }
 
 void toHalf(const float* in, size_t n, std::uint8_t* out) {
-    OIIO::convert_pixel_values(OIIO::TypeDesc::FLOAT, in, OIIO::TypeDesc::HALF, out, int(n));
+    for (size_t i = 0; i < n; ++i) {
+        const std::uint16_t h = floatToHalf(in[i]);
+        std::memcpy(out + 2 * i, &h, 2);
+    }
 }
 
 /// The float path for what the 8-bit one cannot carry exactly: @p image (scene-linear, any
@@ -249,8 +251,11 @@ Image MipTexture::linearLevel(int maxSide) const {
     Image out(pick->width, pick->height, 4);
     const size_t n = out.pixels.size();
     if (format == MipFormat::Rgba16F) {
-        OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, pick->bytes.data(), OIIO::TypeDesc::FLOAT,
-                                   out.pixels.data(), int(n));
+        for (size_t i = 0; i < n; ++i) {
+            std::uint16_t h;
+            std::memcpy(&h, pick->bytes.data() + 2 * i, 2);
+            out.pixels[i] = halfToFloat(h);
+        }
     } else {
         const Decode8 decode(format == MipFormat::Srgb8Alpha8);
         for (size_t i = 0; i < n; ++i)
@@ -260,11 +265,8 @@ Image MipTexture::linearLevel(int maxSide) const {
 }
 
 std::filesystem::path defaultMipCacheDir() {
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-        return std::filesystem::path(xdg) / "velvet" / "textures";
-    if (const char* home = std::getenv("HOME"); home && *home)
-        return std::filesystem::path(home) / ".cache" / "velvet" / "textures";
-    return {};
+    const std::filesystem::path root = velvetCacheDir();
+    return root.empty() ? root : root / "textures";
 }
 
 MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::string& colorSpace,

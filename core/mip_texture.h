@@ -69,9 +69,9 @@ struct MipLoadResult {
     /// Null when the file is missing or broken. Not const: whoever holds the last reference may
     /// free levels as they reach the GPU (render/texture_set.cpp).
     std::shared_ptr<MipTexture> texture;
-    std::vector<Problem> problems;             ///< errors (texture null) and warnings
-    bool decoded = false;   ///< the image file was decoded (a cache miss or no cache)
-    bool fromCache = false; ///< the levels came from the on-disk cache
+    std::vector<Problem> problems; ///< errors (texture null) and warnings
+    bool decoded = false;          ///< the image file was decoded (a cache miss or no cache)
+    bool fromCache = false;        ///< the levels came from the on-disk cache
     double milliseconds = 0;
     /// Where the time went: hashing the file, reading the cache entry, decoding, filtering the
     /// levels, writing the entry (0 for steps not taken).
@@ -80,8 +80,9 @@ struct MipLoadResult {
     std::string cacheKey;
 };
 
-/// The cache folder: $XDG_CACHE_HOME/velvet/textures, else ~/.cache/velvet/textures; empty
-/// when neither variable is set.
+/// The cache folder: velvetCacheDir()/textures (core/cache_dir.h: $VELVET_CACHE_DIR, else
+/// $XDG_CACHE_HOME/velvet, else ~/.cache/velvet); empty when caching is off (VELVET_NO_CACHE) or
+/// none of the variables is set.
 std::filesystem::path defaultMipCacheDir();
 
 /// Loads @p file as a GPU texture in @p colorSpace (already resolved: a canonical name of

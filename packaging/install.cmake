@@ -1,5 +1,6 @@
 # Installing Velvet as a desktop application (issue 17, item 16), freedesktop layout:
 #   bin/velvet                                    the editor and the CLI
+#   lib/velvet/velvet-image-codec.so              OpenImageIO's side, loaded on first use
 #   share/velvet/resources/                       shaders, schemas, presets, HDRIs, OCIO config;
 #                                                 app/resource_root.cpp finds them from the binary
 #                                                 (bin/../share/velvet/resources), so the tree can
@@ -11,6 +12,10 @@
 include(GNUInstallDirs)
 
 install(TARGETS velvet RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# OpenImageIO's module, loaded on first use from bin/../LIBDIR/velvet (core/image_codec.h).
+if(TARGET velvet_image_codec)
+  install(TARGETS velvet_image_codec LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/velvet)
+endif()
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/resources/
   DESTINATION ${CMAKE_INSTALL_DATADIR}/velvet/resources)
 install(FILES ${CMAKE_CURRENT_LIST_DIR}/velvet.desktop DESTINATION ${CMAKE_INSTALL_DATADIR}/applications)

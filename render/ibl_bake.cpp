@@ -2,7 +2,10 @@
 
 #include "core/atomic_file.h"
 #include "core/brdf.h"
+#include "core/cache_dir.h"
+#include "core/content_hash.h"
 #include "core/ibl.h"
+#include "core/ibl_cache.h"
 #include "render/shader_program.h"
 #include "render/sheen_lut.h"
 
@@ -21,11 +24,13 @@ constexpr int kGroup = 8;      ///< local size of the cube compute shaders (8 x 
 constexpr int kDfgGroupX = 64; ///< ibl_dfg.comp runs one row per group (64 x 1)
 
 /// Compiles one compute shader file into a program (0 + message on failure, naming file:line).
-GLuint buildCompute(const std::string& file, std::string* error) {
+GLuint buildCompute(const std::string& file, std::string* error, std::string* sources = nullptr) {
     std::string source;
     std::vector<std::string> files;
     if (!preprocessShader(file, {}, source, files, error))
         return 0;
+    if (sources) // the bake's signature hashes what was compiled (IblBaker::cacheSignature)
+        *sources += source;
     const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -111,12 +116,8 @@ void IblBaker::release(Bake& bake) {
 }
 
 std::filesystem::path IblBaker::dfgCacheFile() {
-    std::filesystem::path dir;
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-        dir = std::filesystem::path(xdg) / "velvet";
-    else if (const char* home = std::getenv("HOME"); home && *home)
-        dir = std::filesystem::path(home) / ".cache" / "velvet";
-    else
+    const std::filesystem::path dir = velvetCacheDir();
+    if (dir.empty())
         return {};
     return dir /
            ("ibl_dfg_v" + std::to_string(kLutCacheVersion) + "_" +
@@ -124,12 +125,14 @@ std::filesystem::path IblBaker::dfgCacheFile() {
 }
 
 bool IblBaker::initialize(std::string* error) {
-    if (!(m_equirectProgram = buildCompute("ibl_equirect_to_cube.comp", error)) ||
-        !(m_downsampleProgram = buildCompute("ibl_downsample.comp", error)) ||
-        !(m_prefilterProgram = buildCompute("ibl_prefilter.comp", error)) ||
+    std::string sources;
+    if (!(m_equirectProgram = buildCompute("ibl_equirect_to_cube.comp", error, &sources)) ||
+        !(m_downsampleProgram = buildCompute("ibl_downsample.comp", error, &sources)) ||
+        !(m_prefilterProgram = buildCompute("ibl_prefilter.comp", error, &sources)) ||
         !(m_dfgProgram = buildCompute("ibl_dfg.comp", error)))
         return false;
     m_compileCount += 4;
+    m_shaderHash = hex64(xxhash64(sources, 0));
 
     // Sheen albedo, one channel per SheenModel (render/sheen_lut.h: the tables the C++ twin
     // looks up).
@@ -170,10 +173,11 @@ bool IblBaker::reload(std::string* error, int* compiled) {
                     {&m_downsampleProgram, "ibl_downsample.comp"},
                     {&m_prefilterProgram, "ibl_prefilter.comp"},
                     {&m_dfgProgram, "ibl_dfg.comp"}};
-    std::string errors;
+    std::string errors, sources;
     for (auto& p : programs) {
         std::string message;
-        const GLuint program = buildCompute(p.file, &message);
+        const GLuint program =
+            buildCompute(p.file, &message, p.program == &m_dfgProgram ? nullptr : &sources);
         if (!program) { // the last good program stays
             errors += (errors.empty() ? "" : "\n") + message;
             continue;
@@ -184,6 +188,9 @@ bool IblBaker::reload(std::string* error, int* compiled) {
         if (compiled)
             ++*compiled;
     }
+    // A cache entry baked by other shaders is another entry; programs that failed keep their
+    // build, whose source is no longer on disk: no cache until a reload builds them all.
+    m_shaderHash = errors.empty() ? hex64(xxhash64(sources, 0)) : std::string();
     // New programs: llvmpipe compiles their machine code again at the first dispatch.
     abandonWarmUp();
     m_warmedUp = false;
@@ -283,6 +290,15 @@ bool IblBaker::warmUpStep() {
     return m_warmedUp;
 }
 
+std::string IblBaker::cacheSignature() const {
+    if (m_shaderHash.empty())
+        return {};
+    return "ibl v" + std::to_string(kIblCacheVersion) + " face " +
+           std::to_string(m_options.faceSize) + " levels " +
+           std::to_string(m_options.specularLevels) + " samples " +
+           std::to_string(m_options.samples) + " shaders " + m_shaderHash;
+}
+
 void IblBaker::request(const GpuEnvironment& env) {
     if (env.key == m_pending.key && m_pending.specular)
         return; // already being baked
@@ -296,6 +312,29 @@ void IblBaker::request(const GpuEnvironment& env) {
     release(m_pending);
     std::erase_if(m_jobs, [](const Job& j) { return j.kind != JobKind::Dfg; });
 
+    if (env.cached) { // from the disk cache (render/environment_map.h): ready at once
+        const IblCacheEntry& c = *env.cached;
+        Bake b;
+        b.key = env.key;
+        b.faceSize = c.faceSize;
+        b.levels = c.levels;
+        b.specular = makeCube(b.faceSize, b.levels);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+        for (int level = 0; level < b.levels; ++level) {
+            const int size = std::max(b.faceSize >> level, 1);
+            glTextureSubImage3D(b.specular, level, 0, 0, 0, size, size, 6, GL_RGBA, GL_HALF_FLOAT,
+                                c.specular[size_t(level)].data());
+        }
+        release(m_ready);
+        m_ready = b;
+        ++m_cacheAdoptions;
+        m_unitsTotal = m_unitsDone = 0;
+        for (const Job& j : m_jobs) // a DFG job may still be queued
+            m_unitsTotal += jobUnits(j) * (1.0 - double(j.row) / j.size);
+        return;
+    }
+
     Bake& b = m_pending;
     b.key = env.key;
     b.faceSize = m_options.faceSize > 0
@@ -307,6 +346,9 @@ void IblBaker::request(const GpuEnvironment& env) {
     b.specular = makeCube(b.faceSize, b.levels);
     m_source = env.texture;
     m_sourceWidth = env.width;
+    b.cacheFile = env.cacheFile;
+    b.cacheKey = env.cacheKey;
+    b.sh = env.sh;
 
     // Queue: radiance level 0 per face, its mips, the mirror level, then each prefiltered level
     // per face. Rows within a job are split by step() to fit the slice target.
@@ -483,6 +525,8 @@ bool IblBaker::step(double budgetMs) {
             release(m_ready);
             m_ready = m_pending;
             m_pending = {};
+            if (!m_ready.cacheFile.empty())
+                writeDiskCache(m_ready);
             m_source = 0;
         }
     }
@@ -494,6 +538,37 @@ bool IblBaker::step(double budgetMs) {
     if (m_jobs.empty())
         m_unitsTotal = m_unitsDone = 0;
     return m_jobs.empty();
+}
+
+void IblBaker::writeDiskCache(const Bake& bake) {
+    // What the next process uploads instead of decoding and baking (core/ibl_cache.h): the
+    // equirect as the GPU holds it (m_source, the environment being baked, still alive) and
+    // every level of the prefiltered cube, read back as the half floats they are.
+    IblCacheEntry e;
+    glGetTextureLevelParameteriv(m_source, 0, GL_TEXTURE_WIDTH, &e.width);
+    glGetTextureLevelParameteriv(m_source, 0, GL_TEXTURE_HEIGHT, &e.height);
+    if (e.width < 1 || e.height < 1)
+        return;
+    e.sh = bake.sh;
+    e.faceSize = bake.faceSize;
+    e.levels = bake.levels;
+    glPixelStorei(GL_PACK_ALIGNMENT, 2);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    e.equirect.resize(size_t(e.width) * size_t(e.height) * 3u);
+    glGetTextureImage(m_source, 0, GL_RGB, GL_HALF_FLOAT, GLsizei(e.equirect.size() * 2),
+                      e.equirect.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    for (int level = 0; level < bake.levels; ++level) {
+        const size_t size = size_t(std::max(bake.faceSize >> level, 1));
+        std::vector<std::uint16_t> faces(size * size * 6u * 4u);
+        glGetTextureImage(bake.specular, level, GL_RGBA, GL_HALF_FLOAT, GLsizei(faces.size() * 2),
+                          faces.data());
+        e.specular.push_back(std::move(faces));
+    }
+    // The cache is an optimisation: an entry that cannot be written is baked again next time.
+    std::string ignored;
+    if (writeIblCache(bake.cacheFile, bake.cacheKey, e, &ignored))
+        ++m_cacheWrites;
 }
 
 void IblBaker::finish() {

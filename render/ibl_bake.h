@@ -110,9 +110,20 @@ public:
     std::vector<glm::vec2> readDfgLut() const;
     /// @}
 
-    /// Where the DFG LUT is cached ($XDG_CACHE_HOME/velvet, else ~/.cache/velvet); empty when
-    /// neither is set. The name carries the format version, size and sample count.
+    /// Where the DFG LUT is cached (core/cache_dir.h: $VELVET_CACHE_DIR, else
+    /// $XDG_CACHE_HOME/velvet, else ~/.cache/velvet); empty when caching is off or has no place.
+    /// The name carries the format version, size and sample count.
     static std::filesystem::path dfgCacheFile();
+
+    /// What a prefiltered environment in the disk cache (core/ibl_cache.h) must have been baked
+    /// with to be used as this baker's: the cache format's version, the options that shape the
+    /// cube (face size, levels, samples) and a hash of the bake shaders' preprocessed sources
+    /// (a shader edit makes old entries misses). Empty before initialize() or after a reload
+    /// that failed: nothing is cached then.
+    std::string cacheSignature() const;
+    /// Environments adopted from the disk cache and entries written since construction.
+    int cacheAdoptions() const { return m_cacheAdoptions; }
+    int cacheWrites() const { return m_cacheWrites; }
 
 private:
     struct Bake {
@@ -121,6 +132,10 @@ private:
         unsigned specular = 0; ///< the prefiltered chain
         int faceSize = 0;
         int levels = 0;
+        /// Where the finished bake is written (GpuEnvironment::cacheFile; empty: nowhere).
+        std::filesystem::path cacheFile;
+        std::string cacheKey;
+        SH9 sh{};
     };
     enum class JobKind { Dfg, EquirectToCube, RadianceMips, CopyLevel0, Prefilter };
     struct Job {
@@ -137,6 +152,8 @@ private:
     void abandonWarmUp();
     double runSlice(Job& job);
     void completeDfg();
+    /// Writes @p bake (just completed from m_source) to its disk cache entry.
+    void writeDiskCache(const Bake& bake);
     double jobUnits(const Job& job) const { return double(job.size) * job.size * job.samples; }
 
     IblBakeOptions m_options;
@@ -156,6 +173,8 @@ private:
     double m_worstWarmUpFrameMs = 0;
     bool m_warmedUp = false;
     int m_compileCount = 0;
+    std::string m_shaderHash; ///< of the bake programs' sources (cacheSignature)
+    int m_cacheAdoptions = 0, m_cacheWrites = 0;
     /// The warm-up's own tiny bake, carried from frame to frame.
     struct WarmUp {
         bool started = false, jobsDone = false;

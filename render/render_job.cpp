@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <epoxy/gl.h>
 #include <filesystem>
+#include <time.h>
 #include <unistd.h>
 
 namespace velvet::render {
@@ -152,13 +153,21 @@ RenderJobCheck checkRenderJob(const RenderJob& job, std::string* message) {
     return RenderJobCheck::Ok;
 }
 
-void RenderJobTimings::add(const std::string& phase, double ms) {
-    for (auto& [name, total] : phases)
-        if (name == phase) {
-            total += ms;
+void RenderJobTimings::add(const std::string& phase, double ms, double cpuMs) {
+    for (size_t i = 0; i < phases.size(); ++i)
+        if (phases[i].first == phase) {
+            phases[i].second += ms;
+            cpuPhases[i].second += cpuMs;
             return;
         }
     phases.emplace_back(phase, ms);
+    cpuPhases.emplace_back(phase, cpuMs);
+}
+
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
 RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
@@ -167,13 +176,18 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
     // Each phase's wall-clock time since the last lap (finish() waits for the GPU where a
     // phase's work would otherwise spill into the next).
     auto lapStart = std::chrono::steady_clock::now();
+    double lapCpu = timings ? processCpuMs() : 0.0;
     const auto lap = [&](const char* phase) {
         const auto now = std::chrono::steady_clock::now();
         if (timings) {
             glFinish();
-            timings->add(phase, std::chrono::duration<double, std::milli>(
-                                    std::chrono::steady_clock::now() - lapStart)
-                                    .count());
+            const double cpu = processCpuMs();
+            timings->add(phase,
+                         std::chrono::duration<double, std::milli>(
+                             std::chrono::steady_clock::now() - lapStart)
+                             .count(),
+                         cpu - lapCpu);
+            lapCpu = cpu;
         }
         lapStart = timings ? std::chrono::steady_clock::now() : now;
     };

@@ -70,8 +70,14 @@ enum class RenderJobStatus { Done, Cancelled, Failed };
 /// "write"); a turntable adds its frames' time to the same phases.
 struct RenderJobTimings {
     std::vector<std::pair<std::string, double>> phases;
-    void add(const std::string& phase, double ms);
+    /// The same phases' CPU time (user + system of every thread of the process, llvmpipe's
+    /// included): what a loaded machine does not inflate as it does the wall clock.
+    std::vector<std::pair<std::string, double>> cpuPhases;
+    void add(const std::string& phase, double ms, double cpuMs = 0.0);
 };
+
+/// CPU time (user + system, every thread) of this process so far, in milliseconds.
+double processCpuMs();
 
 /// Renders and writes @p job (checked or not: it runs checkRenderJob first and fails with its
 /// message). @p progress, when set, is called after each frame (and once before the video is

@@ -466,7 +466,7 @@ void Renderer::finishEnvironment() {
     if (!d.initialized)
         return;
     if (!d.environment)
-        d.environment = &d.environments.get(d.scene.environment, nullptr);
+        d.environment = &d.environments.get(d.scene.environment, nullptr, d.ibl.cacheSignature());
     d.ibl.request(*d.environment);
     d.ibl.finish();
 }

@@ -75,7 +75,8 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     if (!display.choose(fs, choice, error))
         return false;
     // Every frame (a stat of the HDRI): an HDRI edited on disk is read and prefiltered again.
-    const GpuEnvironment* current = &environments.get(scene.environment, nullptr);
+    const GpuEnvironment* current =
+        &environments.get(scene.environment, nullptr, ibl.cacheSignature());
     if (current != environment)
         ++uploads.environmentRequests; // read again: a new entry
     environment = current;

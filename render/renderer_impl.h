@@ -242,7 +242,7 @@ struct Renderer::Impl {
     void uploadLights(Problems* problems);
     void requestEnvironment(Problems* problems) {
         ++uploads.environmentRequests;
-        environment = &environments.get(scene.environment, problems);
+        environment = &environments.get(scene.environment, problems, ibl.cacheSignature());
         ibl.request(*environment);
     }
 

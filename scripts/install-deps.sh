@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev
   libglm-dev libepoxy-dev libegl-dev libgl1-mesa-dri libegl-mesa0
-  libassimp-dev libopenimageio-dev libopencolorio-dev nlohmann-json3-dev
+  libassimp-dev libopenimageio-dev libopencolorio-dev nlohmann-json3-dev libpng-dev
   libembree-dev libtbb-dev libpugixml-dev
   clang libclang-rt-14-dev
   xvfb xauth
