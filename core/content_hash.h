@@ -1,10 +1,9 @@
 #pragma once
 /// @file content_hash.h
-/// xxHash64 (Yann Collet, "xxHash - Extremely fast hash algorithm", XXH64 as specified in
-/// doc/xxhash_spec.md of the reference implementation): the fast content hash that names the
-/// disk caches' entries (core/mip_cache.h, core/ibl_cache.h). Implemented here rather than taken
-/// from OpenImageIO (OIIO::xxhash, the same function) so that hashing a file does not load the
-/// image library (core/image_codec.h: it is loaded on first use).
+/// xxHash64 (Yann Collet, "xxHash - Extremely fast hash algorithm", XXH64): the fast content
+/// hash that names the disk caches' entries (core/mip_cache.h, core/ibl_cache.h). From the
+/// reference library (Debian's libxxhash) rather than OpenImageIO's copy (OIIO::xxhash, the same
+/// function), so that hashing a file does not load the image library (core/image_codec.h).
 
 #include <cstddef>
 #include <cstdint>

@@ -167,9 +167,11 @@ std::shared_ptr<MipTexture> build8(std::vector<std::uint8_t>&& rgba, int width, 
 }
 
 void toHalf(const float* in, size_t n, std::uint8_t* out) {
-    for (size_t i = 0; i < n; ++i) {
-        const std::uint16_t h = floatToHalf(in[i]);
-        std::memcpy(out + 2 * i, &h, 2);
+    std::uint16_t chunk[1024];
+    for (size_t i = 0; i < n; i += 1024) {
+        const size_t count = std::min<size_t>(1024, n - i);
+        floatsToHalves(in + i, count, chunk);
+        std::memcpy(out + 2 * i, chunk, 2 * count);
     }
 }
 
@@ -251,11 +253,9 @@ Image MipTexture::linearLevel(int maxSide) const {
     Image out(pick->width, pick->height, 4);
     const size_t n = out.pixels.size();
     if (format == MipFormat::Rgba16F) {
-        for (size_t i = 0; i < n; ++i) {
-            std::uint16_t h;
-            std::memcpy(&h, pick->bytes.data() + 2 * i, 2);
-            out.pixels[i] = halfToFloat(h);
-        }
+        std::vector<std::uint16_t> halves(n);
+        std::memcpy(halves.data(), pick->bytes.data(), 2 * n);
+        halvesToFloats(halves.data(), n, out.pixels.data());
     } else {
         const Decode8 decode(format == MipFormat::Srgb8Alpha8);
         for (size_t i = 0; i < n; ++i)

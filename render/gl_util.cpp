@@ -1,5 +1,7 @@
 #include "render/gl_util.h"
 
+#include "core/half_float.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -66,31 +68,6 @@ ReadFormat readFormatOf(unsigned fbo) {
     return ReadFormat::Float;
 }
 
-/// IEEE 754 binary16 to binary32, exactly (subnormals, infinities and NaN included).
-float halfToFloat(std::uint16_t h) {
-    const std::uint32_t sign = std::uint32_t(h & 0x8000u) << 16;
-    const std::uint32_t exponent = (h >> 10) & 0x1fu, mantissa = h & 0x3ffu;
-    std::uint32_t bits;
-    if (exponent == 0x1fu) // infinity or NaN
-        bits = sign | 0x7f800000u | (mantissa << 13);
-    else if (exponent != 0) // normal
-        bits = sign | ((exponent + 112u) << 23) | (mantissa << 13);
-    else if (mantissa == 0) // zero
-        bits = sign;
-    else { // subnormal: normalise
-        int e = -1;
-        std::uint32_t m = mantissa;
-        do {
-            ++e;
-            m <<= 1;
-        } while (!(m & 0x400u));
-        bits = sign | (std::uint32_t(112 - e) << 23) | ((m & 0x3ffu) << 13);
-    }
-    float f;
-    std::memcpy(&f, &bits, sizeof f);
-    return f;
-}
-
 } // namespace
 
 Image readFramebuffer(unsigned fbo, int width, int height) {
@@ -129,7 +106,9 @@ Image readFramebuffer(unsigned fbo, int width, int height) {
     case ReadFormat::Half: {
         std::vector<std::uint16_t> rows(values);
         glReadPixels(0, 0, width, height, GL_RGBA, GL_HALF_FLOAT, rows.data());
-        flip([&](size_t i) { return halfToFloat(rows[i]); });
+        for (int y = 0; y < height; ++y) // widened a row at a time, flipped
+            halvesToFloats(rows.data() + size_t(height - 1 - y) * rowValues, rowValues,
+                           img.pixels.data() + size_t(y) * rowValues);
         break;
     }
     case ReadFormat::Float: {

@@ -9,6 +9,7 @@ packages=(
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev
   libglm-dev libepoxy-dev libegl-dev libgl1-mesa-dri libegl-mesa0
   libassimp-dev libopenimageio-dev libopencolorio-dev nlohmann-json3-dev libpng-dev
+  libxxhash-dev libimath-dev
   libembree-dev libtbb-dev libpugixml-dev
   clang libclang-rt-14-dev
   xvfb xauth
