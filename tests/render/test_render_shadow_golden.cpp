@@ -144,9 +144,10 @@ private slots:
     }
 
     void shaderBallOnCatcherUnderKeyLight() {
-        compareWithReference(
-            drawDisplay(stage(PreviewMeshKind::ShaderBall, GroundMode::ShadowCatcher, "key")),
-            "ball_catcher_key");
+        const Image image =
+            drawDisplay(stage(PreviewMeshKind::ShaderBall, GroundMode::ShadowCatcher, "key"));
+        QCOMPARE(rig()->renderer->lastTimings().shadowMaskPasses, 1); // the key light's
+        compareWithReference(image, "ball_catcher_key");
     }
 
     void drapeOnPlainGroundUnderThreePoint() {
@@ -181,15 +182,18 @@ private slots:
         compareWithReference(drawDisplay(scene, render::LightPath(path)), name.toStdString());
     }
 
-    // More shadow-casting lights than the cap: the image is the reference's, and the weakest
-    // light, left out by the cap, casts no shadow (the frame equals one where it asks for none).
+    // More shadow-casting lights than the cap: the frame draws one shadow-mask pass per kept
+    // light (render/shadow_mask.h), the image is the reference's, and the weakest light, left
+    // out by the cap, casts no shadow (the frame equals one where it asks for none).
     void shadowCapHolds() {
         const Scene scene = overTheCap();
         const Image capped = drawDisplay(scene);
+        QCOMPARE(rig()->renderer->lastTimings().shadowMaskPasses, render::kMaxShadowLights);
         compareWithReference(capped, "over_the_cap");
         Scene weakestOff = scene;
         weakestOff.lights[0].castShadows = false;
         const Image without = drawDisplay(weakestOff);
+        QCOMPARE(rig()->renderer->lastTimings().shadowMaskPasses, render::kMaxShadowLights);
         float worst = 0.0f;
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x)
