@@ -5,9 +5,10 @@
 /// PCSS at every geometry pixel (shadow_mask.frag) and writes the visibility into channel s of an
 /// RGBA8 texture; the lighting passes then read one texel (shadow_mask.glsl) instead of running
 /// the lookup inside their own shaders. This is how deferred engines shade shadows (Unity's
-/// screen-space shadows, Unreal's shadow projection into a light attenuation buffer); on llvmpipe,
-/// which runs every side of every branch, the lookup costs far less in a pass of its own than
-/// inside the large lighting shader (BENCHMARKS.md).
+/// screen-space shadows, Unreal's shadow projection into a light attenuation buffer). On llvmpipe,
+/// which runs every side of every branch, the lighting shaders without the lookup are cheaper
+/// for every frame, and the lookup is cheaper in a pass of its own, though it still costs most of
+/// a shadow's price: its taps (BENCHMARKS.md, the look-dev stage's shadow mask).
 ///
 /// Each slot's pass is scissored to the part of the frame where a receiver can lie inside the
 /// slot's map (shadowReceiverRect()); the mask is cleared to 1 first, which is exactly what the

@@ -3,8 +3,8 @@
 // (PCSS, shadow_sampling.glsl) into one channel of an RGBA8 texture, so a lighting pass reads one
 // texel instead of running the lookup inside its own, much larger shader. This is the
 // screen-space shadow mask of deferred renderers (Unity's "screen space shadows", Unreal's
-// shadow projection pass); on llvmpipe, which runs every side of a branch, the lookup's set-up
-// and branches cost far more inside the lighting shader than in a pass of their own
+// shadow projection pass); on llvmpipe, which runs every side of a branch, the lighting shaders
+// are cheaper without the lookup's code and the lookup cheaper in a pass of its own
 // (BENCHMARKS.md). Channel s is slot s's light: kMaxShadowLights (4) fit one texel.
 #include "stage_interface.glsl"
 #include "common_frame.glsl"
