@@ -175,6 +175,7 @@ bool stageFigures(int width, int height, int frames,
     figures.emplace_back("stage_shadow_ao_overhead", stage.stageOverhead);
     figures.emplace_back("shadow_map_pass_ms", stage.shadowMapMs);
     figures.emplace_back("occlusion_pass_ms", stage.occlusionMs);
+    figures.emplace_back("shadow_mask_pass_ms", stage.shadowMaskMs);
     figures.emplace_back("stage_frame_off_cpu_ms", stage.cpuOffMs);
     figures.emplace_back("stage_frame_shadow_cpu_ms", stage.cpuShadowMs);
     figures.emplace_back("stage_frame_shadow_ao_cpu_ms", stage.cpuStageMs);

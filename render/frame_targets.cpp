@@ -23,6 +23,8 @@ FrameTargets::~FrameTargets() {
         glDeleteFramebuffers(1, &m_litFbo);
     if (m_geometryFbo)
         glDeleteFramebuffers(1, &m_geometryFbo);
+    if (m_maskFbo)
+        glDeleteFramebuffers(1, &m_maskFbo);
 }
 
 bool FrameTargets::resize(int width, int height, bool compactGBuffer, std::string* error) {
@@ -88,6 +90,29 @@ unsigned FrameTargets::litFramebuffer() {
         m_litGbufferGeneration = m_gbuffer.generation();
     }
     return m_litFbo;
+}
+
+unsigned FrameTargets::shadowMaskFramebuffer(std::string* error) {
+    // One byte per shadow slot and pixel (kMaxShadowLights = 4 channels): the lighting passes read
+    // every slot's visibility in one fetch. At the HDR target's size, which is the frame's.
+    if (!m_shadowMask.resize(m_hdr.width(), m_hdr.height(), GL_RGBA8, error))
+        return 0;
+    if (!m_maskFbo)
+        glCreateFramebuffers(1, &m_maskFbo);
+    if (m_maskGeneration != m_shadowMask.generation() ||
+        m_maskGbufferGeneration != m_gbuffer.generation()) {
+        glNamedFramebufferTexture(m_maskFbo, GL_COLOR_ATTACHMENT0, m_shadowMask.texture(), 0);
+        glNamedFramebufferTexture(m_maskFbo, GL_DEPTH_ATTACHMENT,
+                                  depthTextureOf(m_gbuffer.framebuffer()), 0);
+        const GLenum status = glCheckNamedFramebufferStatus(m_maskFbo, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            fail(error, "shadow mask framebuffer incomplete: " + framebufferStatusName(status));
+            return 0;
+        }
+        m_maskGeneration = m_shadowMask.generation();
+        m_maskGbufferGeneration = m_gbuffer.generation();
+    }
+    return m_maskFbo;
 }
 
 } // namespace velvet::render

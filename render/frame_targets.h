@@ -36,8 +36,14 @@ public:
     /// The lighting pass's framebuffer (HDR colour + the G-buffer's depth).
     unsigned litFramebuffer();
 
+    /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): an RGBA8 colour at the
+    /// frame's size, allocated the first time a frame has a shadowed light, with the G-buffer's
+    /// depth (read-only, for the early depth test). 0 + message when incomplete.
+    unsigned shadowMaskFramebuffer(std::string* error);
+
     const GBuffer& gbuffer() const { return m_gbuffer; }
     const ColorTarget& hdr() const { return m_hdr; }
+    const ColorTarget& shadowMask() const { return m_shadowMask; }
 
 private:
     GBuffer m_gbuffer;
@@ -47,6 +53,9 @@ private:
     int m_geometryEmission = -1; ///< whether the HDR draw buffer is on (-1: not set yet)
     unsigned m_litFbo = 0;
     unsigned m_litHdrGeneration = 0, m_litGbufferGeneration = 0;
+    ColorTarget m_shadowMask;
+    unsigned m_maskFbo = 0;
+    unsigned m_maskGeneration = 0, m_maskGbufferGeneration = 0;
 };
 
 } // namespace velvet::render

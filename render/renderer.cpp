@@ -307,6 +307,13 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.targets.gbuffer().bindTextures();
     if (!d.stage.drawOcclusion(d.scene.environment, fs.width, fs.height, d.emptyVao, error))
         return false;
+    // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
+    // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).
+    unsigned maskFbo = 0;
+    if (d.stage.hasShadows() && !(maskFbo = d.targets.shadowMaskFramebuffer(error)))
+        return false;
+    d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(), d.scene.environment,
+                           block.viewProjMatrix, fs.width, fs.height, d.emptyVao);
     glViewport(0, 0, fs.width, fs.height);
 
     // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only.
@@ -453,7 +460,9 @@ FrameTimings Renderer::lastTimings() const {
         d.timings.localLightsMs = double(t[2] - lightsStart) * 1e-6;
         d.timings.shadowMapsMs = d.stage.lastShadowMs();
         d.timings.occlusionMs = d.stage.lastOcclusionMs();
+        d.timings.shadowMaskMs = d.stage.lastShadowMaskMs();
     }
+    d.timings.shadowMaskPasses = d.stage.lastShadowMaskPasses();
     return d.timings;
 }
 

@@ -162,6 +162,11 @@ struct FrameTimings {
     /// The look-dev stage (docs/shadows.md): the shadow maps, drawn only in frames after the
     /// lights or the mesh changed (0 otherwise), and the screen-space occlusion (0 when off).
     double shadowMapsMs = 0, occlusionMs = 0;
+    /// The screen-space shadow mask's passes (render/shadow_mask.h; 0 without a shadowed light).
+    double shadowMaskMs = 0;
+    /// How many shadow-mask passes the frame drew: one per shadowed light with receivers on
+    /// screen, never more than the cap (kMaxShadowLights). Counted, not timed: always set.
+    int shadowMaskPasses = 0;
 };
 
 /// What the renderer uploaded since construction (Renderer::uploadStats), one count per kind

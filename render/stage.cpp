@@ -41,7 +41,7 @@ Stage::~Stage() {
     if (m_ubo)
         glDeleteBuffers(1, &m_ubo);
     if (m_queries[0])
-        glDeleteQueries(4, m_queries);
+        glDeleteQueries(6, m_queries);
 }
 
 bool Stage::initialize(std::string* error) {
@@ -49,7 +49,7 @@ bool Stage::initialize(std::string* error) {
         return false;
     glCreateBuffers(1, &m_ubo);
     glNamedBufferStorage(m_ubo, sizeof(StageBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    glCreateQueries(GL_TIMESTAMP, 4, m_queries);
+    glCreateQueries(GL_TIMESTAMP, 6, m_queries);
     return true;
 }
 
@@ -61,6 +61,8 @@ bool Stage::reload(std::string* error) {
         errors = message;
     if (!m_occlusion.build(&message))
         errors += (errors.empty() ? "" : "\n") + message;
+    if (!m_mask.build(&message))
+        errors += (errors.empty() ? "" : "\n") + message;
     if (m_groundCompiles > 1 && !m_shadows.reload(&message)) // initialize() built it once
         errors += (errors.empty() ? "" : "\n") + message;
     if (!errors.empty() && error)
@@ -69,7 +71,8 @@ bool Stage::reload(std::string* error) {
 }
 
 int Stage::compileCount() const {
-    return m_shadows.compileCount() + m_occlusion.compileCount() + m_groundCompiles;
+    return m_shadows.compileCount() + m_occlusion.compileCount() + m_mask.compileCount() +
+           m_groundCompiles;
 }
 
 void Stage::plan(const std::vector<Light>& lights, const MeshBounds& bounds, Problems* problems) {
@@ -153,6 +156,25 @@ bool Stage::drawOcclusion(const Environment& environment, int width, int height,
     return true;
 }
 
+void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture,
+                           const Environment& environment, const glm::mat4& viewProj, int width,
+                           int height, unsigned emptyVao) {
+    m_maskTexture = 0;
+    m_maskPasses = 0;
+    if (!hasShadows())
+        return;
+    m_maskTexture = maskTexture;
+    const float r = sphereOf(m_bounds).radius;
+    const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
+    m_shadows.bind();
+    glQueryCounter(m_queries[4], GL_TIMESTAMP);
+    m_maskPasses =
+        m_mask.run(framebuffer, m_shadows.slots(), m_bounds, environment.ground != GroundMode::Off,
+                   height0, viewProj, width, height, emptyVao);
+    glQueryCounter(m_queries[5], GL_TIMESTAMP);
+    m_shadows.unbind();
+}
+
 bool Stage::meshRectangle(const glm::mat4& viewProj, int width, int height, int rect[4]) const {
     if (m_bounds.empty())
         return false;
@@ -182,13 +204,13 @@ bool Stage::meshRectangle(const glm::mat4& viewProj, int width, int height, int 
 }
 
 void Stage::bind() const {
-    m_shadows.bind();
+    glBindTextureUnit(stage_binding::kShadowMaskTex, m_maskTexture);
     if (m_occlusionOn)
         m_occlusion.bind();
 }
 
 void Stage::unbind() const {
-    m_shadows.unbind();
+    glBindTextureUnit(stage_binding::kShadowMaskTex, 0);
     glBindTextureUnit(stage_binding::kOcclusionTex, 0);
 }
 
@@ -207,6 +229,15 @@ double Stage::lastOcclusionMs() const {
     GLuint64 t0 = 0, t1 = 0;
     glGetQueryObjectui64v(m_queries[2], GL_QUERY_RESULT, &t0);
     glGetQueryObjectui64v(m_queries[3], GL_QUERY_RESULT, &t1);
+    return double(t1 - t0) * 1e-6;
+}
+
+double Stage::lastShadowMaskMs() const {
+    if (m_maskPasses == 0)
+        return 0.0;
+    GLuint64 t0 = 0, t1 = 0;
+    glGetQueryObjectui64v(m_queries[4], GL_QUERY_RESULT, &t0);
+    glGetQueryObjectui64v(m_queries[5], GL_QUERY_RESULT, &t1);
     return double(t1 - t0) * 1e-6;
 }
 

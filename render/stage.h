@@ -3,10 +3,11 @@
 /// Render-private: the look-dev stage around the preview mesh (docs/shadows.md) — the shadow maps
 /// (render/shadow_maps.h), the ground drawn into the G-buffer after the mesh (ground.vert/.frag:
 /// a square at the mesh's lowest point, material id kGroundPlainMaterialId or
-/// kGroundCatcherMaterialId), screen-space ambient occlusion (render/ao_pass.h) — and the
-/// StageBlock every lighting pass reads them through. Renderer::render() calls it at four
-/// points: shadows before the geometry pass, the ground after it, occlusion after that, and
-/// bind() before lighting.
+/// kGroundCatcherMaterialId), screen-space ambient occlusion (render/ao_pass.h), the screen-space
+/// shadow mask the lighting passes read the shadows from (render/shadow_mask.h) — and the
+/// StageBlock every lighting pass reads them through. Renderer::render() calls it at five
+/// points: shadows before the geometry pass, the ground after it, occlusion and the shadow mask
+/// after that, and bind() before lighting.
 
 #include "core/diagnostics.h"
 #include "core/mesh.h"
@@ -15,6 +16,7 @@
 #include "render/material_table.h"
 #include "render/render_interface.h"
 #include "render/shadow_maps.h"
+#include "render/shadow_mask.h"
 
 #include <string>
 #include <vector>
@@ -61,28 +63,43 @@ public:
     /// the viewport for the caller to reset.
     bool drawOcclusion(const Environment& environment, int width, int height, unsigned emptyVao,
                        std::string* error);
+    /// Whether a light casts a shadow this frame (the frame then needs a shadow mask).
+    bool hasShadows() const { return !m_shadows.slots().empty(); }
+    /// After the occlusion: the screen-space shadow mask of every shadow slot into
+    /// @p framebuffer (FrameTargets::shadowMaskFramebuffer(), whose colour is @p maskTexture),
+    /// timed; nothing when no light casts a shadow. Expects the G-buffer's textures bound and
+    /// @p viewProj the frame's camera. Leaves the viewport and depth state for the caller to set.
+    void drawShadowMask(unsigned framebuffer, unsigned maskTexture, const Environment& environment,
+                        const glm::mat4& viewProj, int width, int height, unsigned emptyVao);
     /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through
     /// @p viewProj in a @p width x @p height frame; false when they reach behind the camera.
     /// With a shadow catcher the surface pass is scissored to it, so the ground's pixels outside
     /// pay nothing for the mesh's shading (llvmpipe shades a discarded pixel to the end).
     bool meshRectangle(const glm::mat4& viewProj, int width, int height, int rect[4]) const;
-    /// Before lighting: the shadow maps and the occlusion at their units.
+    /// Before lighting: the shadow mask and the occlusion at their units.
     void bind() const;
     void unbind() const;
 
     /// GPU milliseconds of the last frame's shadow-map and occlusion passes (0 when not run).
     double lastShadowMs() const;
     double lastOcclusionMs() const;
+    /// GPU milliseconds of the last frame's shadow-mask passes, and how many it drew (one per
+    /// shadow slot with receivers on screen; at most kMaxShadowLights).
+    double lastShadowMaskMs() const;
+    int lastShadowMaskPasses() const { return m_maskPasses; }
 
 private:
     ShadowMaps m_shadows;
+    ShadowMaskPass m_mask;
     OcclusionPass m_occlusion;
     ShaderProgram m_groundProgram;
     int m_groundCompiles = 0;
     MeshBounds m_bounds;
     unsigned m_ubo = 0;
-    unsigned m_queries[4] = {};
+    unsigned m_queries[6] = {};
     mutable bool m_shadowTimed = false, m_occlusionTimed = false;
+    unsigned m_maskTexture = 0; ///< this frame's shadow mask (0: no light casts a shadow)
+    int m_maskPasses = 0;
     bool m_occlusionOn = false;
 };
 

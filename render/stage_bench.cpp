@@ -70,7 +70,8 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
         return false;
     // Interleaved, so the three see the same machine state; each variant's first frame after a
     // switch redraws the shadow map, so the second is timed (an orbit's frame).
-    std::vector<double> offMs, shadowMs, fullMs, mapMs, occlusionMs, offCpu, shadowCpu, fullCpu;
+    std::vector<double> offMs, shadowMs, fullMs, mapMs, maskMs, occlusionMs, offCpu, shadowCpu,
+        fullCpu;
     for (int i = 0; i < frames; ++i) {
         double ms = 0.0, cpu = 0.0;
         if (!frame(off, ScenePart::Lights | ScenePart::Environment, nullptr) ||
@@ -85,6 +86,7 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
             return false;
         shadowMs.push_back(ms);
         shadowCpu.push_back(cpu);
+        maskMs.push_back(renderer.lastTimings().shadowMaskMs);
         if (!frame(full, ScenePart::Lights | ScenePart::Environment, nullptr) ||
             !frame(full, ScenePart::None, &ms, &cpu))
             return false;
@@ -99,6 +101,7 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     report.stageOverhead = report.frameStageMs / std::max(report.frameOffMs, 1e-6) - 1.0;
     report.shadowMapMs = median(mapMs);
     report.occlusionMs = median(occlusionMs);
+    report.shadowMaskMs = median(maskMs);
     report.cpuOffMs = median(offCpu);
     report.cpuShadowMs = median(shadowCpu);
     report.cpuStageMs = median(fullCpu);

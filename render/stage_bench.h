@@ -16,6 +16,7 @@ struct StageBenchReport {
     double stageOverhead = 0;  ///< frameStageMs / frameOffMs - 1
     double shadowMapMs = 0;    ///< GPU time of drawing the shadow map (a light or mesh edit)
     double occlusionMs = 0;    ///< GPU time of the occlusion passes
+    double shadowMaskMs = 0;   ///< GPU time of the screen-space shadow mask (render/shadow_mask.h)
     /// The same three frames by the process's CPU time (getrusage: every llvmpipe thread), which
     /// other processes' load does not inflate the way it does wall-clock time (BENCHMARKS.md).
     double cpuOffMs = 0, cpuShadowMs = 0, cpuStageMs = 0;

@@ -29,6 +29,9 @@ inline constexpr int kShadowCompareTex = 10; ///< sampler2DArrayShadow: hardware
 inline constexpr int kShadowDepthTex = 11;   ///< sampler2DArray: raw depth, PCSS blocker search
 inline constexpr int kOcclusionTex = 12;     ///< half-resolution GTAO (r) and its depth (g)
 inline constexpr int kOcclusionRawTex = 13;  ///< the unblurred GTAO, read by the blur
+/// The screen-space shadow mask (render/shadow_mask.h): slot s's visibility in channel s, what
+/// the lighting passes read instead of the maps (unit 7 is free in the lighting passes).
+inline constexpr int kShadowMaskTex = 7;
 } // namespace stage_binding
 
 /// std140, vec4 / mat4 members only. Slot s describes the s-th shadow-casting light.

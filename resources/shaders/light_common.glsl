@@ -4,7 +4,7 @@
 #include "gbuffer_read.glsl"
 #include "light_lobes.glsl"
 #include "light_bindings.glsl"
-#include "shadow_sampling.glsl"
+#include "shadow_mask.glsl"
 
 #define LIGHT_POINT 1
 #define LIGHT_SPOT 2
@@ -18,7 +18,7 @@ struct GpuLight {
     vec4 colorIntensity; // rgb colour x intensity (candela; nits for area lights)
     vec4 directionType;  // xyz unit direction the light travels, w type (LIGHT_*)
     vec4 params;         // spot: cos outer, cos inner; area: radius or half width, half height;
-                         // z: shadow slot + 1 (0: no shadow; shadow_sampling.glsl)
+                         // z: shadow slot + 1 (0: no shadow; shadow_mask.glsl)
 };
 
 layout(std430, binding = BINDING_LIGHT_SSBO) readonly buffer LightBuffer {
@@ -133,8 +133,7 @@ vec3 shadeLocalLight(GpuLight L, ShadingPoint p, int view) {
         return vec3(0.0);
     int shadowSlot = int(L.params.z) - 1;
     if (shadowSlot >= 0)
-        illuminance *= shadowVisibility(shadowSlot, p.posWorld, p.n, l,
-                                        interleavedGradientNoise(pixelOfViewPosition(p.posView)));
+        illuminance *= shadowMask(shadowSlot, ivec2(pixelOfViewPosition(p.posView)));
     Lobes o = shadeLobes(p.s, p.n, p.v, l, lSpecular, widen);
     return selectLobes(o, view) * L.colorIntensity.rgb * illuminance;
 }

@@ -51,9 +51,7 @@ void main() {
     vec3 posView = viewPositionFromDepth(ndcXY, texelFetch(gDepthTex, pixel, 0).r);
     vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
     float ssao = screenSpaceOcclusion(pixel, -posView.z);
-    outColor = vec4(background(ndcXY) *
-                        catcherTransmission(posWorld, ssao, interleavedGradientNoise(gl_FragCoord.xy)),
-                    1.0);
+    outColor = vec4(background(ndcXY) * catcherTransmission(posWorld, ssao, pixel), 1.0);
 }
 #else
 void main() {
@@ -71,7 +69,6 @@ void main() {
     vec3 v = p.v;
     vec3 posView = p.posView;
     float occlusion = p.occlusion;
-    float shadowNoise = interleavedGradientNoise(gl_FragCoord.xy); // shadow_sampling.glsl
 
 #if defined(LIGHTING_LOBE_VIEWS)
     {
@@ -80,7 +77,7 @@ void main() {
         for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
             vec3 l = frame.lightDirection[i].xyz;
             lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb *
-                     directionalShadow(i, p.posWorld, n, shadowNoise);
+                     directionalShadow(i, pixel);
         }
         outColor = vec4(lobes, 0.0); // alpha 0: replaces the emission (see the header)
     }
@@ -109,11 +106,11 @@ void main() {
     float ssao = screenSpaceOcclusion(pixel, -posView.z);
     vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
 
-    // Direct light, shadowed by the lights' shadow maps (shadow_sampling.glsl).
+    // Direct light, shadowed by the lights' shadow maps (the shadow mask, shadow_mask.glsl).
     vec3 color = vec3(0.0);
     for (int i = 0; i < frame.modes.x; ++i)
         color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb *
-                 directionalShadow(i, p.posWorld, n, shadowNoise);
+                 directionalShadow(i, pixel);
 
     // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes; the split sum for
     // the specular ones, the GGX-prefiltered cube times the DFG LUT with Fdez-Aguera 2019's
@@ -156,7 +153,7 @@ void main() {
     color += ambient * occlusion * ssao;
 #if defined(STAGE_GROUND_PLAIN)
     if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher
-        color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, shadowNoise),
+        color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, pixel),
                     groundFade(p.posWorld));
 #endif
     outColor = vec4(color, keepEmission); // + emission x alpha, by the blend (see the header)

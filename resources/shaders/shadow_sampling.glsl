@@ -1,4 +1,5 @@
-// Shadow-map lookups for the lighting passes (render/shadow_maps.h, docs/shadows.md): PCSS
+// Shadow-map lookups of the screen-space shadow mask pass (shadow_mask.frag, render/shadow_mask.h;
+// the lighting passes read its result through shadow_mask.glsl; docs/shadows.md): PCSS
 // (Fernando 2005, "Percentage-Closer Soft Shadows"): a blocker search whose average depth sizes
 // the penumbra from the light's source size, then percentage-closer filtering over it with the
 // hardware's 2x2 compare (Poisson taps rotated per pixel by interleaved gradient noise, Jimenez
@@ -21,13 +22,6 @@ const vec2 SHADOW_POISSON[16] = vec2[](
     vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
     vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
     vec2(0.14383161, -0.14100790));
-
-
-// The frame's pixel of a view-space position (the noise's seed for passes without gl_FragCoord).
-vec2 pixelOfViewPosition(vec3 posView) {
-    vec4 clip = frame.projMatrix * vec4(posView, 1.0);
-    return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewport.xy;
-}
 
 // Distance from the light (m) of a stored depth, and back.
 float shadowLinearDepth(int s, float d) {
@@ -114,17 +108,4 @@ float shadowVisibility(int s, vec3 posWorld, vec3 n, vec3 l, float noise) {
                        vec4(uv + o, float(s), shadowStoredDepth(s, ref0 + dot(grad, o))));
     }
     return lit / 16.0;
-}
-
-// Directional light i of the frame block: its shadow, 1 when it casts none.
-// WITH_DIRECTIONAL_SHADOWS 0 (render/lighting_features.h): no directional light has a map.
-#ifndef WITH_DIRECTIONAL_SHADOWS
-#define WITH_DIRECTIONAL_SHADOWS 1
-#endif
-float directionalShadow(int i, vec3 posWorld, vec3 n, float noise) {
-#if !WITH_DIRECTIONAL_SHADOWS
-    return 1.0;
-#endif
-    int s = int(frame.lightDirection[i].w) - 1;
-    return s < 0 ? 1.0 : shadowVisibility(s, posWorld, n, frame.lightDirection[i].xyz, noise);
 }

@@ -2,8 +2,8 @@
 // occlusion term (ao_gtao.frag, half resolution, read back with a depth-aware bilinear
 // upsample), and the ground's two looks: the shadow catcher (the background times how much of
 // the light the ground would receive, shadowed / unshadowed) and the plain ground's fade into it.
-// Needs common_environment.glsl and shadow_sampling.glsl.
-#include "shadow_sampling.glsl"
+// Needs common_environment.glsl; the shadows come from the shadow mask (shadow_mask.glsl).
+#include "shadow_mask.glsl"
 
 layout(binding = BINDING_OCCLUSION_TEX) uniform sampler2D uOcclusion;
 
@@ -60,22 +60,23 @@ vec3 slotIlluminance(int s, vec3 pos, vec3 n) {
 
 // How much of the light the ground at p receives, shadowed and occluded over unshadowed: the
 // environment (SH9 irradiance x occlusion), the directional lights and the shadowed local
-// lights. Lights without shadows cancel out but for their share of the sum.
-vec3 catcherTransmission(vec3 pos, float occlusion, float noise) {
+// lights (their shadows at @p pixel, from the shadow mask). Lights without shadows cancel out but
+// for their share of the sum.
+vec3 catcherTransmission(vec3 pos, float occlusion, ivec2 pixel) {
     vec3 n = vec3(0.0, 1.0, 0.0);
     vec3 env = irradianceOverPi(n) * PI;
     vec3 full = env, lit = env * occlusion;
     for (int i = 0; i < frame.modes.x; ++i) {
         vec3 e = frame.lightRadiance[i].rgb * max(dot(n, frame.lightDirection[i].xyz), 0.0);
         full += e;
-        lit += e * directionalShadow(i, pos, n, noise);
+        lit += e * directionalShadow(i, pixel);
     }
     for (int s = 0; s < stage.counts.x; ++s) {
         vec3 e = slotIlluminance(s, pos, n);
         if (max3(e) <= 0.0)
             continue;
         full += e;
-        lit += e * shadowVisibility(s, pos, n, normalize(stage.shadowLight[s].xyz - pos), noise);
+        lit += e * shadowMask(s, pixel);
     }
     return clamp(lit / max(full, vec3(1e-6)), 0.0, 1.0);
 }
