@@ -420,9 +420,9 @@ private:
         if (hasPbr)
             warn(p + ": converted; the material's pbrMetallicRoughness fallback is not read");
         SpecGloss f;
-        const glm::vec4 diffuse = numbers<4>(sg, "diffuseFactor", p, 0, 1, glm::vec4(1.0f));
-        f.diffuse = glm::vec3(diffuse);
-        const float alpha = diffuse.a;
+        const glm::vec4 diffuseFactor = numbers<4>(sg, "diffuseFactor", p, 0, 1, glm::vec4(1.0f));
+        f.diffuse = glm::vec3(diffuseFactor);
+        const float alpha = diffuseFactor.a;
         f.specular = vec3(sg, "specularFactor", p, 0, 1, glm::vec3(1.0f));
         f.glossiness = float(number(sg, "glossinessFactor", p, 0, 1, 1.0));
         m_baseAlpha = alpha;
