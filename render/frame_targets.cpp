@@ -21,6 +21,8 @@ GLuint depthTextureOf(GLuint fbo) {
 FrameTargets::~FrameTargets() {
     if (m_litFbo)
         glDeleteFramebuffers(1, &m_litFbo);
+    if (m_displayFbo)
+        glDeleteFramebuffers(1, &m_displayFbo);
     if (m_geometryFbo)
         glDeleteFramebuffers(1, &m_geometryFbo);
 }
@@ -88,6 +90,27 @@ unsigned FrameTargets::litFramebuffer() {
         m_litGbufferGeneration = m_gbuffer.generation();
     }
     return m_litFbo;
+}
+
+unsigned FrameTargets::displayFramebuffer(unsigned internalFormat, std::string* error) {
+    if (!m_display.resize(m_gbuffer.width(), m_gbuffer.height(), internalFormat, error))
+        return 0;
+    if (!m_displayFbo)
+        glCreateFramebuffers(1, &m_displayFbo);
+    if (m_displayGeneration != m_display.generation() ||
+        m_displayGbufferGeneration != m_gbuffer.generation()) {
+        glNamedFramebufferTexture(m_displayFbo, GL_COLOR_ATTACHMENT0, m_display.texture(), 0);
+        glNamedFramebufferTexture(m_displayFbo, GL_DEPTH_ATTACHMENT,
+                                  depthTextureOf(m_gbuffer.framebuffer()), 0);
+        const GLenum status = glCheckNamedFramebufferStatus(m_displayFbo, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            fail(error, "display framebuffer incomplete: " + framebufferStatusName(status));
+            return 0;
+        }
+        m_displayGeneration = m_display.generation();
+        m_displayGbufferGeneration = m_gbuffer.generation();
+    }
+    return m_displayFbo;
 }
 
 } // namespace velvet::render

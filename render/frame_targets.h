@@ -35,6 +35,12 @@ public:
     unsigned geometryFramebuffer(bool emission, std::string* error);
     /// The lighting pass's framebuffer (HDR colour + the G-buffer's depth).
     unsigned litFramebuffer();
+    /// The framebuffer of a lighting pass that writes display values (issue 16: the display
+    /// step compiled into it): a colour target in @p internalFormat (the caller's target's, so
+    /// the copy into it changes no value) with the G-buffer's depth, read-only as in
+    /// litFramebuffer(). Allocated on first use. 0 + message when incomplete.
+    unsigned displayFramebuffer(unsigned internalFormat, std::string* error);
+    const ColorTarget& display() const { return m_display; }
 
     const GBuffer& gbuffer() const { return m_gbuffer; }
     const ColorTarget& hdr() const { return m_hdr; }
@@ -47,6 +53,9 @@ private:
     int m_geometryEmission = -1; ///< whether the HDR draw buffer is on (-1: not set yet)
     unsigned m_litFbo = 0;
     unsigned m_litHdrGeneration = 0, m_litGbufferGeneration = 0;
+    ColorTarget m_display;
+    unsigned m_displayFbo = 0;
+    unsigned m_displayGeneration = 0, m_displayGbufferGeneration = 0;
 };
 
 } // namespace velvet::render
