@@ -32,7 +32,7 @@ bool FrameTargets::resize(int width, int height, bool compactGBuffer, std::strin
            m_hdr.resize(width, height, GL_RGBA16F, error);
 }
 
-unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
+unsigned FrameTargets::geometryFramebuffer(bool emission, bool lobeTargets, std::string* error) {
     const GLuint depthTexture = depthTextureOf(m_gbuffer.framebuffer());
     if (!m_geometryFbo)
         glCreateFramebuffers(1, &m_geometryFbo);
@@ -63,17 +63,21 @@ unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
         }
         m_geometryHdrGeneration = m_hdr.generation();
         m_geometryGbufferGeneration = m_gbuffer.generation();
-        m_geometryEmission = -1;
+        m_geometryDrawBuffers = -1;
     }
-    if (m_geometryEmission != int(emission)) {
+    const int state = int(emission) | int(lobeTargets) << 1;
+    if (m_geometryDrawBuffers != state) {
         std::vector<GLenum> drawBuffers;
         for (int i = 0; i < n; ++i) // the compact layout has no lobe channels (GL_NONE)
-            drawBuffers.push_back(m_gbuffer.texture(i) ? GLenum(GL_COLOR_ATTACHMENT0 + i)
-                                                       : GLenum(GL_NONE));
+            drawBuffers.push_back(
+                m_gbuffer.texture(i) &&
+                        (lobeTargets || !gbufferAttachments()[size_t(i)].lobeChannels)
+                    ? GLenum(GL_COLOR_ATTACHMENT0 + i)
+                    : GLenum(GL_NONE));
         drawBuffers.push_back(emission ? GLenum(GL_COLOR_ATTACHMENT0 + n) : GLenum(GL_NONE));
         glNamedFramebufferDrawBuffers(m_geometryFbo, GLsizei(drawBuffers.size()),
                                       drawBuffers.data());
-        m_geometryEmission = int(emission);
+        m_geometryDrawBuffers = state;
     }
     return m_geometryFbo;
 }

@@ -31,8 +31,10 @@ public:
 
     /// The geometry pass's framebuffer, its HDR draw buffer on only when the frame can emit
     /// (writing emission costs a 16-bit RGBA store per pixel and a blend in the lighting pass:
-    /// about 5 ms of a 58 ms 1280x720 frame on llvmpipe). 0 + message when incomplete.
-    unsigned geometryFramebuffer(bool emission, std::string* error);
+    /// about 5 ms of a 58 ms 1280x720 frame on llvmpipe), its lobe-channel draw buffers on only
+    /// when @p lobeTargets (a drawn material has a lobe map; otherwise nothing reads them).
+    /// 0 + message when incomplete.
+    unsigned geometryFramebuffer(bool emission, bool lobeTargets, std::string* error);
     /// The lighting pass's framebuffer (HDR colour + the G-buffer's depth).
     unsigned litFramebuffer();
     /// The framebuffer of a lighting pass that writes display values (issue 16: the display
@@ -50,7 +52,8 @@ private:
     ColorTarget m_hdr;
     unsigned m_geometryFbo = 0;
     unsigned m_geometryHdrGeneration = 0, m_geometryGbufferGeneration = 0;
-    int m_geometryEmission = -1; ///< whether the HDR draw buffer is on (-1: not set yet)
+    /// The draw buffers set: emission (bit 0) and lobe targets (bit 1); -1: not set yet.
+    int m_geometryDrawBuffers = -1;
     unsigned m_litFbo = 0;
     unsigned m_litHdrGeneration = 0, m_litGbufferGeneration = 0;
     ColorTarget m_display;

@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include "render/gbuffer_layout.h"
 #include "render/renderer_impl.h"
 
 #include <epoxy/gl.h>
@@ -261,7 +262,13 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     const bool emission =
         materialEmits(d.scene.material) || (fs.splitMaterial && materialEmits(*fs.splitMaterial));
     GeometryPassInputs geometry;
-    geometry.framebuffer = d.targets.geometryFramebuffer(emission, error);
+    // The lobe-channel targets only when a drawn record has a lobe map (B's is packed below:
+    // a split keeps them): every reader (gbuffer_read.glsl's readLobeChannels) skips them
+    // otherwise.
+    geometry.lobeTargets =
+        d.packedA.terms2.w != -1 || fs.splitMaterial.has_value() ||
+        (d.scene.environment.ground != GroundMode::Off && d.packedGround.terms2.w != -1);
+    geometry.framebuffer = d.targets.geometryFramebuffer(emission, geometry.lobeTargets, error);
     if (!geometry.framebuffer)
         return false;
     geometry.width = fs.width;
@@ -300,6 +307,10 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     if (inlineFailed)
         return false;
     d.passes = {};
+    for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
+        d.passes.gbufferTargets +=
+            d.targets.gbuffer().texture(i) &&
+            (geometry.lobeTargets || !gbufferAttachments()[size_t(i)].lobeChannels);
     // The G-buffer programs specialised to A's and B's records, under the same rule.
     geometry.recordA = d.packedA;
     geometry.recordB = fs.splitMaterial ? d.packedB : d.packedA;

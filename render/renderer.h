@@ -171,6 +171,9 @@ struct FramePasses {
     bool linear = false;
     /// The display step ran inside the lighting pass (FrameSettings::displayOnly).
     bool inlineDisplay = false;
+    /// G-buffer colour targets cleared and written: the lobe-channel targets only when a drawn
+    /// material has a lobe map (or a split frame's B may have one).
+    int gbufferTargets = 0;
 };
 
 /// GPU timings of the last frame (GL timer queries; 0 where unavailable). Logged, never asserted.

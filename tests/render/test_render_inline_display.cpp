@@ -2,7 +2,7 @@
 // chain's one fused pass, or the built-in curve, compiled into the background and surface
 // programs draws the same pixels as the path through the scene-linear target, with one
 // full-screen pass fewer and no linear image; frames it cannot draw take the old path; value
-// edits still compile nothing.
+// edits still compile nothing. And the lobe-channel targets only when something reads them.
 #include "core/post_effects.h"
 #include "render_test_util.h"
 
@@ -193,6 +193,18 @@ private slots:
         m_fs.view = render::DebugView::Final;
         QVERIFY(!m_renderer->lastFramePasses().inlineDisplay);
         QVERIFY(!m_renderer->readLinear().empty());
+    }
+
+    /// The lobe-channel targets are cleared and written only when a drawn material has a lobe
+    /// map: crimson velvet has none (3 of 5 targets); a split frame keeps them (B may have one).
+    void lobeTargetsOnlyWhenRead() {
+        m_renderer->setScene(peerScene());
+        draw(true);
+        QCOMPARE(m_renderer->lastFramePasses().gbufferTargets, 3);
+        m_fs.splitMaterial = peerScene().material;
+        draw(true);
+        m_fs.splitMaterial.reset();
+        QCOMPARE(m_renderer->lastFramePasses().gbufferTargets, 5);
     }
 
     /// A material value edit and a tone-map parameter edit compile nothing on the inline path
