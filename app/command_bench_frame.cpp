@@ -3,9 +3,11 @@
 // velvet, the studio HDRI for light and background, the key light (its shadow off: the peer casts
 // none) — with a post chain of the PBR Neutral tone map only. The figure is the median wall-clock
 // time of a frame to its last timer query (the frame has finished on the GPU), the same method as
-// `velvet bench`'s frame_nolights_wall_ms; the passes are GPU timer queries. Beside it, in
-// alternate frames, the same frame with the generic lighting program (every term and lobe at run
-// time), so the specialisation's gain is measured on the same machine state.
+// `velvet bench`'s frame_nolights_wall_ms; the passes are GPU timer queries. The frame is drawn
+// as the editor's viewport draws it: display only (FrameSettings::displayOnly: the tone map
+// inside the lighting pass). Beside it, in turn, the same frame through the scene-linear target
+// with the tone map a pass of its own (hdr_), and with the generic lighting program (every term
+// and lobe at run time, generic_), so each gain is measured on the same machine state.
 #include "app/cli.h"
 #include "core/document_io.h"
 #include "core/post_effects.h"
@@ -59,11 +61,13 @@ int runFrameBench(bool json, bool quick) {
     struct Variant {
         const char* name;
         bool specialised;
+        bool displayOnly;
         render::Renderer renderer;
         std::vector<double> wall, cpu, gbuffer, lighting, post;
     };
-    Variant variants[2] = {{"", true, {}, {}, {}, {}, {}, {}},
-                           {"generic_", false, {}, {}, {}, {}, {}, {}}};
+    Variant variants[3] = {{"", true, true, {}, {}, {}, {}, {}, {}},
+                           {"hdr_", true, false, {}, {}, {}, {}, {}, {}},
+                           {"generic_", false, false, {}, {}, {}, {}, {}, {}}};
     render::OffscreenTarget target;
     if (!target.resize(width, height, &error)) {
         std::cerr << "velvet bench: " << error << "\n";
@@ -84,6 +88,7 @@ int runFrameBench(bool json, bool quick) {
     fs.height = height;
     for (int i = 0; i < frames + 2; ++i)
         for (Variant& v : variants) {
+            fs.displayOnly = v.displayOnly;
             const auto start = std::chrono::steady_clock::now();
             const double cpuStart = processCpuMs();
             if (!v.renderer.render(fs, target.framebuffer(), &error)) {
@@ -113,12 +118,23 @@ int runFrameBench(bool json, bool quick) {
         figures.emplace_back(p + "lighting_ms", median(v.lighting));
         figures.emplace_back(p + "post_ms", median(v.post));
     }
+    // The specialisation's gain: the generic programs against the specialised ones, both
+    // through the scene-linear target; the inline display step's: that path against the frame.
     figures.emplace_back("specialised_lighting_speedup",
-                         median(variants[1].lighting) / median(variants[0].lighting));
+                         median(variants[2].lighting) / median(variants[1].lighting));
     figures.emplace_back("specialised_frame_speedup",
-                         median(variants[1].wall) / median(variants[0].wall));
+                         median(variants[2].wall) / median(variants[1].wall));
     figures.emplace_back("specialised_frames",
                          variants[0].renderer.lastFrameSpecialised() ? 1.0 : 0.0);
+    figures.emplace_back("inline_display_cpu_speedup",
+                         median(variants[1].cpu) / median(variants[0].cpu));
+    figures.emplace_back("inline_display_speedup",
+                         median(variants[1].wall) / median(variants[0].wall));
+    const render::FramePasses passes = variants[0].renderer.lastFramePasses();
+    figures.emplace_back("inline_display_frames", passes.inlineDisplay ? 1.0 : 0.0);
+    figures.emplace_back("fullscreen_passes", passes.fullScreen);
+    figures.emplace_back("hdr_fullscreen_passes",
+                         variants[1].renderer.lastFramePasses().fullScreen);
     if (json) {
         std::cout << "{\"gl_renderer\": \"" << context->renderer() << "\"";
         for (const auto& [k, v] : figures)
@@ -127,7 +143,7 @@ int runFrameBench(bool json, bool quick) {
     } else {
         std::cout << "velvet bench --frame on " << context->renderer() << "\n";
         for (const auto& [k, v] : figures)
-            std::cout << "  " << std::left << std::setw(24) << k << std::right << std::setw(10)
+            std::cout << "  " << std::left << std::setw(28) << k << std::right << std::setw(10)
                       << std::fixed << std::setprecision(2) << v << "\n";
     }
     return Ok;

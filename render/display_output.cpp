@@ -152,6 +152,32 @@ void DisplayOutput::draw(const DisplayChoice& choice, unsigned hdrTexture, float
     m_encoding.unbindLuts();
 }
 
+bool DisplayOutput::inlineSource(const DisplayChoice& choice, InlinePost& out) const {
+    if (choice.ocioDisplay)
+        return false;
+    // display_output.frag's final view as a function of the lit colour (frame.post.x: the
+    // exposure, frame.modes.z: the curve), for the same encoding.
+    out.key = "display@" + m_encoding.cacheId();
+    out.sources = {
+        {"post_inline.glsl",
+         "#include \"common_frame.glsl\"\n"
+         "#include \"common_tonemap.glsl\"\n"
+         "#include \"display_encode.glsl\"\n"
+         "vec4 postInline(vec4 c, ivec2 px) {\n"
+         "    vec3 display = displayEncode(toneMap(c.rgb * frame.post.x, frame.modes.z));\n"
+         "    return vec4(clamp(display, 0.0, 1.0), 1.0);\n"
+         "}\n"}};
+    for (auto& s : m_encoding.sources(m_encoding.cacheId()))
+        out.sources.push_back(std::move(s));
+    return true;
+}
+
+void DisplayOutput::bindInline(const std::vector<unsigned>& programs) const {
+    for (unsigned program : programs)
+        m_encoding.setUniforms(program, m_encoding.cacheId());
+    m_encoding.bindLuts();
+}
+
 bool DisplayOutput::reload(std::string* error) {
     std::string errors;
     auto collect = [&](bool ok, const std::string& message) {

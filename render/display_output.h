@@ -12,12 +12,14 @@
 #include "core/diagnostics.h"
 #include "render/display_encoding.h"
 #include "render/display_transform.h"
+#include "render/inline_post.h"
 #include "render/renderer.h"
 #include "render/shader_program.h"
 
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace velvet::render {
 
@@ -64,6 +66,14 @@ public:
     bool selectDisplayTransform(const FrameSettings& fs, std::string* error);
     /// The final pass into the bound framebuffer, from scene-linear @p hdrTexture.
     void draw(const DisplayChoice& choice, unsigned hdrTexture, float exposureEv);
+    /// The final image's display step (display_output.frag's, the built-in curve and the
+    /// encoding) as lighting.frag's generated include "post_inline.glsl" (issue 16); false when
+    /// OCIO's transform draws (@p choice.ocioDisplay).
+    bool inlineSource(const DisplayChoice& choice, InlinePost& out) const;
+    /// Before drawing with programs built from inlineSource(): the encoding's uniforms and LUTs
+    /// (unbindInline() after).
+    void bindInline(const std::vector<unsigned>& programs) const;
+    void unbindInline() const { m_encoding.unbindLuts(); }
 
     DisplayTransform& transform() { return m_transform; }
     const DisplayEncoding& encoding() const { return m_encoding; }

@@ -21,6 +21,8 @@ GLuint depthTextureOf(GLuint fbo) {
 FrameTargets::~FrameTargets() {
     if (m_litFbo)
         glDeleteFramebuffers(1, &m_litFbo);
+    if (m_displayFbo)
+        glDeleteFramebuffers(1, &m_displayFbo);
     if (m_geometryFbo)
         glDeleteFramebuffers(1, &m_geometryFbo);
     if (m_maskFbo)
@@ -32,7 +34,7 @@ bool FrameTargets::resize(int width, int height, bool compactGBuffer, std::strin
            m_hdr.resize(width, height, GL_RGBA16F, error);
 }
 
-unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
+unsigned FrameTargets::geometryFramebuffer(bool emission, bool lobeTargets, std::string* error) {
     const GLuint depthTexture = depthTextureOf(m_gbuffer.framebuffer());
     if (!m_geometryFbo)
         glCreateFramebuffers(1, &m_geometryFbo);
@@ -63,17 +65,21 @@ unsigned FrameTargets::geometryFramebuffer(bool emission, std::string* error) {
         }
         m_geometryHdrGeneration = m_hdr.generation();
         m_geometryGbufferGeneration = m_gbuffer.generation();
-        m_geometryEmission = -1;
+        m_geometryDrawBuffers = -1;
     }
-    if (m_geometryEmission != int(emission)) {
+    const int state = int(emission) | int(lobeTargets) << 1;
+    if (m_geometryDrawBuffers != state) {
         std::vector<GLenum> drawBuffers;
         for (int i = 0; i < n; ++i) // the compact layout has no lobe channels (GL_NONE)
-            drawBuffers.push_back(m_gbuffer.texture(i) ? GLenum(GL_COLOR_ATTACHMENT0 + i)
-                                                       : GLenum(GL_NONE));
+            drawBuffers.push_back(
+                m_gbuffer.texture(i) &&
+                        (lobeTargets || !gbufferAttachments()[size_t(i)].lobeChannels)
+                    ? GLenum(GL_COLOR_ATTACHMENT0 + i)
+                    : GLenum(GL_NONE));
         drawBuffers.push_back(emission ? GLenum(GL_COLOR_ATTACHMENT0 + n) : GLenum(GL_NONE));
         glNamedFramebufferDrawBuffers(m_geometryFbo, GLsizei(drawBuffers.size()),
                                       drawBuffers.data());
-        m_geometryEmission = int(emission);
+        m_geometryDrawBuffers = state;
     }
     return m_geometryFbo;
 }
@@ -113,6 +119,27 @@ unsigned FrameTargets::shadowMaskFramebuffer(std::string* error) {
         m_maskGbufferGeneration = m_gbuffer.generation();
     }
     return m_maskFbo;
+}
+
+unsigned FrameTargets::displayFramebuffer(unsigned internalFormat, std::string* error) {
+    if (!m_display.resize(m_gbuffer.width(), m_gbuffer.height(), internalFormat, error))
+        return 0;
+    if (!m_displayFbo)
+        glCreateFramebuffers(1, &m_displayFbo);
+    if (m_displayGeneration != m_display.generation() ||
+        m_displayGbufferGeneration != m_gbuffer.generation()) {
+        glNamedFramebufferTexture(m_displayFbo, GL_COLOR_ATTACHMENT0, m_display.texture(), 0);
+        glNamedFramebufferTexture(m_displayFbo, GL_DEPTH_ATTACHMENT,
+                                  depthTextureOf(m_gbuffer.framebuffer()), 0);
+        const GLenum status = glCheckNamedFramebufferStatus(m_displayFbo, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            fail(error, "display framebuffer incomplete: " + framebufferStatusName(status));
+            return 0;
+        }
+        m_displayGeneration = m_display.generation();
+        m_displayGbufferGeneration = m_gbuffer.generation();
+    }
+    return m_displayFbo;
 }
 
 } // namespace velvet::render

@@ -31,10 +31,18 @@ public:
 
     /// The geometry pass's framebuffer, its HDR draw buffer on only when the frame can emit
     /// (writing emission costs a 16-bit RGBA store per pixel and a blend in the lighting pass:
-    /// about 5 ms of a 58 ms 1280x720 frame on llvmpipe). 0 + message when incomplete.
-    unsigned geometryFramebuffer(bool emission, std::string* error);
+    /// about 5 ms of a 58 ms 1280x720 frame on llvmpipe), its lobe-channel draw buffers on only
+    /// when @p lobeTargets (a drawn material has a lobe map; otherwise nothing reads them).
+    /// 0 + message when incomplete.
+    unsigned geometryFramebuffer(bool emission, bool lobeTargets, std::string* error);
     /// The lighting pass's framebuffer (HDR colour + the G-buffer's depth).
     unsigned litFramebuffer();
+    /// The framebuffer of a lighting pass that writes display values (issue 16: the display
+    /// step compiled into it): a colour target in @p internalFormat (the caller's target's, so
+    /// the copy into it changes no value) with the G-buffer's depth, read-only as in
+    /// litFramebuffer(). Allocated on first use. 0 + message when incomplete.
+    unsigned displayFramebuffer(unsigned internalFormat, std::string* error);
+    const ColorTarget& display() const { return m_display; }
 
     /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): an RGBA8 colour at the
     /// frame's size, allocated the first time a frame has a shadowed light, with the G-buffer's
@@ -50,12 +58,16 @@ private:
     ColorTarget m_hdr;
     unsigned m_geometryFbo = 0;
     unsigned m_geometryHdrGeneration = 0, m_geometryGbufferGeneration = 0;
-    int m_geometryEmission = -1; ///< whether the HDR draw buffer is on (-1: not set yet)
+    /// The draw buffers set: emission (bit 0) and lobe targets (bit 1); -1: not set yet.
+    int m_geometryDrawBuffers = -1;
     unsigned m_litFbo = 0;
     unsigned m_litHdrGeneration = 0, m_litGbufferGeneration = 0;
     ColorTarget m_shadowMask;
     unsigned m_maskFbo = 0;
     unsigned m_maskGeneration = 0, m_maskGbufferGeneration = 0;
+    ColorTarget m_display;
+    unsigned m_displayFbo = 0;
+    unsigned m_displayGeneration = 0, m_displayGbufferGeneration = 0;
 };
 
 } // namespace velvet::render

@@ -39,7 +39,8 @@ void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh
     const float farDepth = 1.0f;
     const auto clearGeometry = [&] {
         for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
-            glClearBufferfv(GL_COLOR, i, zeros);
+            if (in.lobeTargets || !gbufferAttachments()[size_t(i)].lobeChannels)
+                glClearBufferfv(GL_COLOR, i, zeros);
         if (in.emission)
             glClearBufferfv(GL_COLOR, gbufferColorAttachmentCount(), kNoEmission);
         glClearBufferfv(GL_DEPTH, 0, &farDepth);

@@ -23,6 +23,9 @@ struct GeometryPassInputs {
     unsigned framebuffer = 0; ///< FrameTargets::geometryFramebuffer
     int width = 0, height = 0;
     bool emission = false; ///< the HDR draw buffer is on: clear it to black, opaque
+    /// The lobe-channel targets are on (FrameTargets::geometryFramebuffer): a drawn record has a
+    /// lobe map. Off, they are neither cleared nor written: nothing reads them.
+    bool lobeTargets = true;
     /// FrameSettings::splitMaterial is set: the seam at splitPosition x width, B right of it
     /// (left with splitSwapped).
     bool split = false;

@@ -90,8 +90,14 @@ const ShaderProgram* LightingPass::surfaceProgram(DebugView view, std::string* e
 }
 
 const ShaderProgram* LightingPass::specialised(Variant v, const LightingFeatures& features,
-                                               bool mayBuild) {
-    auto key = std::make_pair(int(v), features.defines());
+                                               bool mayBuild, const InlinePost* inlinePost) {
+    return specialised(v, features.defines(), mayBuild, inlinePost);
+}
+
+const ShaderProgram* LightingPass::specialised(Variant v, std::vector<std::string> featureDefines,
+                                               bool mayBuild, const InlinePost* inlinePost) {
+    auto key = std::make_tuple(int(v), std::move(featureDefines),
+                               inlinePost ? inlinePost->key : std::string());
     auto it = m_specialised.find(key);
     if (it == m_specialised.end()) {
         if (!mayBuild) {
@@ -104,10 +110,13 @@ const ShaderProgram* LightingPass::specialised(Variant v, const LightingFeatures
                 [](const auto& a, const auto& b) { return a.second.lastUse < b.second.lastUse; }));
         // The variant's own defines, then the features'.
         std::vector<std::string> defines = variantDefines(v);
-        defines.insert(defines.end(), key.second.begin(), key.second.end());
+        defines.insert(defines.end(), std::get<1>(key).begin(), std::get<1>(key).end());
+        if (inlinePost)
+            defines.emplace_back("LIGHTING_INLINE_POST");
         auto program = std::make_unique<ShaderProgram>();
         std::string message;
-        if (program->build("fullscreen.vert", "lighting.frag", defines, &message)) {
+        if (program->build("fullscreen.vert", "lighting.frag", defines,
+                           inlinePost ? inlinePost->sources : GeneratedSources{}, &message)) {
             ++m_compileCount;
         } else {
             program.reset(); // remembered as failed: not retried every frame
@@ -138,23 +147,41 @@ bool LightingPass::drawCatcher(bool emission, BackgroundMode background, std::st
 }
 
 void LightingPass::drawBackground(BackgroundMode mode, bool prefilteredReady) {
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_EQUAL);
     if (mode == BackgroundMode::Blurred && !prefilteredReady)
         mode = BackgroundMode::Sharp;
-    const int m = int(mode) >= 0 && int(mode) <= 3 ? int(mode) : 0; // unknown: Sharp (as GLSL)
-    glUseProgram(m_programs[kBackground + m].id());
+    drawBackground(m_programs[kBackground + modeIndex(mode)]);
+}
+
+void LightingPass::drawBackground(const ShaderProgram& program) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_EQUAL);
+    glUseProgram(program.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void LightingPass::drawSurfaces(const ShaderProgram& program, bool emission) {
+bool LightingPass::inlinePrograms(BackgroundMode background, bool prefilteredReady,
+                                  const LightingFeatures& features, const InlinePost& inlinePost,
+                                  bool mayBuild, const ShaderProgram*& backgroundProgram,
+                                  const ShaderProgram*& surfaces) {
+    if (features.isGeneric())
+        return false;
+    if (background == BackgroundMode::Blurred && !prefilteredReady)
+        background = BackgroundMode::Sharp;
+    // The background depends on no material feature: one program per mode and display step.
+    backgroundProgram = specialised(Variant(kBackground + modeIndex(background)),
+                                    std::vector<std::string>{}, mayBuild, &inlinePost);
+    surfaces = specialised(kFinal, features, mayBuild, &inlinePost);
+    return backgroundProgram && surfaces;
+}
+
+void LightingPass::drawSurfaces(const ShaderProgram& program, bool emission, bool displayValues) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     if (emission) {
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
-    } else {
+    } else if (!displayValues) { // alpha: the emission kept (see the header), 1 from the clear
         glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
     }
     glUseProgram(program.id());

@@ -8,6 +8,7 @@
 /// for the other.
 
 #include "core/scene.h"
+#include "render/inline_post.h"
 #include "render/lighting_features.h"
 #include "render/render_interface.h"
 #include "render/renderer.h"
@@ -16,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -47,10 +49,23 @@ public:
     /// The background (FrameSettings::view Final only: debug views leave the HDR target black).
     /// Blurred falls back to Sharp (the same lookup) until the prefiltered cube is ready.
     void drawBackground(BackgroundMode mode, bool prefilteredReady);
+    /// The background from @p program (inlinePrograms()).
+    void drawBackground(const ShaderProgram& program);
+
+    /// The final image's background and surface programs with @p inlinePost compiled in, the
+    /// surfaces specialised to @p features (no ground: GroundMode::Off), so that the pass writes
+    /// display values straight into the display target (issue 16). Built when @p mayBuild
+    /// (the rule of surfaceProgram()); false when either is not available (not built, a failed
+    /// build, generic features): the frame then goes through the HDR target as before.
+    bool inlinePrograms(BackgroundMode background, bool prefilteredReady,
+                        const LightingFeatures& features, const InlinePost& inlinePost,
+                        bool mayBuild, const ShaderProgram*& backgroundProgram,
+                        const ShaderProgram*& surfaces);
     /// The surfaces, from @p program (surfaceProgram()). With @p emission the geometry pass's
     /// emission is kept: result = surface + emission x alpha (lighting.frag's header), the
     /// target's alpha staying 1; without it the surfaces replace the black (no blend to pay).
-    void drawSurfaces(const ShaderProgram& program, bool emission);
+    /// @p displayValues: the program writes display values (inlinePrograms()), alpha 1 included.
+    void drawSurfaces(const ShaderProgram& program, bool emission, bool displayValues = false);
     /// The shadow-catching ground's pixels (GroundMode::ShadowCatcher, the final image only):
     /// the background times the light it receives (lighting.frag's LIGHTING_CATCHER). The
     /// surface variants discard those pixels.
@@ -91,17 +106,21 @@ private:
 
     /// The specialised program of @p v for @p features, built when @p mayBuild; null: use the
     /// generic one.
-    const ShaderProgram* specialised(Variant v, const LightingFeatures& features, bool mayBuild);
+    const ShaderProgram* specialised(Variant v, const LightingFeatures& features, bool mayBuild,
+                                     const InlinePost* inlinePost = nullptr);
+    /// The same by the features' defines.
+    const ShaderProgram* specialised(Variant v, std::vector<std::string> featureDefines,
+                                     bool mayBuild, const InlinePost* inlinePost);
 
     ShaderProgram m_programs[kCount];
-    /// Specialised surface programs by (variant, defines); null after a failed build. At most
-    /// kMaxSpecialised are kept, the least recently used evicted.
+    /// Specialised surface programs by (variant, defines, InlinePost::key); null after a failed
+    /// build. At most kMaxSpecialised are kept, the least recently used evicted.
     struct Specialised {
         std::unique_ptr<ShaderProgram> program;
         long lastUse = 0;
     };
     static constexpr size_t kMaxSpecialised = 12;
-    std::map<std::pair<int, std::vector<std::string>>, Specialised> m_specialised;
+    std::map<std::tuple<int, std::vector<std::string>, std::string>, Specialised> m_specialised;
     long m_useClock = 0;
     bool m_lastSpecialised = false, m_lastDeferred = false;
     int m_specialisationFailures = 0;

@@ -186,6 +186,57 @@ struct PostChainRenderer::Impl {
         return errors.empty();
     }
 
+    /// The tone-map operator of fused @p step when its tone maps agree (the usual one tone
+    /// map), rounded as post_tonemap.glsl rounds it; -1 when they differ or specialising is off.
+    int fixedOperator(const PostChain& chain, const PostPlan& plan,
+                      const PostPlanStep& step) const {
+        std::optional<int> toneMapOperator;
+        bool agree = specialiseOperators;
+        for (int index : step.effects) {
+            const EffectInstance& e = plan.effect(chain, index);
+            if (e.type != "tonemap")
+                continue;
+            const int op = int(effectFloat(e, "operator") + 0.5f);
+            agree = agree && op >= 0 && (!toneMapOperator || *toneMapOperator == op);
+            toneMapOperator = op;
+        }
+        return agree && toneMapOperator ? *toneMapOperator : -1;
+    }
+
+    /// The fusable classes of @p step's effects (built on first use); false + message.
+    bool fusedClasses(const PostChain& chain, const PostPlan& plan, const PostPlanStep& step,
+                      std::vector<const FusableEffect*>& classes, std::string* error) {
+        classes.clear();
+        for (int index : step.effects) {
+            const std::string& type = plan.effect(chain, index).type;
+            PostEffect* renderer = effect(type, error);
+            if (!renderer)
+                return false;
+            if (!renderer->fusable()) {
+                if (error)
+                    *error = "post chain: \"" + type +
+                             "\" is pointwise in the catalogue but its renderer cannot be fused";
+                return false;
+            }
+            classes.push_back(renderer->fusable());
+        }
+        return true;
+    }
+
+    /// The PostFrame block of @p in, bound at kPostFrameUbo.
+    void uploadFrameBlock(const PostRunInputs& in) {
+        PostFrameBlock block{};
+        block.viewProj = in.viewProj;
+        block.invViewProj = glm::inverse(in.viewProj);
+        block.prevViewProj = in.prevViewProj;
+        block.invProj = glm::inverse(in.proj);
+        block.viewport = glm::vec4(float(in.width), float(in.height), 1.0f / float(in.width),
+                                   1.0f / float(in.height));
+        block.misc = glm::vec4(in.time, std::exp2(in.exposureEv), 0.0f, 0.0f);
+        glNamedBufferSubData(ubo, 0, sizeof(block), &block);
+        glBindBufferBase(GL_UNIFORM_BUFFER, kPostFrameUbo, ubo);
+    }
+
     bool runStep(const PostChain& chain, const PostPlan& plan, const PostPlanStep& step,
                  const PostRunInputs& in, const std::string& encodingId, const PostTarget& input,
                  const PostTarget& output, std::string* error) {
@@ -219,33 +270,10 @@ struct PostChainRenderer::Impl {
             return true;
         }
         std::vector<const FusableEffect*> classes;
-        for (int index : step.effects) {
-            const std::string& type = plan.effect(chain, index).type;
-            PostEffect* renderer = effect(type, error);
-            if (!renderer)
-                return false;
-            if (!renderer->fusable()) {
-                if (error)
-                    *error = "post chain: \"" + type +
-                             "\" is pointwise in the catalogue but its renderer cannot be fused";
-                return false;
-            }
-            classes.push_back(renderer->fusable());
-        }
-        // The step's tone-map operator when its tone maps agree (the usual one tone map), rounded
-        // as post_tonemap.glsl rounds it; none (-1) when they differ or specialising is off.
-        std::optional<int> toneMapOperator;
-        bool agree = specialiseOperators;
-        for (int index : step.effects) {
-            const EffectInstance& e = plan.effect(chain, index);
-            if (e.type != "tonemap")
-                continue;
-            const int op = int(effectFloat(e, "operator") + 0.5f);
-            agree = agree && op >= 0 && (!toneMapOperator || *toneMapOperator == op);
-            toneMapOperator = op;
-        }
-        ShaderProgram* program = fused(step, classes, encodingId,
-                                       agree && toneMapOperator ? *toneMapOperator : -1, error);
+        if (!fusedClasses(chain, plan, step, classes, error))
+            return false;
+        ShaderProgram* program =
+            fused(step, classes, encodingId, fixedOperator(chain, plan, step), error);
         if (!program)
             return false;
         int base = 0;
@@ -305,16 +333,7 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
             ++it;
         }
 
-    PostFrameBlock block{};
-    block.viewProj = in.viewProj;
-    block.invViewProj = glm::inverse(in.viewProj);
-    block.prevViewProj = in.prevViewProj;
-    block.invProj = glm::inverse(in.proj);
-    block.viewport = glm::vec4(float(in.width), float(in.height), 1.0f / float(in.width),
-                               1.0f / float(in.height));
-    block.misc = glm::vec4(in.time, std::exp2(in.exposureEv), 0.0f, 0.0f);
-    glNamedBufferSubData(d.ubo, 0, sizeof(block), &block);
-    glBindBufferBase(GL_UNIFORM_BUFFER, kPostFrameUbo, d.ubo);
+    d.uploadFrameBlock(in);
     glBindSampler(kPostInputUnit, d.sampler);
     glBindSampler(kPostAuxUnit, d.sampler);
     glDisable(GL_BLEND);
@@ -357,6 +376,76 @@ bool PostChainRenderer::run(const PostChain& chain, const PostRunInputs& in, Pos
     result.displayEncoded = hasToneMap && !steps.empty();
     result.hdrTexture = result.displayEncoded ? 0 : current.texture;
     return true;
+}
+
+bool PostChainRenderer::inlineSource(const PostChain& chain, const PostRunInputs& in,
+                                     InlinePost& out) {
+    Impl& d = *m_impl;
+    d.init();
+    const PostPlan& plan = d.plans.plan(chain, {in.implicitToneMapper, in.forceDisplayTransform});
+    if (plan.steps.size() != 1 || plan.steps[0].kind != PostPlanStep::Kind::Fused ||
+        !plan.steps[0].encodes)
+        return false;
+    const PostPlanStep& step = plan.steps[0];
+    std::vector<const FusableEffect*> classes;
+    if (!d.fusedClasses(chain, plan, step, classes, nullptr))
+        return false;
+    // fusedPassSource's main as a function of the lit colour: the same effect functions at the
+    // same parameter slots, the same operator compiled in.
+    const int op = d.fixedOperator(chain, plan, step);
+    std::string text = "#define POST_INLINE\n";
+    if (op >= 0)
+        text += "#define TONEMAP_OPERATOR_FIXED " + std::to_string(op) + "\n";
+    text += "#include \"post_common.glsl\"\n";
+    std::vector<std::string> included;
+    for (const FusableEffect* e : classes)
+        if (std::find(included.begin(), included.end(), e->glslFile()) == included.end()) {
+            included.push_back(e->glslFile());
+            text += "#include \"" + e->glslFile() + "\"\n";
+        }
+    text += "vec4 postInline(vec4 c, ivec2 px) {\n";
+    int base = 0;
+    for (const FusableEffect* e : classes) {
+        text += "    c = " + e->glslFunction() + "(c, px, " + std::to_string(base) + ");\n";
+        base += e->slotCount();
+    }
+    text += "    return c;\n}\n";
+    const std::string encodingId = in.encoding ? in.encoding->cacheId() : std::string();
+    out.key = "chain:" + step.name + "@" + encodingId + "#" + std::to_string(op);
+    out.sources = {{"post_inline.glsl", std::move(text)}, {"post_params.glsl", postParamsGlsl()}};
+    for (auto& s : in.encoding ? in.encoding->sources(encodingId) : DisplayEncoding().sources(""))
+        out.sources.push_back(std::move(s));
+    return true;
+}
+
+void PostChainRenderer::bindInline(const PostChain& chain, const PostRunInputs& in,
+                                   const std::vector<unsigned>& programs) {
+    Impl& d = *m_impl;
+    d.init();
+    endFrame(); // no run this frame: last run's targets go back to the pool
+    const PostPlan& plan = d.plans.plan(chain, {in.implicitToneMapper, in.forceDisplayTransform});
+    std::vector<const FusableEffect*> classes;
+    if (plan.steps.size() != 1 || !d.fusedClasses(chain, plan, plan.steps[0], classes, nullptr))
+        return;
+    d.uploadFrameBlock(in);
+    for (unsigned program : programs) {
+        int base = 0;
+        for (size_t k = 0; k < classes.size(); ++k) {
+            classes[k]->upload(program, plan.effect(chain, plan.steps[0].effects[k]), base);
+            base += classes[k]->slotCount();
+        }
+        if (in.encoding)
+            in.encoding->setUniforms(program, in.encoding->cacheId());
+    }
+    if (in.encoding)
+        in.encoding->bindLuts();
+    d.encoding = in.encoding;
+    d.lastSteps = 0;
+}
+
+void PostChainRenderer::unbindInline() {
+    if (m_impl->encoding)
+        m_impl->encoding->unbindLuts();
 }
 
 void PostChainRenderer::setSpecialiseOperators(bool on) {

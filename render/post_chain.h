@@ -14,6 +14,7 @@
 /// Needs a current OpenGL 4.5 core context from the first run to destruction.
 
 #include "core/post_chain.h"
+#include "render/inline_post.h"
 
 #include <functional>
 #include <glm/mat4x4.hpp>
@@ -88,6 +89,18 @@ public:
              std::string* error);
     /// Hands the run's targets back to the pool and trims targets unused for a while.
     void endFrame();
+
+    /// The chain as the lighting pass's display step (issue 16): when its plan is one fused pass
+    /// that tone maps with a built-in curve — every enabled effect pointwise, so each pixel needs
+    /// only its own lit colour — that pass as lighting.frag's generated include
+    /// "post_inline.glsl" into @p out (its key names effects, encoding and operator); false
+    /// otherwise (the chain then runs on the HDR target). Builds the effects' classes it needs.
+    bool inlineSource(const PostChain& chain, const PostRunInputs& inputs, InlinePost& out);
+    /// Before drawing with programs built from inlineSource()'s sources for the same chain and
+    /// inputs: their parameters, the frame block and the encoding's LUTs (unbindInline() after).
+    void bindInline(const PostChain& chain, const PostRunInputs& inputs,
+                    const std::vector<unsigned>& programs);
+    void unbindInline();
 
     /// Recompiles from disk every program built so far (each effect's, the fused passes'): the
     /// renderer's shader reload (the editor's T). A program that fails to compile keeps its last

@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include "render/gbuffer_layout.h"
 #include "render/renderer_impl.h"
 
 #include <epoxy/gl.h>
@@ -261,7 +262,13 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     const bool emission =
         materialEmits(d.scene.material) || (fs.splitMaterial && materialEmits(*fs.splitMaterial));
     GeometryPassInputs geometry;
-    geometry.framebuffer = d.targets.geometryFramebuffer(emission, error);
+    // The lobe-channel targets only when a drawn record has a lobe map (B's is packed below:
+    // a split keeps them): every reader (gbuffer_read.glsl's readLobeChannels) skips them
+    // otherwise.
+    geometry.lobeTargets =
+        d.packedA.terms2.w != -1 || fs.splitMaterial.has_value() ||
+        (d.scene.environment.ground != GroundMode::Off && d.packedGround.terms2.w != -1);
+    geometry.framebuffer = d.targets.geometryFramebuffer(emission, geometry.lobeTargets, error);
     if (!geometry.framebuffer)
         return false;
     geometry.width = fs.width;
@@ -291,6 +298,19 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         if (!surfaceProgram)
             return false;
     }
+    // The display step inside the lighting pass (FrameSettings::displayOnly), decided under the
+    // same rule (its programs are specialised ones).
+    Impl::InlineDisplay inlineDisplay;
+    bool inlineFailed = false;
+    const bool inlined = d.chooseInlineDisplay(fs, block, targetFbo, display, emission,
+                                               inlineDisplay, inlineFailed, error);
+    if (inlineFailed)
+        return false;
+    d.passes = {};
+    for (int i = 0; i < gbufferColorAttachmentCount(); ++i)
+        d.passes.gbufferTargets +=
+            d.targets.gbuffer().texture(i) &&
+            (geometry.lobeTargets || !gbufferAttachments()[size_t(i)].lobeChannels);
     // The G-buffer programs specialised to A's and B's records, under the same rule.
     geometry.recordA = d.packedA;
     geometry.recordB = fs.splitMaterial ? d.packedB : d.packedA;
@@ -316,10 +336,12 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
                            block.viewProjMatrix, fs.width, fs.height, d.emptyVao);
     glViewport(0, 0, fs.width, fs.height);
 
-    // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only.
+    // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only
+    // (or, inline, into the display target with the display step compiled in).
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
-    glBindFramebuffer(GL_FRAMEBUFFER, d.targets.litFramebuffer());
+    glBindFramebuffer(GL_FRAMEBUFFER,
+                      inlined ? inlineDisplay.framebuffer : d.targets.litFramebuffer());
     d.targets.gbuffer().bindTextures();
     glBindTextureUnit(binding::kEnvironmentTex, d.environment->texture);
     glBindTextureUnit(binding::kSheenLutTex, d.ibl.sheenLut());
@@ -329,25 +351,12 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.stage.bind();
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glBindVertexArray(d.emptyVao);
-    if (!emission) // nothing in the HDR target yet: start from black, opaque
-        glClearBufferfv(GL_COLOR, 0, kNoEmission);
-    if (fs.view == DebugView::Final) // debug views: no background (the HDR target is black)
-        d.lighting.drawBackground(d.scene.environment.background, d.ibl.specularReady());
-    // With a shadow catcher only the mesh's rectangle needs the surface shading (render/stage.h).
-    int meshRect[4];
-    const bool scissored =
-        d.scene.environment.ground == GroundMode::ShadowCatcher &&
-        d.stage.meshRectangle(block.viewProjMatrix, fs.width, fs.height, meshRect);
-    if (scissored) {
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(meshRect[0], meshRect[1], meshRect[2], meshRect[3]);
-    }
-    d.lighting.drawSurfaces(*surfaceProgram, emission);
-    glDisable(GL_SCISSOR_TEST);
-    if (fs.view == DebugView::Final && d.scene.environment.ground == GroundMode::ShadowCatcher &&
-        !d.lighting.drawCatcher(emission, d.stageBackground(), error, // its own variant
-                                d.frameFeatures(fs), d.mayBuildSpecialised()))
+    if (inlined) { // the background and the surfaces cover every pixel: no clear
+        d.drawInlineDisplay(inlineDisplay);
+        d.passes.fullScreen += 2;
+    } else if (!d.drawLitPasses(fs, block, emission, *surfaceProgram, error)) {
         return false;
+    }
     glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
 
     // 4. Local lights: point, spot and area.
@@ -358,19 +367,29 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // HDR result feeds the display pass below (an empty chain changes nothing).
     unsigned finalInput = d.targets.hdr().texture();
     bool chainDisplayed = false;
-    if (fs.view == DebugView::Final && PostChainRenderer::hasEnabledEffects(d.scene.post)) {
+    if (!inlined && fs.view == DebugView::Final &&
+        PostChainRenderer::hasEnabledEffects(d.scene.post)) {
         if (!d.runPost(fs, block, targetFbo, display, finalInput, chainDisplayed, error))
             return false;
+        d.passes.fullScreen += d.post.lastStepCount();
         glViewport(0, 0, fs.width, fs.height);
         glBindVertexArray(d.emptyVao);
     }
     d.lastViewProj = block.viewProjMatrix;
     d.haveLastViewProj = true;
 
-    // 6. Display, into the target (unless the chain's tone map and LDR effects did it).
+    // 6. Display, into the target (unless the chain's tone map and LDR effects did it, or the
+    // lighting pass did: then a copy of the display target, same format, changes no value).
     glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
-    if (!chainDisplayed)
+    if (inlined) {
+        glBlitNamedFramebuffer(inlineDisplay.framebuffer, targetFbo, 0, 0, fs.width, fs.height, 0,
+                               0, fs.width, fs.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        d.passes.copies = 1;
+        d.passes.inlineDisplay = true;
+    } else if (!chainDisplayed) {
         d.display.draw(display, finalInput, fs.exposureEv);
+        ++d.passes.fullScreen;
+    }
     glQueryCounter(d.queries[3], GL_TIMESTAMP);
     d.queriesIssued = true;
 
@@ -394,7 +413,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
 Image Renderer::readLinear() const {
     const Impl& d = *m_impl;
     const ColorTarget& hdr = d.targets.hdr();
-    if (!d.initialized || !hdr.framebuffer())
+    if (!d.initialized || !hdr.framebuffer() || !d.passes.linear)
         return {};
     return readFramebuffer(hdr.framebuffer(), hdr.width(), hdr.height());
 }
@@ -404,6 +423,10 @@ Image Renderer::readDisplay() const {
     if (!d.initialized || d.lastWidth == 0)
         return {};
     return readFramebuffer(d.lastTarget, d.lastWidth, d.lastHeight);
+}
+
+FramePasses Renderer::lastFramePasses() const {
+    return m_impl->passes;
 }
 
 float Renderer::meshRadius() const {

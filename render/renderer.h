@@ -149,6 +149,31 @@ struct FrameSettings {
     /// target with linear filtering; 1 renders at full size. readLinear() then returns the
     /// reduced image, readDisplay() the stretched one.
     float renderScale = 1.0f;
+    /// The caller reads the display image only (its target, readDisplay()), not readLinear():
+    /// the renderer may then run the display step — the post chain when it is one fused pass
+    /// that tone maps, or the built-in curve — inside the lighting pass and never write the
+    /// scene-linear target (one full-screen pass and an HDR write and read fewer, issue 16; the
+    /// same pixels). Taken when the final image has no emission, no ground, no point, spot or
+    /// area light, a specialised lighting program and a single-sampled target (an 8-bit one
+    /// when it is the default framebuffer); Renderer::lastFramePasses() tells. readLinear() is
+    /// then empty.
+    bool displayOnly = false;
+};
+
+/// What the last frame drew after the G-buffer (Renderer::lastFramePasses).
+struct FramePasses {
+    /// Full-screen passes: the background, the surfaces, the shadow catcher, each post-chain
+    /// step and the display pass.
+    int fullScreen = 0;
+    /// Copies of a whole image (the display target into the caller's, FrameSettings::displayOnly).
+    int copies = 0;
+    /// The scene-linear target holds the frame (readLinear() has it).
+    bool linear = false;
+    /// The display step ran inside the lighting pass (FrameSettings::displayOnly).
+    bool inlineDisplay = false;
+    /// G-buffer colour targets cleared and written: the lobe-channel targets only when a drawn
+    /// material has a lobe map (or a split frame's B may have one).
+    int gbufferTargets = 0;
 };
 
 /// GPU timings of the last frame (GL timer queries; 0 where unavailable). Logged, never asserted.
@@ -247,8 +272,11 @@ public:
     /// without setScene.
     bool render(const FrameSettings& settings, unsigned targetFbo, std::string* error = nullptr);
 
-    /// The last frame's scene-linear HDR colour (before exposure and tone mapping), RGBA float.
+    /// The last frame's scene-linear HDR colour (before exposure and tone mapping), RGBA float;
+    /// empty after a frame that did not write it (FrameSettings::displayOnly).
     Image readLinear() const;
+    /// What the last frame drew after the G-buffer (passes, copies, the linear target).
+    FramePasses lastFramePasses() const;
     /// The last frame's display-encoded colour as written to the target, RGBA in [0, 1].
     Image readDisplay() const;
 

@@ -120,10 +120,140 @@ void Renderer::Impl::drawLocalLights(const FrameSettings& fs) {
                     targets.hdr().framebuffer(), targets.hdr().texture(), emptyVao);
 }
 
-bool Renderer::Impl::runPost(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
-                             const DisplayChoice& choice, unsigned& finalInput, bool& displayed,
-                             std::string* error) {
-    targets.gbuffer().bindTextures(); // depth and normals for motion blur, DoF, toon, vaporwave
+namespace {
+
+/// The format of the default framebuffer's colour buffer when it is an 8-bit one (what a
+/// window system gives), else 0.
+GLenum defaultColorFormat() {
+    if (glCheckNamedFramebufferStatus(0, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return 0; // none (a surfaceless context)
+    GLint samples = 0, doubleBuffered = 0;
+    glGetNamedFramebufferParameteriv(0, GL_SAMPLES, &samples);
+    glGetNamedFramebufferParameteriv(0, GL_DOUBLEBUFFER, &doubleBuffered);
+    const GLenum buffer = doubleBuffered ? GL_BACK_LEFT : GL_FRONT_LEFT;
+    GLint size[4] = {}, type = 0, encoding = 0;
+    const GLenum pnames[4] = {
+        GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE,
+        GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE};
+    for (int i = 0; i < 4; ++i)
+        glGetNamedFramebufferAttachmentParameteriv(0, buffer, pnames[i], &size[i]);
+    glGetNamedFramebufferAttachmentParameteriv(0, buffer, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE,
+                                               &type);
+    glGetNamedFramebufferAttachmentParameteriv(0, buffer, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING,
+                                               &encoding);
+    if (samples > 0 || type != GL_UNSIGNED_NORMALIZED || size[0] != 8 || size[1] != 8 ||
+        size[2] != 8 || (size[3] != 8 && size[3] != 0))
+        return 0;
+    const bool srgb = encoding == GL_SRGB;
+    return size[3] ? (srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8) : (srgb ? GL_SRGB8 : GL_RGB8);
+}
+
+/// The internal format of @p fbo's first colour attachment; 0 for a multisampled or layered
+/// one or one it cannot tell (the inline display step is then not taken).
+GLenum targetColorFormat(GLuint fbo) {
+    if (fbo == 0)
+        return defaultColorFormat();
+    GLint samples = 0, type = GL_NONE, name = 0, format = 0;
+    glGetNamedFramebufferParameteriv(fbo, GL_SAMPLES, &samples);
+    glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                               GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (samples > 0 || type == GL_NONE)
+        return 0;
+    glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                               GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    if (type == GL_TEXTURE) {
+        GLint level = 0;
+        glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
+        GLint layered = 0, target = 0;
+        glGetNamedFramebufferAttachmentParameteriv(fbo, GL_COLOR_ATTACHMENT0,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_LAYERED, &layered);
+        glGetTextureParameteriv(GLuint(name), GL_TEXTURE_TARGET, &target);
+        if (layered || target != GL_TEXTURE_2D)
+            return 0;
+        glGetTextureLevelParameteriv(GLuint(name), level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    } else if (type == GL_RENDERBUFFER) {
+        glGetNamedRenderbufferParameteriv(GLuint(name), GL_RENDERBUFFER_INTERNAL_FORMAT, &format);
+    }
+    return GLenum(format);
+}
+
+} // namespace
+
+bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlock& b,
+                                         unsigned targetFbo, const DisplayChoice& choice,
+                                         bool emission, InlineDisplay& out, bool& failed,
+                                         std::string* error) {
+    failed = false;
+    // Emission, the ground and the local lights add to the scene-linear target after the
+    // surfaces (or between them): those frames keep it.
+    if (!fs.displayOnly || fs.view != DebugView::Final || !specialisedPrograms || emission ||
+        scene.environment.ground != GroundMode::Off || lights.lightCount() != 0)
+        return false;
+    const GLenum format = targetColorFormat(targetFbo);
+    if (format == 0)
+        return false;
+    out.chain = PostChainRenderer::hasEnabledEffects(scene.post);
+    if (out.chain) {
+        out.inputs = postInputs(fs, b, targetFbo, choice);
+        if (!post.inlineSource(scene.post, out.inputs, out.source))
+            return false;
+    } else if (!display.inlineSource(choice, out.source)) {
+        return false;
+    }
+    if (!lighting.inlinePrograms(stageBackground(), ibl.specularReady(), frameFeatures(fs),
+                                 out.source, mayBuildSpecialised(), out.background, out.surfaces))
+        return false;
+    out.framebuffer = targets.displayFramebuffer(format, error);
+    failed = out.framebuffer == 0;
+    return !failed;
+}
+
+void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d) {
+    const std::vector<unsigned> programs{d.background->id(), d.surfaces->id()};
+    if (d.chain)
+        post.bindInline(scene.post, d.inputs, programs);
+    else
+        display.bindInline(programs);
+    lighting.drawBackground(*d.background);
+    lighting.drawSurfaces(*d.surfaces, /*emission=*/false, /*displayValues=*/true);
+    if (d.chain)
+        post.unbindInline();
+    else
+        display.unbindInline();
+}
+
+bool Renderer::Impl::drawLitPasses(const FrameSettings& fs, const FrameBlock& block, bool emission,
+                                   const ShaderProgram& surfaceProgram, std::string* error) {
+    if (!emission) // nothing in the HDR target yet: start from black, opaque
+        glClearBufferfv(GL_COLOR, 0, kNoEmission);
+    if (fs.view == DebugView::Final) { // debug views: no background (the HDR target is black)
+        lighting.drawBackground(scene.environment.background, ibl.specularReady());
+        ++passes.fullScreen;
+    }
+    // With a shadow catcher only the mesh's rectangle needs the surface shading (render/stage.h).
+    int meshRect[4];
+    const bool scissored = scene.environment.ground == GroundMode::ShadowCatcher &&
+                           stage.meshRectangle(block.viewProjMatrix, fs.width, fs.height, meshRect);
+    if (scissored) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(meshRect[0], meshRect[1], meshRect[2], meshRect[3]);
+    }
+    lighting.drawSurfaces(surfaceProgram, emission);
+    ++passes.fullScreen;
+    glDisable(GL_SCISSOR_TEST);
+    if (fs.view == DebugView::Final && scene.environment.ground == GroundMode::ShadowCatcher) {
+        if (!lighting.drawCatcher(emission, stageBackground(), error, // its own variant
+                                  frameFeatures(fs), mayBuildSpecialised()))
+            return false;
+        ++passes.fullScreen;
+    }
+    passes.linear = true;
+    return true;
+}
+
+PostRunInputs Renderer::Impl::postInputs(const FrameSettings& fs, const FrameBlock& b,
+                                         unsigned targetFbo, const DisplayChoice& choice) {
     PostRunInputs in;
     in.hdrTexture = targets.hdr().texture();
     in.width = fs.width;
@@ -152,6 +282,14 @@ bool Renderer::Impl::runPost(const FrameSettings& fs, const FrameBlock& b, unsig
         return true;
     };
     in.finalFbo = targetFbo;
+    return in;
+}
+
+bool Renderer::Impl::runPost(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
+                             const DisplayChoice& choice, unsigned& finalInput, bool& displayed,
+                             std::string* error) {
+    targets.gbuffer().bindTextures(); // depth and normals for motion blur, DoF, toon, vaporwave
+    const PostRunInputs in = postInputs(fs, b, targetFbo, choice);
     PostRunResult r;
     if (!post.run(scene.post, in, r, error))
         return false;

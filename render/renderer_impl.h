@@ -133,6 +133,7 @@ struct Renderer::Impl {
 
     unsigned lastTarget = 0;
     int lastWidth = 0, lastHeight = 0;
+    FramePasses passes; ///< the last frame's (Renderer::lastFramePasses)
     mutable FrameTimings timings;
     double cpuMs = 0;
     /// Uploads since construction; graphCompiles and graphValueUploads come from graph.
@@ -279,6 +280,31 @@ struct Renderer::Impl {
                       const ShaderProgram*& surfaceProgram, std::string* error);
     /// The point, spot and area lights, added on top by the path the frame asks for.
     void drawLocalLights(const FrameSettings& fs);
+    /// The display step inside the lighting pass (FrameSettings::displayOnly, issue 16): its
+    /// source, the background and surface programs built with it, the display framebuffer.
+    struct InlineDisplay {
+        InlinePost source;
+        bool chain = false; ///< the post chain's fused pass (else the built-in curve)
+        PostRunInputs inputs;
+        const ShaderProgram* background = nullptr;
+        const ShaderProgram* surfaces = nullptr;
+        unsigned framebuffer = 0;
+    };
+    /// Whether this frame takes the inline path (FrameSettings::displayOnly's conditions, the
+    /// programs built or allowed to build); fills @p out. False + message only on a GL failure
+    /// (@p failed set).
+    bool chooseInlineDisplay(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
+                             const DisplayChoice& choice, bool emission, InlineDisplay& out,
+                             bool& failed, std::string* error);
+    /// Draws the background and the surfaces with the inline programs into out.framebuffer.
+    void drawInlineDisplay(const InlineDisplay& d);
+    /// The background, the surfaces and the shadow catcher into the bound HDR target (cleared
+    /// first unless the geometry pass wrote emission into it). False + message.
+    bool drawLitPasses(const FrameSettings& fs, const FrameBlock& block, bool emission,
+                       const ShaderProgram& surfaceProgram, std::string* error);
+    /// The chain's inputs for this frame (runPost, the inline display step).
+    PostRunInputs postInputs(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
+                             const DisplayChoice& choice);
     /// Runs scene.post on the lit HDR target (render/post_chain.h); @p finalInput becomes its
     /// HDR result, or @p displayed is set when the chain wrote the target itself.
     bool runPost(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,

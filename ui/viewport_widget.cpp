@@ -363,7 +363,7 @@ void ViewportWidget::paintGL() {
     paintOverlay();
 }
 
-bool ViewportWidget::drawFrame(unsigned fbo) {
+bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
     if (m_pendingParts != ScenePart::None) {
         Problems problems;
         m_renderer->update(m_scene, m_pendingParts, &problems);
@@ -387,6 +387,7 @@ bool ViewportWidget::drawFrame(unsigned fbo) {
     settings.splitSwapped = m_splitSwapped;
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
     settings.time = float(animationTime());
+    settings.displayOnly = displayOnly;
 
     QElapsedTimer timer;
     timer.start();
@@ -434,7 +435,7 @@ QImage ViewportWidget::grabFramebuffer(Image* linear) {
     const QSize size = frameSize();
     if (!m_grabTarget->resize(size.width(), size.height(), &error)) {
         qWarning("velvet: grabFramebuffer: %s", error.c_str());
-    } else if (drawFrame(m_grabTarget->framebuffer())) {
+    } else if (drawFrame(m_grabTarget->framebuffer(), /*displayOnly=*/linear == nullptr)) {
         const Image frame = m_renderer->readDisplay(); // top row first, display-encoded RGBA
         result = QImage(frame.width, frame.height, QImage::Format_RGB32);
         for (int y = 0; y < frame.height; ++y) {

@@ -218,7 +218,8 @@ private:
     /// @}
 
     /// Hands dirty state to the renderer and draws one frame into @p fbo; false when it failed.
-    bool drawFrame(unsigned fbo);
+    /// @p displayOnly: nothing reads the frame's linear image (render::FrameSettings).
+    bool drawFrame(unsigned fbo, bool displayOnly = true);
 
     void setViewCamera(const Camera& camera);
     void flyStep();

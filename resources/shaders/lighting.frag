@@ -27,6 +27,19 @@
 
 layout(location = 0) out vec4 outColor;
 
+// LIGHTING_INLINE_POST (the final image's background and surfaces, no emission): the display
+// step — the post chain's one fused pass, or the built-in tone curve — compiled in as the
+// generated include's `vec4 postInline(vec4 linear, ivec2 px)`, so the lit colour goes to the
+// display target without the HDR target and a full-screen pass of its own (issue 16).
+#if defined(LIGHTING_INLINE_POST)
+#include "post_inline.glsl"
+vec4 finalColor(vec3 linear, float alpha) {
+    return postInline(vec4(linear, 1.0), ivec2(gl_FragCoord.xy));
+}
+#else
+vec4 finalColor(vec3 linear, float alpha) { return vec4(linear, alpha); }
+#endif
+
 vec3 background(vec2 ndcXY) {
     vec3 dirView = frame.cameraPosition.w > 0.5
                        ? vec3(0.0, 0.0, -1.0)
@@ -38,7 +51,7 @@ vec3 background(vec2 ndcXY) {
 #if defined(LIGHTING_BACKGROUND)
 void main() {
     vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
-    outColor = vec4(background(ndcXY), 1.0);
+    outColor = finalColor(background(ndcXY), 1.0);
 }
 #elif defined(LIGHTING_CATCHER)
 // The shadow catcher's pixels only (stage_shading.glsl): the background times how much of the
@@ -156,7 +169,7 @@ void main() {
         color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, pixel),
                     groundFade(p.posWorld));
 #endif
-    outColor = vec4(color, keepEmission); // + emission x alpha, by the blend (see the header)
+    outColor = finalColor(color, keepEmission); // + emission x alpha, by the blend (the header)
 #endif
 }
 #endif // LIGHTING_BACKGROUND

@@ -18,8 +18,12 @@ layout(location = POST_TEXEL_LOCATION) uniform vec4 uTexel;
 #define POST_PASS uPass.x
 #endif
 
+// A chain drawn inside the lighting pass (POST_INLINE, render/post_chain.h inlineSource) reads
+// the lit colour, not an image, and its units hold the lighting's own textures.
+#ifndef POST_INLINE
 layout(binding = POST_INPUT_UNIT) uniform sampler2D uInput; // bilinear, clamped
 layout(binding = POST_AUX_UNIT) uniform sampler2D uAux;     // a second image (pre-pass, blur)
+#endif
 
 // PostFrame (instance `post`), generated from render/render_interface.cpp's PostFrameBlock.
 #include "post_interface.glsl"
