@@ -399,4 +399,30 @@ void generateMikkTSpaceTangents(MeshData& mesh) {
             mesh.vertices[v].tangent = glm::vec4(anyOrthogonal(mesh.vertices[v].normal), 1.0f);
 }
 
+void generateMikkTSpaceTangents(MeshData& mesh, size_t firstVertex, size_t vertexCount,
+                                size_t firstIndex, size_t indexCount) {
+    if (firstVertex == 0 && vertexCount == mesh.vertices.size() && firstIndex == 0 &&
+        indexCount == mesh.indices.size()) {
+        generateMikkTSpaceTangents(mesh);
+        return;
+    }
+    MeshData part;
+    part.vertices.assign(mesh.vertices.begin() + std::ptrdiff_t(firstVertex),
+                         mesh.vertices.begin() + std::ptrdiff_t(firstVertex + vertexCount));
+    part.indices.reserve(indexCount);
+    for (size_t i = firstIndex; i < firstIndex + indexCount; ++i)
+        part.indices.push_back(mesh.indices[i] - std::uint32_t(firstVertex));
+    generateMikkTSpaceTangents(part);
+    std::copy_n(part.vertices.begin(), vertexCount,
+                mesh.vertices.begin() + std::ptrdiff_t(firstVertex));
+    const auto extra = std::uint32_t(mesh.vertices.size());
+    mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin() + std::ptrdiff_t(vertexCount),
+                         part.vertices.end());
+    for (size_t i = 0; i < part.indices.size(); ++i) {
+        const std::uint32_t v = part.indices[i];
+        mesh.indices[firstIndex + i] = v < vertexCount ? std::uint32_t(firstVertex + v)
+                                                       : extra + std::uint32_t(v - vertexCount);
+    }
+}
+
 } // namespace velvet

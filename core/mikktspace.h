@@ -39,4 +39,11 @@ CornerTangents mikkTSpaceCornerTangents(const MeshData& mesh);
 /// vector orthogonal to their normal.
 void generateMikkTSpaceTangents(MeshData& mesh);
 
+/// The same for one part of @p mesh — one of a file's meshes, such as a glTF primitive, which
+/// the glTF specification gives its own tangents: the triangles of indices[firstIndex,
+/// firstIndex + indexCount), which use only vertices [firstVertex, firstVertex + vertexCount).
+/// Split copies are appended at the end of the mesh's vertices.
+void generateMikkTSpaceTangents(MeshData& mesh, size_t firstVertex, size_t vertexCount,
+                                size_t firstIndex, size_t indexCount);
+
 } // namespace velvet
