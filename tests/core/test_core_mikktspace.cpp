@@ -135,6 +135,47 @@ std::string roofObj() {
     return obj.str();
 }
 
+/// A unit quad in the XY plane facing +z, UVs in glTF's space (v down the image = -y), as a
+/// .gltf with its buffer in a data URI; with a TANGENT attribute when @p tangent has a w.
+std::string quadGltf(const glm::vec4* tangent) {
+    const float pos[12] = {0, 0, 0, 1, 0, 0, 1, -1, 0, 0, -1, 0};
+    const float nrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const float uv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    const std::uint16_t idx[6] = {0, 3, 2, 0, 2, 1};
+    QByteArray buffer;
+    const auto add = [&](const void* data, int bytes) {
+        const int offset = int(buffer.size());
+        buffer.append(static_cast<const char*>(data), bytes);
+        return std::to_string(offset);
+    };
+    std::string views = "{\"buffer\":0,\"byteOffset\":" + add(pos, 48) + ",\"byteLength\":48},";
+    views += "{\"buffer\":0,\"byteOffset\":" + add(nrm, 48) + ",\"byteLength\":48},";
+    views += "{\"buffer\":0,\"byteOffset\":" + add(uv, 32) + ",\"byteLength\":32},";
+    views += "{\"buffer\":0,\"byteOffset\":" + add(idx, 12) + ",\"byteLength\":12}";
+    std::string accessors =
+        "{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+        "\"min\":[0,-1,0],\"max\":[1,0,0]},"
+        "{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},"
+        "{\"bufferView\":2,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
+        "{\"bufferView\":3,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}";
+    std::string attributes = "\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2";
+    if (tangent) {
+        float tan[16];
+        for (int v = 0; v < 4; ++v)
+            for (int k = 0; k < 4; ++k)
+                tan[v * 4 + k] = (*tangent)[k];
+        views += ",{\"buffer\":0,\"byteOffset\":" + add(tan, 64) + ",\"byteLength\":64}";
+        accessors += ",{\"bufferView\":4,\"componentType\":5126,\"count\":4,\"type\":\"VEC4\"}";
+        attributes += ",\"TANGENT\":4";
+    }
+    return "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+           "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{" +
+           attributes + "},\"indices\":3}]}],\"accessors\":[" + accessors + "],\"bufferViews\":[" +
+           views + "],\"buffers\":[{\"byteLength\":" + std::to_string(buffer.size()) +
+           ",\"uri\":\"data:application/octet-stream;base64," + buffer.toBase64().toStdString() +
+           "\"}]}";
+}
+
 struct Reference {
     std::vector<float> tangents; ///< 4 per corner, the reference's own sign convention
     double cpuMs = 0.0;
@@ -358,6 +399,30 @@ private slots:
             down += v.normal.z < -0.6f;
         }
         QCOMPARE(up + down, int(m.vertices.size()));
+    }
+    // A glTF primitive's TANGENT is the file's frame and stays (made orthogonal to the normal:
+    // (0.2, 1, 0.5) on a +z quad becomes (0.2, 1, 0) normalised), w included; without the
+    // attribute the same quad gets MikkTSpace's dP/du = +x, w = 1 (v runs down the image = -y).
+    void gltfTangentIsKept() {
+        const glm::vec4 fileTangent(0.2f, 1.0f, 0.5f, -1.0f);
+        for (const bool withTangent : {true, false}) {
+            const QString file = dir_.path() + (withTangent ? "/tangent.gltf" : "/plain.gltf");
+            std::ofstream(file.toStdString()) << quadGltf(withTangent ? &fileTangent : nullptr);
+            MeshData m;
+            std::string error;
+            QVERIFY2(importMeshInProcess(file.toStdString(), m, &error), error.c_str());
+            QCOMPARE(m.triangleCount(), size_t(2));
+            const glm::vec4 expected = withTangent
+                                           ? glm::vec4(glm::normalize(glm::vec3(0.2f, 1, 0)), -1)
+                                           : glm::vec4(1, 0, 0, 1);
+            for (const Vertex& v : m.vertices) {
+                QVERIFY2(
+                    glm::length(glm::vec3(v.tangent) - glm::vec3(expected)) < 1e-5f,
+                    qPrintable(
+                        QString("%1 %2 %3").arg(v.tangent.x).arg(v.tangent.y).arg(v.tangent.z)));
+                QCOMPARE(v.tangent.w, expected.w);
+            }
+        }
     }
 };
 
