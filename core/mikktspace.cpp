@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <unordered_map>
 
 // Mikkelsen 2008, "Simulation of Wrinkled Surfaces Revisited" (master's thesis, University of
@@ -86,10 +87,17 @@ struct Triangle {
     bool orientPreserving() const { return (flags & kOrientPreserving) != 0; }
 };
 
+/// The triangles around one welded vertex that share edges and an orientation. A group is
+/// complete before the next starts, so all groups' faces lie in one array, each group a run.
 struct Group {
     int vertex;
     bool orientPreserving;
+    size_t first = 0, count = 0; ///< the group's run in Groups::faces
+};
+struct Groups {
+    std::vector<Group> groups;
     std::vector<int> faces;
+    std::span<const int> of(const Group& g) const { return {faces.data() + g.first, g.count}; }
 };
 
 /// A corner's frame: the reference's placeholder until a group defines it.
@@ -167,7 +175,7 @@ void findNeighbours(std::vector<Triangle>& tris, int valid) {
         int i0, i1, f, e;
     };
     std::vector<Edge> edges;
-    edges.reserve(size_t(valid) * 3);
+    edges.reserve(tris.size() * 3);
     for (int f = 0; f < valid; ++f)
         for (int e = 0; e < 3; ++e) {
             const int a = tris[f].v[e], b = tris[f].v[(e + 1) % 3];
@@ -199,13 +207,12 @@ void findNeighbours(std::vector<Triangle>& tris, int valid) {
 /// reference's depth-first order (AssignRecur: the neighbour across edge i, then across edge
 /// i - 1): the first group a "group with any" triangle joins sets its orientation, the only
 /// order dependence of the algorithm.
-void growGroup(std::vector<Triangle>& tris, std::vector<Group>& groups, int g,
-               std::vector<int>& stack) {
+void growGroup(std::vector<Triangle>& tris, Groups& groups, int g, std::vector<int>& stack) {
     while (!stack.empty()) {
         Triangle& tri = tris[stack.back()];
         const int t = stack.back();
         stack.pop_back();
-        Group& group = groups[g];
+        Group& group = groups.groups[size_t(g)];
         const int i = tri.corner(group.vertex);
         if (tri.group[i] != -1)
             continue;
@@ -215,7 +222,8 @@ void growGroup(std::vector<Triangle>& tris, std::vector<Group>& groups, int g,
                         (group.orientPreserving ? kOrientPreserving : 0u);
         if (tri.orientPreserving() != group.orientPreserving)
             continue;
-        group.faces.push_back(t);
+        groups.faces.push_back(t);
+        ++group.count;
         tri.group[i] = g;
         if (const int right = tri.neighbour[i > 0 ? i - 1 : 2]; right >= 0)
             stack.push_back(right);
@@ -225,16 +233,18 @@ void growGroup(std::vector<Triangle>& tris, std::vector<Group>& groups, int g,
 }
 
 /// One group per corner of a valid triangle not yet grouped (reference: Build4RuleGroups).
-std::vector<Group> buildGroups(std::vector<Triangle>& tris, int valid) {
-    std::vector<Group> groups;
+Groups buildGroups(std::vector<Triangle>& tris, int valid) {
+    Groups groups;
+    groups.faces.reserve(tris.size() * 3);
     std::vector<int> stack;
     for (int f = 0; f < valid; ++f)
         for (int i = 0; i < 3; ++i) {
             Triangle& tri = tris[f];
             if ((tri.flags & kGroupWithAny) || tri.group[i] != -1)
                 continue;
-            const int g = int(groups.size());
-            groups.push_back({tri.v[i], tri.orientPreserving(), {f}});
+            const int g = int(groups.groups.size());
+            groups.groups.push_back({tri.v[i], tri.orientPreserving(), groups.faces.size(), 1});
+            groups.faces.push_back(f);
             tri.group[i] = g;
             stack.clear();
             if (const int right = tri.neighbour[i > 0 ? i - 1 : 2]; right >= 0)
@@ -248,8 +258,8 @@ std::vector<Group> buildGroups(std::vector<Triangle>& tris, int valid) {
 
 /// The tangent of a set of triangles around @p vertex (reference: EvalTspace): each valid
 /// triangle's dP/ds in the normal's plane, weighted by its angle at the vertex.
-V3 groupTangent(const std::vector<int>& faces, const std::vector<Triangle>& tris,
-                const MeshData& mesh, int vertex) {
+V3 groupTangent(std::span<const int> faces, const std::vector<Triangle>& tris, const MeshData& mesh,
+                int vertex) {
     V3 sum;
     const V3 n = of(mesh.vertices[vertex].normal);
     for (const int f : faces) {
@@ -269,37 +279,60 @@ V3 groupTangent(const std::vector<int>& faces, const std::vector<Triangle>& tris
     return notZero(sum) ? normalize(sum) : sum;
 }
 
+/// Buffers groupSpaces() reuses from one group to the next.
+struct Scratch {
+    std::vector<V3> os, ot;
+    std::vector<int> members, subgroupMembers;
+    std::vector<size_t> subgroupStart; ///< each subgroup's run in subgroupMembers, and the end
+    std::vector<V3> subgroupTangents;
+};
+
 /// The frames of one group's corners (reference: GenerateTSpaces). Each triangle's corner takes
 /// the frame of the triangles of the group whose projected derivatives agree with its own
 /// within the threshold; equal member sets share one evaluation.
-void groupSpaces(const Group& group, int g, const std::vector<Triangle>& tris, const MeshData& mesh,
-                 std::vector<Space>& spaces) {
+void groupSpaces(std::span<const int> faces, const Group& group, int g,
+                 const std::vector<Triangle>& tris, const MeshData& mesh,
+                 std::vector<Space>& spaces, Scratch& s) {
     const V3 n = of(mesh.vertices[group.vertex].normal);
-    std::vector<std::vector<int>> subgroups;
-    std::vector<V3> subgroupTangents;
-    std::vector<int> members;
-    for (const int f : group.faces) {
+    // Each face's derivatives projected into the normal's plane once (the reference projects
+    // them again for every pair; the same floats either way).
+    s.os.resize(faces.size());
+    s.ot.resize(faces.size());
+    for (size_t k = 0; k < faces.size(); ++k) {
+        s.os[k] = projected(tris[faces[k]].os, n);
+        s.ot[k] = projected(tris[faces[k]].ot, n);
+    }
+    s.subgroupMembers.clear();
+    s.subgroupStart.assign(1, 0);
+    s.subgroupTangents.clear();
+    for (size_t k = 0; k < faces.size(); ++k) {
+        const int f = faces[k];
         const Triangle& tf = tris[f];
         const int index = tf.group[0] == g ? 0 : tf.group[1] == g ? 1 : 2;
-        const V3 os = projected(tf.os, n), ot = projected(tf.ot, n);
+        std::vector<int>& members = s.members;
         members.clear();
-        for (const int t : group.faces) {
-            const Triangle& tt = tris[t];
-            const bool any = ((tf.flags | tt.flags) & kGroupWithAny) != 0;
+        for (size_t j = 0; j < faces.size(); ++j) {
+            const int t = faces[j];
+            const bool any = ((tf.flags | tris[t].flags) & kGroupWithAny) != 0;
             if (any || f == t ||
-                (dot(os, projected(tt.os, n)) > kThresholdCos &&
-                 dot(ot, projected(tt.ot, n)) > kThresholdCos))
+                (dot(s.os[k], s.os[j]) > kThresholdCos && dot(s.ot[k], s.ot[j]) > kThresholdCos))
                 members.push_back(t);
         }
         std::sort(members.begin(), members.end());
         size_t l = 0;
-        while (l < subgroups.size() && subgroups[l] != members)
+        const size_t subgroups = s.subgroupTangents.size();
+        while (l < subgroups &&
+               !std::equal(members.begin(), members.end(),
+                           s.subgroupMembers.begin() + std::ptrdiff_t(s.subgroupStart[l]),
+                           s.subgroupMembers.begin() + std::ptrdiff_t(s.subgroupStart[l + 1])))
             ++l;
-        if (l == subgroups.size()) {
-            subgroups.push_back(members);
-            subgroupTangents.push_back(groupTangent(members, tris, mesh, group.vertex));
+        if (l == subgroups) {
+            s.subgroupMembers.insert(s.subgroupMembers.end(), members.begin(), members.end());
+            s.subgroupStart.push_back(s.subgroupMembers.size());
+            s.subgroupTangents.push_back(groupTangent(members, tris, mesh, group.vertex));
         }
-        spaces[size_t(f) * 3 + size_t(index)] = {subgroupTangents[l], group.orientPreserving, true};
+        spaces[size_t(f) * 3 + size_t(index)] = {s.subgroupTangents[l], group.orientPreserving,
+                                                 true};
     }
 }
 
@@ -330,10 +363,12 @@ CornerTangents mikkTSpaceCornerTangents(const MeshData& mesh) {
     for (int f = 0; f < valid; ++f)
         initTriangle(tris[size_t(f)], mesh);
     findNeighbours(tris, valid);
-    const std::vector<Group> groups = buildGroups(tris, valid);
+    const Groups groups = buildGroups(tris, valid);
+    Scratch scratch;
     std::vector<Space> spaces(tris.size() * 3);
-    for (size_t g = 0; g < groups.size(); ++g)
-        groupSpaces(groups[g], int(g), tris, mesh, spaces);
+    for (size_t g = 0; g < groups.groups.size(); ++g)
+        groupSpaces(groups.of(groups.groups[g]), groups.groups[g], int(g), tris, mesh, spaces,
+                    scratch);
 
     // Degenerate triangles' corners (reference: DegenEpilogue).
     std::unordered_map<int, size_t> firstCorner;
