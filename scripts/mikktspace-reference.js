@@ -7,7 +7,8 @@
 // IN: little-endian: uint32 corner count N (a multiple of 3: unindexed triangles), then float32
 // positions (3N), normals (3N), texture coordinates (2N). OUT: float32 tangents (4N) exactly as
 // the reference returns them (its sign convention: w is not negated for glTF's UV space).
-// Prints {"corners": N, "ms": wall time, "cpu_ms": CPU time of the generateTangents call}.
+// Prints {"corners": N, "first_cpu_ms", "cpu_ms", "ms"}: the CPU time of the first
+// generateTangents call and the CPU and wall time of a second one.
 // Exit status: 0 done, 2 nothing computed (package missing, unreadable or malformed input).
 // VELVET_NODE_TOOLS names another tools folder.
 'use strict';
@@ -45,14 +46,22 @@ const floats = new Float32Array(new Uint8Array(bytes.subarray(4)).buffer);
 const position = floats.slice(0, 3 * n);
 const normal = floats.slice(3 * n, 6 * n);
 const texcoord = floats.slice(6 * n, 8 * n);
-const start = process.hrtime.bigint();
-const cpuStart = process.cpuUsage();
-const tangents = mikktspace.generateTangents(position, normal, texcoord);
-const cpu = process.cpuUsage(cpuStart);
-const ms = Number(process.hrtime.bigint() - start) / 1e6;
+// Timed twice: the first call includes compiling the WebAssembly module's code.
+const timed = () => {
+  const start = process.hrtime.bigint();
+  const cpuStart = process.cpuUsage();
+  const result = mikktspace.generateTangents(position, normal, texcoord);
+  const cpu = process.cpuUsage(cpuStart);
+  return {result, ms: Number(process.hrtime.bigint() - start) / 1e6,
+          cpuMs: (cpu.user + cpu.system) / 1000};
+};
+const first = timed();
+const second = timed();
+const tangents = first.result;
 if (tangents.length !== 4 * n) {
   console.error(`mikktspace-reference: ${input}: ${tangents.length / 4} tangents for ${n} corners`);
   process.exit(2);
 }
 fs.writeFileSync(output, Buffer.from(tangents.buffer, tangents.byteOffset, tangents.byteLength));
-console.log(JSON.stringify({corners: n, ms, cpu_ms: (cpu.user + cpu.system) / 1000}));
+console.log(JSON.stringify({corners: n, first_cpu_ms: first.cpuMs, cpu_ms: second.cpuMs,
+                            ms: second.ms}));
