@@ -221,6 +221,8 @@ bool checkMeshFile(const std::filesystem::path& file, std::string* error,
     return true;
 }
 
+namespace {
+
 /// One of the file's meshes in the merged mesh (a glTF primitive).
 struct MeshPart {
     size_t firstVertex, vertexCount, firstIndex, indexCount;
@@ -242,6 +244,8 @@ bool orthonormalizeTangents(MeshData& mesh, const MeshPart& part) {
     }
     return true;
 }
+
+} // namespace
 
 /// Faces meeting at a larger angle get separate normals where a file has none.
 constexpr float kCreaseAngleDeg = 60.0f;
