@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 #include "core/mesh_nesting.h"
 #include "core/mesh_tangents.h"
+#include "core/mikktspace.h"
 
 #include <algorithm>
 #include <assimp/BaseImporter.h>
@@ -220,6 +221,32 @@ bool checkMeshFile(const std::filesystem::path& file, std::string* error,
     return true;
 }
 
+namespace {
+
+/// One of the file's meshes in the merged mesh (a glTF primitive).
+struct MeshPart {
+    size_t firstVertex, vertexCount, firstIndex, indexCount;
+    bool fileTangents; ///< the vertices' tangents are the file's
+};
+
+/// Makes a part's file tangents unit and orthogonal to their normals (Gram-Schmidt; glTF asks
+/// for unit tangents but does not require exact orthogonality). False when one is not finite
+/// or along its normal: the part then gets MikkTSpace instead.
+bool orthonormalizeTangents(MeshData& mesh, const MeshPart& part) {
+    for (size_t v = part.firstVertex; v < part.firstVertex + part.vertexCount; ++v) {
+        Vertex& vert = mesh.vertices[v];
+        const glm::vec3 t = glm::vec3(vert.tangent);
+        const glm::vec3 ortho = t - vert.normal * glm::dot(vert.normal, t);
+        const float len = glm::length(ortho);
+        if (!(len > 1e-6f * glm::length(t)) || !std::isfinite(len))
+            return false;
+        vert.tangent = glm::vec4(ortho / len, vert.tangent.w);
+    }
+    return true;
+}
+
+} // namespace
+
 /// Faces meeting at a larger angle get separate normals where a file has none.
 constexpr float kCreaseAngleDeg = 60.0f;
 
@@ -262,12 +289,20 @@ bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::
     result.vertices.reserve(size_t(vertices));
     result.indices.reserve(size_t(triangles) * 3);
     bool missingNormals = false;
+    // glTF gives each primitive (one Assimp mesh) its own TANGENT, or none: then MikkTSpace
+    // (glTF 2.0 §3.7.2.1). Other formats' tangents are not read: their importers disagree on
+    // the bitangent's convention, so those meshes always get MikkTSpace, as bakers expect.
+    const std::string ext = lower(file.extension().string());
+    const bool gltf = ext == ".gltf" || ext == ".glb";
+    std::vector<MeshPart> parts;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[m];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
             continue;
         const auto base = std::uint32_t(result.vertices.size());
         missingNormals |= mesh->mNormals == nullptr;
+        const bool fileTangents = gltf && mesh->mNormals && mesh->mTangents && mesh->mBitangents;
+        parts.push_back({base, mesh->mNumVertices, result.indices.size(), 0, fileTangents});
         for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& p = mesh->mVertices[v];
             if (!finite(p))
@@ -280,6 +315,14 @@ bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::
                     glm::vec3(mesh->mNormals[v].x, mesh->mNormals[v].y, mesh->mNormals[v].z);
             if (mesh->mTextureCoords[0])
                 vert.uv = glm::vec2(mesh->mTextureCoords[0][v].x, mesh->mTextureCoords[0][v].y);
+            if (fileTangents) {
+                // Assimp's glTF importer gives bitangent = cross(n, t) * w; w comes back as its
+                // sign along cross(n, t), after the node transforms.
+                const aiVector3D& t = mesh->mTangents[v];
+                const aiVector3D& b = mesh->mBitangents[v];
+                const aiVector3D c = mesh->mNormals[v] ^ t;
+                vert.tangent = glm::vec4(t.x, t.y, t.z, c * b < 0.0f ? -1.0f : 1.0f);
+            }
             result.vertices.push_back(vert);
         }
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
@@ -289,6 +332,7 @@ bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::
             for (int k = 0; k < 3; ++k)
                 result.indices.push_back(base + face.mIndices[k]);
         }
+        parts.back().indexCount = result.indices.size() - parts.back().firstIndex;
     }
     if (missingNormals)
         generateNormals(result); // GenSmoothNormals covers this; kept for degenerate inputs
@@ -296,8 +340,13 @@ bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::
         const float len = glm::length(v.normal);
         v.normal = len > 0.0f ? v.normal / len : glm::vec3(0.0f, 1.0f, 0.0f);
     }
-    generateTangents(result);
+    // Fitted first, so the tangents are MikkTSpace's of the positions Velvet draws (the same
+    // frames: a uniform scale and a shift change no direction, but could round differently).
     fitToUnitBox(result, 1.0f);
+    for (const MeshPart& part : parts)
+        if (!part.fileTangents || !orthonormalizeTangents(result, part))
+            generateMikkTSpaceTangents(result, part.firstVertex, part.vertexCount, part.firstIndex,
+                                       part.indexCount);
     out = std::move(result);
     return true;
 }

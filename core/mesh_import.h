@@ -31,9 +31,11 @@ bool checkMeshFile(const std::filesystem::path& file, std::string* error,
 /// Imports @p file in this process with Assimp: checkMeshFile(), then triangulate, pre-transform
 /// and merge every mesh into one, drop points and lines, generate normals where missing
 /// (smooth, except across edges sharper than a 60-degree crease angle: a cube stays hard-edged),
-/// generate tangents (core/mesh_tangents.h, always: importers disagree on bitangent conventions),
-/// UVs in glTF's space (v = 0 at the image's top; files without UVs get zeros), then centre and
-/// scale into [-1, 1]^3 (fitToUnitBox). False + one line naming the file.
+/// UVs in glTF's space (v = 0 at the image's top; files without UVs get zeros), centre and
+/// scale into [-1, 1]^3 (fitToUnitBox), then tangents: a glTF primitive's TANGENT where it has
+/// one, otherwise MikkTSpace per file mesh (core/mikktspace.h; other formats' tangents are not
+/// read, their importers disagree on bitangent conventions), splitting vertices whose corners
+/// get different frames. False + one line naming the file.
 bool importMeshInProcess(const std::filesystem::path& file, MeshData& out, std::string* error,
                          const MeshImportLimits& limits = {});
 

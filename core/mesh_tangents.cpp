@@ -4,18 +4,14 @@
 #include <glm/geometric.hpp>
 
 namespace velvet {
-namespace {
 
-/// A unit vector orthogonal to unit @p n (Duff et al. 2017, "Building an Orthonormal Basis,
-/// Revisited").
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited".
 glm::vec3 anyOrthogonal(glm::vec3 n) {
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;
     return glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
 }
-
-} // namespace
 
 void generateNormals(MeshData& mesh) {
     std::vector<glm::vec3> sum(mesh.vertices.size(), glm::vec3(0.0f));

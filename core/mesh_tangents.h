@@ -7,6 +7,10 @@
 
 namespace velvet {
 
+/// A unit vector orthogonal to unit @p n (Duff et al. 2017, "Building an Orthonormal Basis,
+/// Revisited"): the tangent of a vertex whose UVs define none.
+glm::vec3 anyOrthogonal(glm::vec3 n);
+
 /// Sets every vertex normal to the area-weighted average of the normals of the triangles that
 /// use it (the cross product's length is twice the area, so summing unnormalised cross products
 /// weights by area). Vertices no triangle uses get +Y.
@@ -18,6 +22,7 @@ void generateNormals(MeshData& mesh);
 /// Mesh"). w follows the glTF convention with glTF's UV space (v = 0 at the image's top):
 /// cross(n, t) * w points to decreasing v, as makeSphere() does. Triangles with degenerate UVs
 /// add nothing; a vertex left without a tangent gets any unit vector orthogonal to its normal.
+/// Used for the procedural meshes; imported ones get MikkTSpace (core/mikktspace.h).
 void generateTangents(MeshData& mesh);
 
 } // namespace velvet

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Velvet needs to build, run and test, only those missing, and
-# the Khronos glTF-Validator (npm package, pinned) into the ignored project folder tools/node.
+# two pinned npm packages into the ignored project folder tools/node: the Khronos glTF-Validator
+# and mikktspace (the reference MikkTSpace tangent generator, for a known-answer test).
 # Runs apt-get as root, or through sudo. Quiet and quick when everything is present.
 set -euo pipefail
 
@@ -19,20 +20,28 @@ packages=(
 # The glTF export tests (tests/app/test_app_export.cpp) validate every file they write with
 # this version, through scripts/gltf-validate.js.
 gltf_validator_version=2.0.0-dev.3.10
+# tests/core/test_core_mikktspace.cpp compares Velvet's MikkTSpace tangents (core/mikktspace.h)
+# with this WebAssembly build of the reference algorithm, through scripts/mikktspace-reference.js.
+mikktspace_version=1.1.1
 node_tools="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/node"
 
+installed_version() { # package version
+  local manifest="$node_tools/node_modules/$1/package.json"
+  [[ -f "$manifest" ]] && grep -q "\"version\": \"$2\"" "$manifest"
+}
+
 install_node_tools() {
-  local installed="$node_tools/node_modules/gltf-validator/package.json"
-  if [[ -f "$installed" ]] && grep -q "\"version\": \"$gltf_validator_version\"" "$installed"; then
+  if installed_version gltf-validator "$gltf_validator_version" &&
+     installed_version mikktspace "$mikktspace_version"; then
     return 0
   fi
   if ! command -v npm >/dev/null; then
-    echo "velvet: npm is missing (Debian package npm, or Node.js's own); cannot install gltf-validator" >&2
+    echo "velvet: npm is missing (Debian package npm, or Node.js's own); cannot install gltf-validator and mikktspace" >&2
     exit 1
   fi
-  echo "velvet: installing gltf-validator $gltf_validator_version into tools/node"
+  echo "velvet: installing gltf-validator $gltf_validator_version and mikktspace $mikktspace_version into tools/node"
   npm install --prefix "$node_tools" --no-save --no-audit --no-fund --loglevel=error \
-    "gltf-validator@$gltf_validator_version"
+    "gltf-validator@$gltf_validator_version" "mikktspace@$mikktspace_version"
 }
 
 missing=()
