@@ -131,8 +131,8 @@ bool IblBaker::initialize(std::string* error) {
         return false;
     m_compileCount += 4;
 
-    // Sheen albedo, one channel per SheenModel (render/sheen_lut.h: the tables the C++ twin
-    // looks up).
+    // The sheen, Burley diffuse and specular albedo tables (render/sheen_lut.h: the tables the
+    // C++ twins look up).
     m_sheenLut = createSheenAlbedoLut();
 
     constexpr int D = ibl::kDfgLutSize;
