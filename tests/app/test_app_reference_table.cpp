@@ -34,7 +34,9 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // fabrics' weaves (pattern-aligned: lower relief contrast in the viewport; and where a thread
 // is finer than a pixel the viewport shows the weave's mean with a flat normal, issue 13's
 // filtering, which lacks the bumps' brighter rim: cotton, denim and tweed under the HDRI and
-// satin under the rig were re-measured with it), the shader ball's
+// satin under the rig were re-measured with it; the six Burley presets' rows were re-measured
+// after image-based light took Burley's albedo, which lowered most and raised terry's and wool's
+// under the HDRI; cotton under the rig now meets the goal), the shader ball's
 // cavities (the viewport reflects the environment where the mesh sees itself).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 13.45, 29.48},
@@ -42,26 +44,25 @@ const Miss kMisses[] = {
     {"ceramic", kSphere, "environment", 2.41, 5.36},
     {"copper", kSphere, "environment", 4.38, 11.51},
     {"copper", kSphere, "three-point", 3.15, 8.80},
-    {"cotton", kSphere, "environment", 6.95, 12.82},
-    {"cotton", kSphere, "three-point", 2.23, 5.69},
+    {"cotton", kSphere, "environment", 5.79, 10.90},
     {"crimson_velvet", kSphere, "environment", 3.39, 8.23},
     {"crimson_velvet", kSphere, "three-point", 2.34, 6.52},
     {"crushed_velvet", kSphere, "environment", 7.32, 39.44},
     {"crushed_velvet", kSphere, "three-point", 3.63, 15.12},
-    {"denim", kSphere, "environment", 3.98, 7.90},
-    {"denim", kSphere, "three-point", 3.65, 8.33},
+    {"denim", kSphere, "environment", 3.70, 7.62},
+    {"denim", kSphere, "three-point", 3.51, 7.32},
     {"gold", kSphere, "environment", 3.97, 10.56},
     {"gold", kSphere, "three-point", 2.99, 8.23},
-    {"linen", kSphere, "environment", 5.10, 10.60},
-    {"linen", kSphere, "three-point", 2.40, 5.37},
+    {"linen", kSphere, "environment", 4.88, 9.96},
+    {"linen", kSphere, "three-point", 2.44, 5.97},
     {"satin", kSphere, "environment", 3.38, 11.73},
     {"satin", kSphere, "three-point", 3.28, 10.90},
     {"silk", kSphere, "environment", 4.70, 11.34},
-    {"terry", kSphere, "environment", 4.02, 11.79},
-    {"tweed", kSphere, "environment", 5.05, 10.33},
-    {"tweed", kSphere, "three-point", 3.04, 6.78},
-    {"wool", kSphere, "environment", 5.65, 12.69},
-    {"wool", kSphere, "three-point", 3.22, 7.95},
+    {"terry", kSphere, "environment", 4.40, 13.54},
+    {"tweed", kSphere, "environment", 4.66, 9.84},
+    {"tweed", kSphere, "three-point", 2.95, 6.48},
+    {"wool", kSphere, "environment", 5.84, 13.15},
+    {"wool", kSphere, "three-point", 3.33, 8.34},
     {"plastic", kBall, "environment", 7.63, 48.04},
     {"plastic", kBall, "three-point", 5.87, 31.76},
     {"gold", kBall, "environment", 14.44, 67.03},
