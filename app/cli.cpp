@@ -106,12 +106,15 @@ const std::array<Subcommand, 12> kSubcommands{{
 }};
 /// Left out of --help: `import-mesh IN OUT` is the child process of the crash-isolated mesh
 /// import (core/mesh_import.h); `post-catalogue` prints the effect table of
-/// docs/post-effects.md; `sheen-table` regenerates core/sheen_albedo_table.inc and
-/// `specular-table` core/specular_albedo_table.inc.
-const std::array<Subcommand, 4> kHiddenSubcommands{{
+/// docs/post-effects.md; `sheen-table` regenerates core/sheen_albedo_table.inc,
+/// `specular-table` core/specular_albedo_table.inc and `diffuse-table`
+/// core/diffuse_albedo_table.inc.
+const std::array<Subcommand, 5> kHiddenSubcommands{{
     {"sheen-table", "print core/sheen_albedo_table.inc (the sheen albedo tables)", runSheenTable},
     {"specular-table", "print core/specular_albedo_table.inc (the specular albedo table)",
      runSpecularTable},
+    {"diffuse-table", "print core/diffuse_albedo_table.inc (the Burley diffuse albedo table)",
+     runDiffuseTable},
     {"import-mesh", "import a mesh file into a mesh cache (internal)", runImportMesh},
     {"post-catalogue", "print the post-effect catalogue as Markdown (docs)", runPostCatalogue},
 }};

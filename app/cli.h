@@ -83,5 +83,7 @@ int runPostCatalogue(const std::vector<std::string>& args);
 int runSheenTable(const std::vector<std::string>& args);
 /// Hidden: prints core/specular_albedo_table.inc (command_schema.cpp).
 int runSpecularTable(const std::vector<std::string>& args);
+/// Hidden: prints core/diffuse_albedo_table.inc (command_schema.cpp).
+int runDiffuseTable(const std::vector<std::string>& args);
 
 } // namespace velvet::cli

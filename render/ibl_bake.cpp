@@ -134,8 +134,8 @@ bool IblBaker::initialize(std::string* error) {
     m_compileCount += 4;
     m_shaderHash = hex64(xxhash64(sources, 0));
 
-    // Sheen albedo, one channel per SheenModel (render/sheen_lut.h: the tables the C++ twin
-    // looks up).
+    // The sheen, Burley diffuse and specular albedo tables (render/sheen_lut.h: the tables the
+    // C++ twins look up).
     m_sheenLut = createSheenAlbedoLut();
 
     constexpr int D = ibl::kDfgLutSize;

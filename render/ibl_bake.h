@@ -81,7 +81,7 @@ public:
     int faceSize() const { return m_ready.faceSize; }
     bool dfgReady() const { return m_dfgReady; }
     unsigned dfgLut() const { return m_dfgLut; }
-    /// RGBA32F kSheenLutSize^2, channel = SheenModel.
+    /// RGBA32F kSheenLutSize^2: the sheen, diffuse and specular albedo tables (render/sheen_lut.h).
     unsigned sheenLut() const { return m_sheenLut; }
 
     const IblBakeStats& stats() const { return m_stats; }

@@ -2,6 +2,7 @@
 
 #include "core/brdf.h"
 #include "core/brdf_energy.h"
+#include "core/diffuse_albedo.h"
 
 #include <epoxy/gl.h>
 #include <vector>
@@ -9,16 +10,21 @@
 namespace velvet::render {
 
 unsigned createSheenAlbedoLut() {
-    // One channel per SheenModel: core/brdf.cpp integrates the tables on the CPU once, and its
-    // lookup (the C++ twin) and the GPU read the same values.
+    // Red and green: the two distinct sheen tables (core/brdf.cpp integrates them on the CPU, and
+    // its lookup, the C++ twin, and the GPU read the same values). Ashikhmin's and Neubelt's
+    // visibility are one function, so both read green.
     constexpr int N = brdf::kSheenLutSize;
-    constexpr int kModels = 3;
     std::vector<float> rgba(size_t(N) * N * 4, 0.0f);
-    for (int m = 0; m < kModels; ++m) {
+    for (int m = 0; m < 2; ++m) {
         const auto& t = brdf::sheenAlbedoLut(SheenModel(m));
         for (size_t i = 0; i < t.size(); ++i)
             rgba[i * 4 + size_t(m)] = t[i];
     }
+    // Blue: Burley's diffuse albedo relative to Lambert's, for the image-based light's diffuse
+    // term (core/diffuse_albedo.h), read at the same (n.v, roughness) as alpha.
+    const auto& d = brdf::burleyAlbedoLut();
+    for (size_t i = 0; i < d.size(); ++i)
+        rgba[i * 4 + 2] = d[i];
     // Alpha: the base specular lobe's E for the direct light's multiple-scattering compensation
     // (core/brdf_energy.h), on the same grid; every pass that shades light binds this texture.
     const auto& e = brdf::specularAlbedoLut();

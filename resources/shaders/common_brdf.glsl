@@ -243,15 +243,32 @@ vec2 envBrdfApprox(float roughness, float NdotV) {
     return vec2(-1.04, 1.04) * a004 + r.zw;
 }
 
-// Directional albedo of the sheen lobe of each sheen model (channel = SHEEN_* id), tabulated on
-// the CPU (core/brdf.cpp, sheenAlbedoLut) and uploaded by render/ibl_bake.cpp.
+// Directional albedo of the sheen lobe of each sheen model, tabulated on the CPU (core/brdf.cpp,
+// sheenAlbedoLut) and uploaded by render/sheen_lut.cpp: red Conty-Kulla, green Ashikhmin and
+// Neubelt (one visibility function, one table).
 float sheenDirectionalAlbedo(float NdotV, float sheenRoughness, int model) {
     vec2 uv = (vec2(saturate(NdotV), saturate(sheenRoughness)) * (SHEEN_LUT_SIZE - 1.0) + 0.5) /
               SHEEN_LUT_SIZE;
 #ifdef FIXED_SHEEN_MODEL
     model = FIXED_SHEEN_MODEL;
 #endif
-    return textureLod(uSheenLut, uv, 0.0)[clamp(model, 0, 2)];
+    return textureLod(uSheenLut, uv, 0.0)[clamp(model, 0, 1)];
+}
+
+// The diffuse term's directional albedo relative to Lambert's, for image-based light (twin:
+// velvet::brdf::diffuseDirectionalAlbedo, core/diffuse_albedo.h): 1 for Lambert, whose irradiance
+// term is exact; Burley 2012's is not energy conserving (below 1 when smooth, above 1 towards
+// grazing when rough), its albedo pre-integrated on the CPU into the blue channel (as Lagarde & de
+// Rousiers 2014 pre-integrate their Disney diffuse for image-based light).
+float diffuseDirectionalAlbedo(int which, float NdotV, float perceptualRoughness) {
+#ifdef FIXED_DIFFUSE
+    which = FIXED_DIFFUSE;
+#endif
+    if (which != DIFFUSE_BURLEY)
+        return 1.0;
+    vec2 uv = (vec2(saturate(NdotV), saturate(perceptualRoughness)) * (SHEEN_LUT_SIZE - 1.0) + 0.5) /
+              SHEEN_LUT_SIZE;
+    return textureLod(uSheenLut, uv, 0.0).b;
 }
 
 // Whether multiple-scattering energy is on, for direct and image-based light alike
@@ -290,8 +307,9 @@ vec3 multipleScatteringFactor(vec3 f0, float NdotV, float rough) {
 // ---- Dispatch ----
 // Term choice per material: a uniform branch on GpuMaterial.terms (no recompilation). The
 // clearcoat lobe keeps KHR_materials_clearcoat's fixed terms (GGX, separable Smith-GGX, Schlick
-// with F0 = 0.04); the choices apply to the base lobes and the sheen. Only direct lights use them:
-// the ambient/IBL path keeps the default model's split-sum approximation.
+// with F0 = 0.04); the choices apply to the base lobes and the sheen. Direct lights use them; the
+// ambient/IBL path keeps the default model's split-sum approximation for the specular lobe and
+// takes the diffuse choice through its directional albedo (diffuseDirectionalAlbedo).
 
 // Normal distribution D(h), alpha = roughness^2, sin2H = sinSquared(n, h).
 float distribution(int which, float NdotH, float sin2H, float alpha) {

@@ -125,13 +125,16 @@ void main() {
         color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb *
                  directionalShadow(i, pixel);
 
-    // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes; the split sum for
-    // the specular ones, the GGX-prefiltered cube times the DFG LUT with Fdez-Aguera 2019's
-    // multiple-scattering energy (or the approximate path while the bake is incomplete).
+    // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes, times the chosen
+    // diffuse term's directional albedo (common_brdf.glsl: 1 for Lambert, tabulated for Burley);
+    // the split sum for the specular ones, the GGX-prefiltered cube times the DFG LUT with
+    // Fdez-Aguera 2019's multiple-scattering energy (or the approximate path while the bake is
+    // incomplete).
     float NdotV = max(dot(n, v), 1e-4);
     vec3 irradiance = irradianceOverPi(n);
     vec3 r = reflect(-v, n);
     float rough = max(s.roughness, MIN_ROUGHNESS);
+    irradiance *= diffuseDirectionalAlbedo(s.terms.w, NdotV, rough);
     // An anisotropic base looks its reflection up along a bent normal (anisotropicReflection).
     vec3 prefiltered = specularRadiance(usesAnisotropy(s) ? anisotropicReflection(s, n, v) : r, rough);
     vec2 ab = environmentDfg(NdotV, rough);

@@ -9,6 +9,8 @@
 // D was written with sin^2 = |n x h|^2 (Filament's form), 1 - (n.h)^2 lost every digit there and
 // GPU and twin differed by up to 4e-3 below roughness 0.2.
 #include "core/brdf.h"
+#include "core/brdf_energy.h"
+#include "core/diffuse_albedo.h"
 #include "render/brdf_probe.h"
 #include "render/sheen_lut.h"
 #include "render_test_util.h"
@@ -220,9 +222,10 @@ private slots:
         QVERIFY2(m_probe.initialize(&error), error.c_str());
     }
 
-    // The one sheen albedo texture (render/sheen_lut.h, bound by the lighting and by this probe)
-    // holds core's tables bit for bit, channel m = SheenModel m, and is sampled as the C++ twin
-    // looks it up (bilinear, clamp to edge).
+    // The one albedo texture (render/sheen_lut.h, bound by the lighting and by this probe) holds
+    // core's tables bit for bit: red the Conty-Kulla sheen table, green the one of Ashikhmin and
+    // Neubelt (one function), blue Burley's diffuse albedo, alpha the specular lobe's E; it is
+    // sampled as the C++ twins look it up (bilinear, clamp to edge).
     void sheenLutHoldsTheCppTables() {
         const GLuint lut = render::createSheenAlbedoLut();
         QVERIFY(lut != 0);
@@ -243,12 +246,16 @@ private slots:
                           rgba.data());
         glDeleteTextures(1, &lut);
         int differing = 0;
-        for (int m = 0; m < 3; ++m) {
-            const std::vector<float>& table = brdf::sheenAlbedoLut(SheenModel(m));
+        const auto compareChannel = [&](const std::vector<float>& table, size_t channel) {
             QCOMPARE(table.size(), size_t(N) * N);
             for (size_t i = 0; i < table.size(); ++i)
-                differing += rgba[i * 4 + size_t(m)] != table[i];
-        }
+                differing += rgba[i * 4 + channel] != table[i];
+        };
+        compareChannel(brdf::sheenAlbedoLut(SheenModel::CharlieContyKulla), 0);
+        compareChannel(brdf::sheenAlbedoLut(SheenModel::CharlieAshikhmin), 1);
+        compareChannel(brdf::sheenAlbedoLut(SheenModel::CharlieNeubelt), 1);
+        compareChannel(brdf::burleyAlbedoLut(), 2);
+        compareChannel(brdf::specularAlbedoLut(), 3);
         QCOMPARE(differing, 0);
         // The conty-kulla table is not the other two (the channels are not one table copied).
         QVERIFY(brdf::sheenAlbedoLut(SheenModel::CharlieContyKulla) !=

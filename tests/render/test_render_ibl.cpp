@@ -1,9 +1,11 @@
 // Image-based lighting: what each case proves is stated on the case. Small cubemaps (the test
 // environment is 128 x 64, so faces of 32 texels) keep the whole file to a few seconds on llvmpipe.
+#include "core/diffuse_albedo.h"
 #include "core/ibl.h"
 #include "core/image.h"
 #include "core/resources.h"
 #include "core/spherical_harmonics.h"
+#include "render/camera.h"
 #include "render/environment_map.h"
 #include "render/ibl_bake.h"
 #include "render/offscreen.h"
@@ -279,6 +281,69 @@ private slots:
         const double dielectric = sphereMean(renderScene(scene, 64));
         qInfo("white furnace, white dielectric with specular, roughness 0.8: %.4f", dielectric);
         QVERIFY(std::abs(dielectric - 1.0) <= 0.02);
+    }
+
+    // White furnace of the chosen diffuse term (issue 15): a white Burley sphere with no specular
+    // (metallic 0, specular weight 0) under a uniform white environment, orthographic, so every
+    // pixel's value is Burley's directional albedo at its n.v and the roughness: the integral
+    // (brdf::integrateDiffuseAlbedo, checked against a closed form in test_core_diffuse_albedo)
+    // within 2 %, the Lambert furnace's tolerance above, for n.v from 0.05 to 1 at roughness 0,
+    // 0.5 and 1. The image-based light used to give Burley Lambert's albedo, 1: the pixels checked
+    // include ones where that is more than 10 % off.
+    void burleyWhiteFurnace() {
+        Scene scene = test::blackOrthographicScene();
+        scene.environment.color = glm::vec3(1.0f);
+        scene.environment.intensity = 1.0f;
+        const glm::vec3 v = glm::normalize(render::cameraEye(scene.camera) - scene.camera.target);
+        constexpr int size = 64;
+        render::FrameSettings fs;
+        fs.width = fs.height = size;
+        double worstLambertOverall = 0.0;
+        for (float rough : {0.0f, 0.5f, 1.0f}) {
+            scene.material = whiteMaterial(0.0f, rough, 0.0f);
+            scene.material.setChoice(ParamId::Diffuse, int(Diffuse::Burley));
+            Image image, normals;
+            std::string error;
+            fs.view = render::DebugView::Final;
+            QVERIFY2(render::renderSceneOffscreen(scene, fs, &image, nullptr, &error),
+                     error.c_str());
+            fs.view = render::DebugView::Normal;
+            QVERIFY2(render::renderSceneOffscreen(scene, fs, &normals, nullptr, &error),
+                     error.c_str());
+            int count = 0;
+            double worst = 0.0, worstLambert = 0.0, worstMu = 0.0;
+            double lowest = 10.0, highest = 0.0;
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x) {
+                    const glm::vec3 n(normals.rgba(x, y));
+                    if (glm::length(n) < 0.5f)
+                        continue; // background
+                    const float mu = glm::dot(glm::normalize(n), v);
+                    if (mu < 0.05f)
+                        continue; // the silhouette's pixels
+                    const double expected =
+                        brdf::integrateDiffuseAlbedo(Diffuse::Burley, mu, rough, 48, 24);
+                    lowest = std::min(lowest, expected);
+                    highest = std::max(highest, expected);
+                    worstLambert = std::max(worstLambert, std::abs(1.0 / expected - 1.0));
+                    for (int k = 0; k < 3; ++k) {
+                        const double rel = std::abs(double(image.rgba(x, y)[k]) / expected - 1.0);
+                        if (rel > worst) {
+                            worst = rel;
+                            worstMu = mu;
+                        }
+                    }
+                    ++count;
+                }
+            qInfo(
+                "white furnace, white Burley, roughness %.1f: %d pixels, albedo %.3f..%.3f; "
+                "worst relative error %.2f %% (at n.v %.2f); Lambert's albedo would be %.1f %% off",
+                rough, count, lowest, highest, 100.0 * worst, worstMu, 100.0 * worstLambert);
+            QVERIFY(count > 1000);
+            QVERIFY2(worst <= 0.02, qPrintable(QString::number(worst)));
+            worstLambertOverall = std::max(worstLambertOverall, worstLambert);
+        }
+        QVERIFY(worstLambertOverall > 0.10); // the check can tell Burley from Lambert
     }
 
     // Rotating the environment by 180 degrees mirrors the lit image of a shiny metal sphere seen
