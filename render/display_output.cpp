@@ -159,7 +159,7 @@ bool DisplayOutput::inlineSource(const DisplayChoice& choice, InlinePost& out) c
     // exposure, frame.modes.z: the curve), for the same encoding.
     out.key = "display@" + m_encoding.cacheId();
     out.sources = {
-        {"post_inline.glsl",
+        {"inline_post.glsl",
          "#include \"common_frame.glsl\"\n"
          "#include \"common_tonemap.glsl\"\n"
          "#include \"display_encode.glsl\"\n"

@@ -67,7 +67,7 @@ public:
     /// The final pass into the bound framebuffer, from scene-linear @p hdrTexture.
     void draw(const DisplayChoice& choice, unsigned hdrTexture, float exposureEv);
     /// The final image's display step (display_output.frag's, the built-in curve and the
-    /// encoding) as lighting.frag's generated include "post_inline.glsl" (issue 16); false when
+    /// encoding) as lighting.frag's generated include "inline_post.glsl" (issue 16); false when
     /// OCIO's transform draws (@p choice.ocioDisplay).
     bool inlineSource(const DisplayChoice& choice, InlinePost& out) const;
     /// Before drawing with programs built from inlineSource(): the encoding's uniforms and LUTs

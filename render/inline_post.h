@@ -10,7 +10,7 @@
 namespace velvet::render {
 
 /// The display step compiled into the final image's lighting programs (lighting.frag's
-/// LIGHTING_INLINE_POST, issue 16): the generated include "post_inline.glsl", which defines
+/// LIGHTING_INLINE_POST, issue 16): the generated include "inline_post.glsl", which defines
 /// `vec4 postInline(vec4 linear, ivec2 px)`, with the generated includes it needs
 /// (PostChainRenderer::inlineSource, DisplayOutput::inlineSource). Programs are kept per key.
 struct InlinePost {

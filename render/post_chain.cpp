@@ -412,7 +412,7 @@ bool PostChainRenderer::inlineSource(const PostChain& chain, const PostRunInputs
     text += "    return c;\n}\n";
     const std::string encodingId = in.encoding ? in.encoding->cacheId() : std::string();
     out.key = "chain:" + step.name + "@" + encodingId + "#" + std::to_string(op);
-    out.sources = {{"post_inline.glsl", std::move(text)}, {"post_params.glsl", postParamsGlsl()}};
+    out.sources = {{"inline_post.glsl", std::move(text)}, {"post_params.glsl", postParamsGlsl()}};
     for (auto& s : in.encoding ? in.encoding->sources(encodingId) : DisplayEncoding().sources(""))
         out.sources.push_back(std::move(s));
     return true;

@@ -93,7 +93,7 @@ public:
     /// The chain as the lighting pass's display step (issue 16): when its plan is one fused pass
     /// that tone maps with a built-in curve — every enabled effect pointwise, so each pixel needs
     /// only its own lit colour — that pass as lighting.frag's generated include
-    /// "post_inline.glsl" into @p out (its key names effects, encoding and operator); false
+    /// "inline_post.glsl" into @p out (its key names effects, encoding and operator); false
     /// otherwise (the chain then runs on the HDR target). Builds the effects' classes it needs.
     bool inlineSource(const PostChain& chain, const PostRunInputs& inputs, InlinePost& out);
     /// Before drawing with programs built from inlineSource()'s sources for the same chain and

@@ -31,8 +31,10 @@ layout(location = 0) out vec4 outColor;
 // step — the post chain's one fused pass, or the built-in tone curve — compiled in as the
 // generated include's `vec4 postInline(vec4 linear, ivec2 px)`, so the lit colour goes to the
 // display target without the HDR target and a full-screen pass of its own (issue 16).
+// Included outside the #if: a driver ignores #line directives in a skipped group, so an include
+// inside one would shift every later line of this file in error messages.
+#include "inline_post.glsl"
 #if defined(LIGHTING_INLINE_POST)
-#include "post_inline.glsl"
 vec4 finalColor(vec3 linear, float alpha) {
     return postInline(vec4(linear, 1.0), ivec2(gl_FragCoord.xy));
 }

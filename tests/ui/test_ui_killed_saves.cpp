@@ -9,6 +9,7 @@
 #include "core/atlas_document.h"
 #include "core/atomic_file.h"
 #include "core/document_io.h"
+#include "core/image_codec.h"
 #include "ui/autosave.h"
 #include "ui/document_controller.h"
 
@@ -51,6 +52,13 @@ velvet::Image pattern(int w, int h, float seed) {
 int saveLoop(const QString& folder) {
     ui::DocumentController doc;
     const QString file = folder + QStringLiteral("/scene.json");
+    // The image library loads on first use (core/image_codec.h), which takes longer than the
+    // 0-100 ms kill window here: load it before "ready", so the kills land in saves.
+    std::string codecError;
+    if (!codec::imageCodec(&codecError)) {
+        std::fprintf(stderr, "%s\n", codecError.c_str());
+        return 2;
+    }
     std::printf("ready\n");
     std::fflush(stdout);
     for (int i = 0;; ++i) {
