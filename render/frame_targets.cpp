@@ -99,24 +99,32 @@ unsigned FrameTargets::litFramebuffer() {
 }
 
 unsigned FrameTargets::shadowMaskFramebuffer(std::string* error) {
-    // One byte per shadow slot and pixel (kMaxShadowLights = 4 channels): the lighting passes read
-    // every slot's visibility in one fetch. At the HDR target's size, which is the frame's.
-    if (!m_shadowMask.resize(m_hdr.width(), m_hdr.height(), GL_RGBA8, error))
+    // One byte per shadow slot (kMaxShadowLights = 4 channels): the lighting passes read every
+    // slot's visibility in one fetch. At half the frame's size (rounded up): texel t is the
+    // lookup at pixel 2t, upsampled where it is read (shadow_mask.glsl) by its key beside it,
+    // that pixel's view depth and material id.
+    const int width = (m_hdr.width() + 1) / 2, height = (m_hdr.height() + 1) / 2;
+    if (!m_shadowMask.resize(width, height, GL_RGBA8, error) ||
+        !m_shadowKey.resize(width, height, GL_RG32F, error))
         return 0;
     if (!m_maskFbo)
         glCreateFramebuffers(1, &m_maskFbo);
     if (m_maskGeneration != m_shadowMask.generation() ||
-        m_maskGbufferGeneration != m_gbuffer.generation()) {
+        m_keyGeneration != m_shadowKey.generation()) {
+        // The upsample gathers the key around a texel corner: the last row and column clamp.
+        glTextureParameteri(m_shadowKey.texture(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(m_shadowKey.texture(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glNamedFramebufferTexture(m_maskFbo, GL_COLOR_ATTACHMENT0, m_shadowMask.texture(), 0);
-        glNamedFramebufferTexture(m_maskFbo, GL_DEPTH_ATTACHMENT,
-                                  depthTextureOf(m_gbuffer.framebuffer()), 0);
+        glNamedFramebufferTexture(m_maskFbo, GL_COLOR_ATTACHMENT1, m_shadowKey.texture(), 0);
+        const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(m_maskFbo, 2, buffers);
         const GLenum status = glCheckNamedFramebufferStatus(m_maskFbo, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
             fail(error, "shadow mask framebuffer incomplete: " + framebufferStatusName(status));
             return 0;
         }
         m_maskGeneration = m_shadowMask.generation();
-        m_maskGbufferGeneration = m_gbuffer.generation();
+        m_keyGeneration = m_shadowKey.generation();
     }
     return m_maskFbo;
 }

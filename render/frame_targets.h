@@ -44,14 +44,16 @@ public:
     unsigned displayFramebuffer(unsigned internalFormat, std::string* error);
     const ColorTarget& display() const { return m_display; }
 
-    /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): an RGBA8 colour at the
-    /// frame's size, allocated the first time a frame has a shadowed light, with the G-buffer's
-    /// depth (read-only, for the early depth test). 0 + message when incomplete.
+    /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): at half the frame's size
+    /// (rounded up), the mask (RGBA8, attachment 0) and its key (RG32F: each texel's pixel's view
+    /// depth and material id, attachment 1), allocated the first time a frame has a shadowed
+    /// light. 0 + message when incomplete.
     unsigned shadowMaskFramebuffer(std::string* error);
 
     const GBuffer& gbuffer() const { return m_gbuffer; }
     const ColorTarget& hdr() const { return m_hdr; }
     const ColorTarget& shadowMask() const { return m_shadowMask; }
+    const ColorTarget& shadowKey() const { return m_shadowKey; }
 
 private:
     GBuffer m_gbuffer;
@@ -62,9 +64,9 @@ private:
     int m_geometryDrawBuffers = -1;
     unsigned m_litFbo = 0;
     unsigned m_litHdrGeneration = 0, m_litGbufferGeneration = 0;
-    ColorTarget m_shadowMask;
+    ColorTarget m_shadowMask, m_shadowKey;
     unsigned m_maskFbo = 0;
-    unsigned m_maskGeneration = 0, m_maskGbufferGeneration = 0;
+    unsigned m_maskGeneration = 0, m_keyGeneration = 0;
     ColorTarget m_display;
     unsigned m_displayFbo = 0;
     unsigned m_displayGeneration = 0, m_displayGbufferGeneration = 0;

@@ -41,6 +41,8 @@ struct LightingFeatures {
     bool lobeChannels = true;
     /// Some directional light has a shadow map.
     bool directionalShadows = true;
+    /// Some light has a shadow map: the frame has a shadow mask (render/shadow_mask.h).
+    bool shadowMask = true;
     /// Screen-space ambient occlusion is on.
     bool occlusion = true;
     /// The baked IBL (prefiltered cube and DFG LUT) is ready: the approximate path compiles out.

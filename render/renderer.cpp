@@ -332,7 +332,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     unsigned maskFbo = 0;
     if (d.stage.hasShadows() && !(maskFbo = d.targets.shadowMaskFramebuffer(error)))
         return false;
-    d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(), d.scene.environment,
+    d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(),
+                           d.targets.shadowKey().texture(), d.scene.environment,
                            block.viewProjMatrix, fs.width, fs.height, d.emptyVao);
     glViewport(0, 0, fs.width, fs.height);
 

@@ -219,9 +219,11 @@ struct Renderer::Impl {
             records.push_back(packedB);
         if (scene.environment.ground != GroundMode::Off)
             records.push_back(packedGround);
-        return lightingFeaturesOf(records, stage.shadowsDirectionalLight(scene.lights),
-                                  scene.environment.ambientOcclusion, true,
-                                  fs.specularMultiScatter);
+        LightingFeatures f =
+            lightingFeaturesOf(records, stage.shadowsDirectionalLight(scene.lights),
+                               scene.environment.ambientOcclusion, true, fs.specularMultiScatter);
+        f.shadowMask = stage.hasShadows();
+        return f;
     }
 
     void selectMesh(Problems* problems) {

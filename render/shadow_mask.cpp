@@ -83,6 +83,18 @@ PixelRect shadowReceiverRect(const ShadowSlot& slot, const MeshBounds& bounds, b
     return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
 }
 
+PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight) {
+    // Texel t stands for pixel 2t, and a pixel of the rectangle blends the texels either side of
+    // it (shadow_mask.glsl): from the texel at or below its first pixel to the one above its last.
+    if (frameRect.width <= 0 || frameRect.height <= 0)
+        return {};
+    const int x0 = std::clamp(frameRect.x / 2, 0, maskWidth);
+    const int y0 = std::clamp(frameRect.y / 2, 0, maskHeight);
+    const int x1 = std::clamp((frameRect.x + frameRect.width - 1) / 2 + 2, 0, maskWidth);
+    const int y1 = std::clamp((frameRect.y + frameRect.height - 1) / 2 + 2, 0, maskHeight);
+    return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
+}
+
 bool ShadowMaskPass::build(std::string* error) {
     if (!m_program.build("fullscreen.vert", "shadow_mask.frag", {"FULLSCREEN_FAR_PLANE"}, error))
         return false;
@@ -93,38 +105,42 @@ bool ShadowMaskPass::build(std::string* error) {
 int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slots,
                         const MeshBounds& bounds, bool ground, float groundHeight,
                         const glm::mat4& viewProj, int width, int height, unsigned emptyVao) {
+    // The mask is at half the frame's size: texel t looks up a pixel of the block 2t
+    // (shadow_mask.frag).
+    const int maskWidth = (width + 1) / 2, maskHeight = (height + 1) / 2;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glViewport(0, 0, width, height);
+    glViewport(0, 0, maskWidth, maskHeight);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     const float lit[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     glClearBufferfv(GL_COLOR, 0, lit);
-    // A triangle at the far plane against the G-buffer's depth (read-only): geometry pixels only.
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_FALSE);
+    // A texel no slot draws keeps a key no pixel matches (depth 0, no material): the upsample
+    // never weighs it, but then its mask value is 1 anyway.
+    const float noKey[4] = {0.0f, -1.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 1, noKey);
     glEnable(GL_SCISSOR_TEST);
     glUseProgram(m_program.id());
     glBindVertexArray(emptyVao);
     int drawn = 0;
     const int count = std::min(int(slots.size()), kMaxShadowLights);
     for (int s = 0; s < count; ++s) {
-        const PixelRect r = shadowReceiverRect(slots[size_t(s)], bounds, ground, groundHeight,
-                                               viewProj, width, height);
+        const PixelRect r = maskRect(shadowReceiverRect(slots[size_t(s)], bounds, ground,
+                                                        groundHeight, viewProj, width, height),
+                                     maskWidth, maskHeight);
         if (r.width <= 0 || r.height <= 0)
             continue;
         glScissor(r.x, r.y, r.width, r.height);
-        glColorMask(s == 0, s == 1, s == 2, s == 3); // slot s writes channel s alone
+        glColorMaski(0, s == 0, s == 1, s == 2, s == 3);       // slot s writes channel s alone
+        glColorMaski(1, GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE); // every slot writes the key
         glProgramUniform1i(m_program.id(), 0, s);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         ++drawn;
     }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
     return drawn;
 }
 

@@ -2,13 +2,14 @@
 /// @file shadow_mask.h
 /// Render-private: the screen-space shadow mask (docs/shadows.md). After the G-buffer, one small
 /// full-screen pass per shadow slot (at most kMaxShadowLights: the cap) filters the slot's map with
-/// PCSS at every geometry pixel (shadow_mask.frag) and writes the visibility into channel s of an
-/// RGBA8 texture; the lighting passes then read one texel (shadow_mask.glsl) instead of running
-/// the lookup inside their own shaders. This is how deferred engines shade shadows (Unity's
-/// screen-space shadows, Unreal's shadow projection into a light attenuation buffer). On llvmpipe,
-/// which runs every side of every branch, the lighting shaders without the lookup are cheaper
-/// for every frame, and the lookup is cheaper in a pass of its own, though it still costs most of
-/// a shadow's price: its taps (BENCHMARKS.md, the look-dev stage's shadow mask).
+/// PCSS at every other pixel of each row and column (shadow_mask.frag) and writes the visibility
+/// into channel s of a half-resolution RGBA8 texture; the lighting passes then read it, upsampled
+/// by depth (shadow_mask.glsl), instead of running the lookup inside their own shaders. This is how
+/// deferred engines shade shadows (Unity's screen-space shadows, Unreal's shadow projection into a
+/// light attenuation buffer). On llvmpipe, which runs every side of every branch, the lighting
+/// shaders without the lookup are cheaper for every frame, and the lookup is cheaper in a pass of
+/// its own, though it still costs most of a shadow's price: its taps (BENCHMARKS.md, the look-dev
+/// stage's shadow mask).
 ///
 /// Each slot's pass is scissored to the part of the frame where a receiver can lie inside the
 /// slot's map (shadowReceiverRect()); the mask is cleared to 1 first, which is exactly what the
@@ -40,16 +41,21 @@ struct PixelRect {
 PixelRect shadowReceiverRect(const ShadowSlot& slot, const MeshBounds& bounds, bool ground,
                              float groundHeight, const glm::mat4& viewProj, int width, int height);
 
+/// The texels of a half-resolution mask (@p maskWidth x @p maskHeight; texel t stands for pixel
+/// 2t) that the pixels of @p frameRect read when they upsample it. Pure: test_render_shadow_mask.
+PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight);
+
 class ShadowMaskPass {
 public:
     bool build(std::string* error);
     int compileCount() const { return m_compileCount; }
 
-    /// Draws the mask of @p slots into @p framebuffer (the mask's RGBA8 colour and the G-buffer's
-    /// depth, FrameTargets::shadowMaskFramebuffer()), cleared to 1 first. Expects the frame and
-    /// stage blocks, the G-buffer's textures and the shadow maps bound. Returns the slot passes
-    /// drawn (one per slot whose receivers are on screen). Leaves depth writes off, the depth test,
-    /// scissor and blending disabled and every colour channel writable.
+    /// Draws the mask of @p slots for a @p width x @p height frame into @p framebuffer (the
+    /// mask's half-resolution RGBA8 colour, FrameTargets::shadowMaskFramebuffer()), cleared to 1
+    /// first. Expects the frame and stage blocks, the G-buffer's textures and the shadow maps
+    /// bound. Returns the slot passes drawn (one per slot whose receivers are on screen). Leaves
+    /// the depth test, scissor and blending disabled and every colour channel writable; the
+    /// viewport is the mask's.
     int run(unsigned framebuffer, const std::vector<ShadowSlot>& slots, const MeshBounds& bounds,
             bool ground, float groundHeight, const glm::mat4& viewProj, int width, int height,
             unsigned emptyVao);

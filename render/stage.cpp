@@ -156,14 +156,15 @@ bool Stage::drawOcclusion(const Environment& environment, int width, int height,
     return true;
 }
 
-void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture,
+void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
                            const Environment& environment, const glm::mat4& viewProj, int width,
                            int height, unsigned emptyVao) {
-    m_maskTexture = 0;
+    m_maskTexture = m_keyTexture = 0;
     m_maskPasses = 0;
     if (!hasShadows())
         return;
     m_maskTexture = maskTexture;
+    m_keyTexture = keyTexture;
     const float r = sphereOf(m_bounds).radius;
     const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
     m_shadows.bind();
@@ -205,12 +206,14 @@ bool Stage::meshRectangle(const glm::mat4& viewProj, int width, int height, int 
 
 void Stage::bind() const {
     glBindTextureUnit(stage_binding::kShadowMaskTex, m_maskTexture);
+    glBindTextureUnit(stage_binding::kShadowKeyTex, m_keyTexture);
     if (m_occlusionOn)
         m_occlusion.bind();
 }
 
 void Stage::unbind() const {
     glBindTextureUnit(stage_binding::kShadowMaskTex, 0);
+    glBindTextureUnit(stage_binding::kShadowKeyTex, 0);
     glBindTextureUnit(stage_binding::kOcclusionTex, 0);
 }
 

@@ -66,11 +66,13 @@ public:
     /// Whether a light casts a shadow this frame (the frame then needs a shadow mask).
     bool hasShadows() const { return !m_shadows.slots().empty(); }
     /// After the occlusion: the screen-space shadow mask of every shadow slot into
-    /// @p framebuffer (FrameTargets::shadowMaskFramebuffer(), whose colour is @p maskTexture),
-    /// timed; nothing when no light casts a shadow. Expects the G-buffer's textures bound and
-    /// @p viewProj the frame's camera. Leaves the viewport and depth state for the caller to set.
-    void drawShadowMask(unsigned framebuffer, unsigned maskTexture, const Environment& environment,
-                        const glm::mat4& viewProj, int width, int height, unsigned emptyVao);
+    /// @p framebuffer (FrameTargets::shadowMaskFramebuffer(), whose colours are @p maskTexture
+    /// and @p keyTexture), timed; nothing when no light casts a shadow. Expects the G-buffer's
+    /// textures bound and @p viewProj the frame's camera. Leaves the viewport and depth state for
+    /// the caller to set.
+    void drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
+                        const Environment& environment, const glm::mat4& viewProj, int width,
+                        int height, unsigned emptyVao);
     /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through
     /// @p viewProj in a @p width x @p height frame; false when they reach behind the camera.
     /// With a shadow catcher the surface pass is scissored to it, so the ground's pixels outside
@@ -99,6 +101,7 @@ private:
     unsigned m_queries[6] = {};
     mutable bool m_shadowTimed = false, m_occlusionTimed = false;
     unsigned m_maskTexture = 0; ///< this frame's shadow mask (0: no light casts a shadow)
+    unsigned m_keyTexture = 0;  ///< its key (view depth, material id per texel)
     int m_maskPasses = 0;
     bool m_occlusionOn = false;
 };

@@ -32,6 +32,7 @@ std::string stageInterfaceGlsl() {
     s += "#define BINDING_OCCLUSION_RAW_TEX " + std::to_string(stage_binding::kOcclusionRawTex) +
          "\n";
     s += "#define BINDING_SHADOW_MASK_TEX " + std::to_string(stage_binding::kShadowMaskTex) + "\n";
+    s += "#define BINDING_SHADOW_KEY_TEX " + std::to_string(stage_binding::kShadowKeyTex) + "\n";
     s += "layout(std140, binding = " + std::to_string(stage_binding::kStageUbo) +
          ") uniform StageBlock {\n"
          "    mat4 shadowViewProj[" +

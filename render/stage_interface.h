@@ -32,6 +32,9 @@ inline constexpr int kOcclusionRawTex = 13;  ///< the unblurred GTAO, read by th
 /// The screen-space shadow mask (render/shadow_mask.h): slot s's visibility in channel s, what
 /// the lighting passes read instead of the maps (unit 7 is free in the lighting passes).
 inline constexpr int kShadowMaskTex = 7;
+/// The mask's key (RG32F: view depth and material id of each texel's pixel), what its upsample
+/// weighs texels by; above the OCIO LUTs' units (binding::kDisplayLutTexFirst = 16).
+inline constexpr int kShadowKeyTex = 31;
 } // namespace stage_binding
 
 /// std140, vec4 / mat4 members only. Slot s describes the s-th shadow-casting light.

@@ -68,12 +68,16 @@ void rectangleAxes(vec3 normal, out vec3 ax, out vec3 ay) {
     ay = cross(normal, ax);
 }
 
-// One pixel of the G-buffer, ready to shade (gbuffer_read.glsl); false at the far plane.
-bool loadShadingPoint(ivec2 pixel, out ShadingPoint p) {
+// One pixel of the G-buffer, ready to shade (gbuffer_read.glsl), with every shadow slot's
+// visibility there (shadowMaskAll, upsampled once per pixel for all its lights); false at the far
+// plane.
+bool loadShadingPoint(ivec2 pixel, out ShadingPoint p, out vec4 shadows) {
     float depth = texelFetch(gDepthTex, pixel, 0).r;
+    shadows = vec4(1.0);
     if (depth >= 1.0)
         return false;
     p = readShadingPoint(pixel, depth);
+    shadows = shadowMaskAll(pixel, -p.posView.z, p.materialId);
     return true;
 }
 
@@ -91,8 +95,9 @@ bool lightReaches(GpuLight L, vec3 posWorld) {
 }
 
 // One light's contribution to the pixel for debug view `view`: radiance for the final image and
-// the lobe views, 1 for the lights-per-pixel view, 0 where the light does not reach.
-vec3 shadeLocalLight(GpuLight L, ShadingPoint p, int view) {
+// the lobe views, 1 for the lights-per-pixel view, 0 where the light does not reach. @p shadows:
+// the pixel's shadow slots (loadShadingPoint).
+vec3 shadeLocalLight(GpuLight L, ShadingPoint p, vec4 shadows, int view) {
     // The shadow catcher only darkens the background (lighting.frag): no light is added to it.
     if (!lightReaches(L, p.posWorld) || p.materialId == GROUND_CATCHER_MATERIAL_ID)
         return vec3(0.0);
@@ -133,7 +138,7 @@ vec3 shadeLocalLight(GpuLight L, ShadingPoint p, int view) {
         return vec3(0.0);
     int shadowSlot = int(L.params.z) - 1;
     if (shadowSlot >= 0)
-        illuminance *= shadowMask(shadowSlot, ivec2(pixelOfViewPosition(p.posView)));
+        illuminance *= shadows[clamp(shadowSlot, 0, 3)];
     Lobes o = shadeLobes(p.s, p.n, p.v, l, lSpecular, widen);
     return selectLobes(o, view) * L.colorIntensity.rgb * illuminance;
 }

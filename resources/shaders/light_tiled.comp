@@ -51,7 +51,8 @@ void main() {
     }
     barrier();
     ShadingPoint p;
-    bool shaded = inside && loadShadingPoint(pixel, p);
+    vec4 shadows;
+    bool shaded = inside && loadShadingPoint(pixel, p, shadows);
     float depth = shaded ? texelFetch(gDepthTex, pixel, 0).r : 1.0;
     if (shaded) {
         // Non-negative floats order like their bit patterns.
@@ -104,7 +105,7 @@ void main() {
         barrier();
         if (shaded)
             for (uint k = 0u; k < sCount; ++k)
-                sum += shadeLocalLight(lights[sList[k]], p, view);
+                sum += shadeLocalLight(lights[sList[k]], p, shadows, view);
         barrier();
     }
     if (shaded)

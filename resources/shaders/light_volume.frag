@@ -7,7 +7,8 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     ShadingPoint p;
-    if (!loadShadingPoint(ivec2(gl_FragCoord.xy), p))
+    vec4 shadows;
+    if (!loadShadingPoint(ivec2(gl_FragCoord.xy), p, shadows))
         discard;
-    outColor = vec4(shadeLocalLight(lights[vLight], p, frame.modes.y), 0.0);
+    outColor = vec4(shadeLocalLight(lights[vLight], p, shadows, frame.modes.y), 0.0);
 }

@@ -66,7 +66,8 @@ void main() {
     vec3 posView = viewPositionFromDepth(ndcXY, texelFetch(gDepthTex, pixel, 0).r);
     vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
     float ssao = screenSpaceOcclusion(pixel, -posView.z);
-    outColor = vec4(background(ndcXY) * catcherTransmission(posWorld, ssao, pixel), 1.0);
+    vec4 shadows = frameShadowMask(pixel, -posView.z, GROUND_CATCHER_MATERIAL_ID);
+    outColor = vec4(background(ndcXY) * catcherTransmission(posWorld, ssao, shadows), 1.0);
 }
 #else
 void main() {
@@ -84,6 +85,13 @@ void main() {
     vec3 v = p.v;
     vec3 posView = p.posView;
     float occlusion = p.occlusion;
+    // Every shadow slot's visibility here, upsampled once (shadow_mask.glsl); the plain ground's
+    // fade into the catcher reads the local lights' slots too.
+#if defined(STAGE_GROUND_PLAIN)
+    vec4 shadows = frameShadowMask(pixel, -posView.z, p.materialId);
+#else
+    vec4 shadows = surfaceShadowMask(pixel, -posView.z, p.materialId);
+#endif
 
 #if defined(LIGHTING_LOBE_VIEWS)
     {
@@ -92,7 +100,7 @@ void main() {
         for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
             vec3 l = frame.lightDirection[i].xyz;
             lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb *
-                     directionalShadow(i, pixel);
+                     directionalShadow(i, shadows);
         }
         outColor = vec4(lobes, 0.0); // alpha 0: replaces the emission (see the header)
     }
@@ -125,7 +133,7 @@ void main() {
     vec3 color = vec3(0.0);
     for (int i = 0; i < frame.modes.x; ++i)
         color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb *
-                 directionalShadow(i, pixel);
+                 directionalShadow(i, shadows);
 
     // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes, times the chosen
     // diffuse term's directional albedo (common_brdf.glsl: 1 for Lambert, tabulated for Burley);
@@ -171,7 +179,7 @@ void main() {
     color += ambient * occlusion * ssao;
 #if defined(STAGE_GROUND_PLAIN)
     if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher
-        color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, pixel),
+        color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, shadows),
                     groundFade(p.posWorld));
 #endif
     outColor = finalColor(color, keepEmission); // + emission x alpha, by the blend (the header)

@@ -42,7 +42,7 @@ float shadowStoredDepth(int s, float dist) {
 bool groundBlocksLight(int s, vec3 posWorld) {
     float h = stage.ground.x;
     vec4 L = stage.shadowLight[s];
-    if (stage.ground.y < 0.5 || posWorld.y <= h)
+    if (stage.ground.y < 0.5)
         return false;
     // Directional: L.xyz is the way towards the light, crossing where y falls by posWorld.y - h.
     // Local: the fraction of the way to the light's centre at which y reaches h.
@@ -50,16 +50,22 @@ bool groundBlocksLight(int s, vec3 posWorld) {
     bool below = L.w < 0.5 ? L.y < 0.0 : L.y < h;
     if (!below)
         return false;
+    // The ground itself faces away from a light under it (the lookup does not test facing: the
+    // half-resolution mask is upsampled across terminators, shadow_mask.glsl).
+    if (posWorld.y <= h + 1e-4 * max(abs(h), 1.0))
+        return true;
     vec2 crossing = posWorld.xz + toLight.xz * ((posWorld.y - h) / max(-toLight.y, 1e-6));
     return all(lessThanEqual(abs(crossing - stage.groundSquare.xz), vec2(stage.groundSquare.w)));
 }
 
 // Fraction of shadow slot s's light that reaches posWorld (normal n, unit l towards the light);
-// 0 facing away or with the ground in between, 1 outside the map (no caster there). noise in
-// [0, 1) rotates the taps.
+// 0 with the ground in between, 1 outside the map (no caster there). noise in [0, 1) rotates the
+// taps. A surface facing away from the light is looked up like any other (the shading's N.L
+// already darkens it): the half-resolution mask is upsampled across the terminator, where a
+// hard 0 on the far side would bleed into the lit side's last pixels.
 float shadowVisibility(int s, vec3 posWorld, vec3 n, vec3 l, float noise) {
     float NdotL = dot(n, l);
-    if (NdotL <= 0.0 || groundBlocksLight(s, posWorld))
+    if (groundBlocksLight(s, posWorld))
         return 0.0;
     vec4 P = stage.shadowParams[s];
     vec4 Q = stage.shadowScale[s];

@@ -60,23 +60,23 @@ vec3 slotIlluminance(int s, vec3 pos, vec3 n) {
 
 // How much of the light the ground at p receives, shadowed and occluded over unshadowed: the
 // environment (SH9 irradiance x occlusion), the directional lights and the shadowed local
-// lights (their shadows at @p pixel, from the shadow mask). Lights without shadows cancel out but
-// for their share of the sum.
-vec3 catcherTransmission(vec3 pos, float occlusion, ivec2 pixel) {
+// lights (their shadows @p mask, the shadow mask here: frameShadowMask). Lights without shadows
+// cancel out but for their share of the sum.
+vec3 catcherTransmission(vec3 pos, float occlusion, vec4 mask) {
     vec3 n = vec3(0.0, 1.0, 0.0);
     vec3 env = irradianceOverPi(n) * PI;
     vec3 full = env, lit = env * occlusion;
     for (int i = 0; i < frame.modes.x; ++i) {
         vec3 e = frame.lightRadiance[i].rgb * max(dot(n, frame.lightDirection[i].xyz), 0.0);
         full += e;
-        lit += e * directionalShadow(i, pixel);
+        lit += e * directionalShadow(i, mask);
     }
     for (int s = 0; s < stage.counts.x; ++s) {
         vec3 e = slotIlluminance(s, pos, n);
         if (max3(e) <= 0.0)
             continue;
         full += e;
-        lit += e * shadowMask(s, pixel);
+        lit += e * mask[clamp(s, 0, 3)];
     }
     return clamp(lit / max(full, vec3(1e-6)), 0.0, 1.0);
 }

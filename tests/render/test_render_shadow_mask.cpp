@@ -1,9 +1,11 @@
 // The screen-space shadow mask's scissor (render/shadow_mask.h): the part of the frame where a
-// shadow slot's visibility can differ from 1, for known geometry seen straight down, on the CPU.
+// shadow slot's visibility can differ from 1, for known geometry seen straight down, on the CPU,
+// and the half-resolution mask's texels those pixels read.
 // (The mask's image against the lookup it replaced: test_render_shadow_golden.)
 #include "render/shadow_mask.h"
 
 #include <QtTest>
+#include <algorithm>
 #include <cstdlib>
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
@@ -112,6 +114,39 @@ private slots:
                                                                -1.0f, topDown(4.0f), kSize, kSize);
         QVERIFY(r.x > 0 && r.y > 0 && r.x + r.width < kSize && r.y + r.height < kSize);
         QVERIFY(r.x <= 37 && r.x + r.width >= 63 && r.y <= 37 && r.y + r.height >= 63);
+    }
+
+    // The half-resolution mask's texels for a frame rectangle: texel t stands for pixel 2t and
+    // pixel p reads texels floor(p / 2) and the next (clamped to the mask), so every pixel of the
+    // rectangle finds both inside, and a rectangle's texels stay inside the mask.
+    void maskTexelsCoverEveryPixelsNeighbours() {
+        const int frameW = 101, frameH = 64, maskW = (frameW + 1) / 2, maskH = (frameH + 1) / 2;
+        const render::PixelRect rects[] = {{0, 0, frameW, frameH},
+                                           {10, 7, 31, 20},
+                                           {11, 8, 1, 1},
+                                           {100, 63, 1, 1},
+                                           {40, 40, 0, 0}};
+        for (const render::PixelRect& r : rects) {
+            const render::PixelRect m = render::maskRect(r, maskW, maskH);
+            QVERIFY(m.x >= 0 && m.y >= 0 && m.x + m.width <= maskW && m.y + m.height <= maskH);
+            for (int y = r.y; y < r.y + r.height; ++y)
+                for (int x = r.x; x < r.x + r.width; ++x)
+                    for (int k = 0; k < 4; ++k) {
+                        const int tx = std::min(x / 2 + (k & 1), maskW - 1);
+                        const int ty = std::min(y / 2 + (k >> 1), maskH - 1);
+                        QVERIFY2(tx >= m.x && tx < m.x + m.width && ty >= m.y &&
+                                     ty < m.y + m.height,
+                                 qPrintable(QString("pixel %1,%2 reads texel %3,%4 outside")
+                                                .arg(x)
+                                                .arg(y)
+                                                .arg(tx)
+                                                .arg(ty)));
+                    }
+        }
+        // The whole frame is the whole mask; an empty rectangle stays empty.
+        QCOMPARE(render::maskRect({0, 0, frameW, frameH}, maskW, maskH),
+                 (render::PixelRect{0, 0, maskW, maskH}));
+        QCOMPARE(render::maskRect({40, 40, 0, 0}, maskW, maskH).width, 0);
     }
 };
 
