@@ -10,6 +10,8 @@ namespace {
 /// Whether the record's lobe-channel map (GpuMaterial::terms2.w, 4 bits per LobeValue) carries
 /// @p value per pixel.
 bool perPixel(const GpuMaterial& m, LobeValue value) {
+    if (value == LobeValue::Ior)
+        return int(m.clearcoat.w) != kLobePerMaterial;
     const auto map = static_cast<std::uint32_t>(m.terms2.w);
     return ((map >> (4 * static_cast<int>(value))) & 0xFu) != std::uint32_t(kLobePerMaterial);
 }
@@ -78,7 +80,7 @@ LightingFeatures lightingFeaturesOf(std::span<const GpuMaterial> records, bool d
         return m.terms.x == 0 &&
                (m.sheenWeightAnisotropy.y > 0.0f || perPixel(m, LobeValue::Anisotropy));
     });
-    f.lobeChannels = any([](const GpuMaterial& m) { return m.terms2.w != -1; });
+    f.lobeChannels = any([](const GpuMaterial& m) { return hasLobeMap(m); });
     f.directionalShadows = directionalShadows;
     f.occlusion = occlusion;
     f.iblBaked = iblBaked ? 1 : 0;

@@ -20,8 +20,11 @@ constexpr std::array<ValueInfo, kLobeValueCount> kValues{{
     {2, "clearcoat normal", "LOBE_CLEARCOAT_NORMAL"},
     {1, "specular", "LOBE_SPECULAR_WEIGHT"},
     {3, "specular colour", "LOBE_SPECULAR_COLOR"},
+    {1, "IOR", "LOBE_IOR"},
 }};
-static_assert(kLobeValueCount * 4 <= 32, "the map is 4 bits a value in one int");
+// The first eight values' entries fill terms2.w; the IOR's has its own slot (iorEntry()).
+constexpr int kPackedValues = 8;
+static_assert(kLobeValueCount == kPackedValues + 1, "the map is 4 bits a value in one int, + IOR");
 
 bool has(std::uint32_t slots, TextureSlot s) {
     return (slots >> int(s)) & 1u;
@@ -86,12 +89,14 @@ LobeValueSet varyingLobeValues(const Material& m, std::uint32_t presentSlots,
                                         connected(graphFields, {"specularWeight"}));
     vary(LobeValue::SpecularColor, has(presentSlots, TextureSlot::SpecularColor) ||
                                        connected(graphFields, {"specularColor"}));
+    // KHR_materials_ior has no texture; a graph may drive it.
+    vary(LobeValue::Ior, connected(graphFields, {"ior"}));
     return set;
 }
 
 std::int32_t LobeChannelMap::packed() const {
     std::uint32_t bits = 0;
-    for (int i = 0; i < kLobeValueCount; ++i)
+    for (int i = 0; i < kPackedValues; ++i)
         bits |= std::uint32_t(firstChannel[size_t(i)] & 15) << (4 * i);
     return std::int32_t(bits);
 }

@@ -4,12 +4,13 @@
 ///
 /// The 16 bytes of base colour, occlusion, normal, metallic, roughness and material id are the
 /// same for every material. The other lobes (sheen, clearcoat and its own normal, specular,
-/// anisotropy) need 14 values between them, but a material varies only a few of them per pixel:
-/// a velvet its sheen colour, a car paint its coat, silk its anisotropy. So the G-buffer has eight
-/// 8-bit "lobe channels" (two RGBA8 targets, 24 bytes per pixel in all) and each material gets a
-/// map saying which of its varying values sit in which channels; the values it does not vary come
-/// from the material table as before. The map is 4 bits per value in the material record
-/// (GpuMaterial::terms2.w), written by the geometry pass and read by the lighting passes
+/// anisotropy) and the IOR need 15 values between them, but a material varies only a few of them
+/// per pixel: a velvet its sheen colour, a car paint its coat, silk its anisotropy. So the G-buffer
+/// has eight 8-bit "lobe channels" (two RGBA8 targets, 24 bytes per pixel in all) and each material
+/// gets a map saying which of its varying values sit in which channels; the values it does not vary
+/// come from the material table as before. The map is 4 bits per value in the material record
+/// (GpuMaterial::terms2.w for the first eight values, clearcoat.w for the IOR's entry), written by
+/// the geometry pass and read by the lighting passes
 /// (gbuffer.frag, gbuffer_read.glsl). docs/architecture.md, "G-buffer", has the measurements.
 ///
 /// A value varies when a texture slot or a connected graph input drives it; the anisotropy
@@ -38,6 +39,7 @@ enum class LobeValue : int {
     ClearcoatNormal,    ///< the coat's normal in the base normal's frame, xy (2)
     SpecularWeight,     ///< (1)
     SpecularColor,      ///< sRGB-encoded (3)
+    Ior,                ///< (ior - 1) / 2: IORs 1 .. 3 (1; only a graph drives it)
     Count
 };
 inline constexpr int kLobeValueCount = static_cast<int>(LobeValue::Count);
@@ -73,8 +75,11 @@ struct LobeChannelMap {
     int channelsUsed = 0;
 
     bool perPixel(LobeValue v) const { return firstChannel[size_t(v)] != kLobePerMaterial; }
-    /// 4 bits per value, value i at bits 4i .. 4i+3 (GpuMaterial::terms2.w).
+    /// 4 bits per value, value i at bits 4i .. 4i+3, for the first eight values
+    /// (GpuMaterial::terms2.w).
     std::int32_t packed() const;
+    /// The IOR's entry (GpuMaterial::clearcoat.w, a small whole number in a float slot).
+    int iorEntry() const { return firstChannel[size_t(LobeValue::Ior)]; }
 };
 
 /// Assigns channels to @p varying in LobeValue order, each value's channels contiguous.

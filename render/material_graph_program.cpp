@@ -53,13 +53,14 @@ void MaterialGraphProgram::start(const Material& material) {
 }
 
 GeometryFeatures GeometryFeatures::of(const GpuMaterial& record) {
-    return {record.terms2.y, record.terms2.z, record.terms2.w};
+    return {record.terms2.y, record.terms2.z, record.terms2.w, int(record.clearcoat.w)};
 }
 
 std::vector<std::string> GeometryFeatures::defines() const {
     return {"FIXED_TEXTURE_SLOTS " + std::to_string(textureSlots),
             "FIXED_ATLAS_SLOTS " + std::to_string(atlasSlots),
-            "FIXED_LOBE_MAP (" + std::to_string(lobeMap) + ")"};
+            "FIXED_LOBE_MAP (" + std::to_string(lobeMap) + ")",
+            "FIXED_IOR_ENTRY " + std::to_string(iorEntry)};
 }
 
 bool MaterialGraphProgram::build(std::string* error) {
@@ -218,13 +219,6 @@ void MaterialGraphProgram::buildPending(TextureCache& cache, bool wait) {
     m_pending = {};
     uploadValues();
     refreshTextures(cache, nullptr);
-}
-
-bool graphOutputIsPerPixel(std::string_view field) {
-    // gbuffer.frag reads every MaterialInputs field back from velvetGraph() and writes it per
-    // pixel (the lobes through the lobe channels, render/lobe_channels.h) except the IOR, which
-    // the lighting passes take from the material table.
-    return field != "ior";
 }
 
 } // namespace velvet::render

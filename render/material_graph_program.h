@@ -31,9 +31,10 @@ struct GpuMaterial;
 /// the slots the material leaves empty cost nothing and the lobe channels are written at constant
 /// indices (llvmpipe runs both sides of every branch and indexes local arrays slowly).
 struct GeometryFeatures {
-    int textureSlots = 0, atlasSlots = 0, lobeMap = -1;
+    int textureSlots = 0, atlasSlots = 0, lobeMap = -1, iorEntry = 15;
     static GeometryFeatures of(const GpuMaterial& record);
-    /// gbuffer.frag's defines (FIXED_TEXTURE_SLOTS, FIXED_ATLAS_SLOTS, FIXED_LOBE_MAP).
+    /// gbuffer.frag's defines (FIXED_TEXTURE_SLOTS, FIXED_ATLAS_SLOTS, FIXED_LOBE_MAP,
+    /// FIXED_IOR_ENTRY).
     std::vector<std::string> defines() const;
     auto operator<=>(const GeometryFeatures&) const = default;
 };

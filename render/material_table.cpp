@@ -27,7 +27,7 @@ GpuMaterial packMaterial(const Material& m) {
                   glm::radians(m.scalar(ParamId::AnisotropyRotation)), 0.0f);
     g.clearcoat =
         glm::vec4(m.scalar(ParamId::ClearcoatWeight), m.scalar(ParamId::ClearcoatRoughness),
-                  m.scalar(ParamId::ClearcoatNormalScale), 0.0f);
+                  m.scalar(ParamId::ClearcoatNormalScale), float(assignLobeChannels(0).iorEntry()));
     g.terms = glm::ivec4(m.choice(ParamId::Distribution), m.choice(ParamId::Visibility),
                          m.choice(ParamId::Fresnel), m.choice(ParamId::Diffuse));
     // No texture yet, every lobe value per material (packMaterialRecord() maps the varying ones).
@@ -43,6 +43,7 @@ GpuMaterial packMaterialRecord(const Material& m, const TextureSet& textures,
         assignLobeChannels(varyingLobeValues(m, textures.presentSlots(), graphFields),
                            compactGBuffer ? 0 : kLobeChannelCount);
     g.terms2.w = map.packed();
+    g.clearcoat.w = float(map.iorEntry());
     textures.applyTo(g, map);
     if (overflow)
         *overflow = compactGBuffer ? 0u : map.overflow;

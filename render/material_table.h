@@ -4,6 +4,7 @@
 /// A value edit rewrites the table; it never touches a shader.
 
 #include "core/material.h"
+#include "render/lobe_channels.h"
 
 #include <cstdint>
 #include <glm/vec2.hpp>
@@ -27,6 +28,13 @@ struct GpuMaterial {
     glm::ivec4 terms2;
 };
 static_assert(sizeof(GpuMaterial) == 144, "GpuMaterial must match the std430 layout");
+
+/// Whether @p g varies some lobe value per pixel (its lobe-channel map, terms2.w and the IOR's
+/// entry in clearcoat.w, is not all "per material"): the geometry pass then writes the lobe
+/// targets and the lighting passes read them.
+inline bool hasLobeMap(const GpuMaterial& g) {
+    return g.terms2.w != -1 || int(g.clearcoat.w) != kLobePerMaterial;
+}
 
 /// The parameters alone (no texture presence, every lobe per material).
 GpuMaterial packMaterial(const Material& m);

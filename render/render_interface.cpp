@@ -70,7 +70,9 @@ constexpr std::array kMaterialMembers{
                   "rgb colour, a strength (nits); drawn per pixel by gbuffer.frag"),
     VELVET_MEMBER(GpuMaterial, "vec4", sheenColorRoughness, "",
                   "rgb sheen colour (without its weight), a sheen roughness"),
-    VELVET_MEMBER(GpuMaterial, "vec4", clearcoat, "", "weight, roughness, normal scale, unused"),
+    VELVET_MEMBER(GpuMaterial, "vec4", clearcoat, "",
+                  "weight, roughness, normal scale, the IOR's lobe-channel entry "
+                  "(render/lobe_channels.h; 15: per material)"),
     VELVET_MEMBER(GpuMaterial, "vec4", sheenWeightAnisotropy, "",
                   "sheen weight, anisotropy strength, anisotropy rotation (radians), unused"),
     VELVET_MEMBER(GpuMaterial, "ivec4", terms, "", "distribution, visibility, fresnel, diffuse"),

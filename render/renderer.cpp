@@ -266,8 +266,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // a split keeps them): every reader (gbuffer_read.glsl's readLobeChannels) skips them
     // otherwise.
     geometry.lobeTargets =
-        d.packedA.terms2.w != -1 || fs.splitMaterial.has_value() ||
-        (d.scene.environment.ground != GroundMode::Off && d.packedGround.terms2.w != -1);
+        hasLobeMap(d.packedA) || fs.splitMaterial.has_value() ||
+        (d.scene.environment.ground != GroundMode::Off && hasLobeMap(d.packedGround));
     geometry.framebuffer = d.targets.geometryFramebuffer(emission, geometry.lobeTargets, error);
     if (!geometry.framebuffer)
         return false;

@@ -392,9 +392,4 @@ private:
     std::unique_ptr<Impl> m_impl;
 };
 
-/// Whether the geometry pass draws the material graph's Material output input @p field
-/// ("baseColor", "sheenColor", "anisotropyStrength", …) per pixel: every one but the IOR, which
-/// the lighting passes read from the material table (docs/architecture.md, "G-buffer").
-bool graphOutputIsPerPixel(std::string_view field);
-
 } // namespace velvet::render

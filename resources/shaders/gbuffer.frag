@@ -19,9 +19,12 @@ layout(location = 0) uniform int uMaterialId;
 // Writes the lobe values the material's map places in the lobe channels (render/lobe_channels.h;
 // decoded by gbuffer_read.glsl's readLobeChannels). @p tbn: the tangent frame on the geometric
 // normal @p ng; @p n: the shading normal as the G-buffer stores it.
-void writeLobeChannels(int map, MaterialInputs inputs, mat3 tbn, vec3 ng, vec3 n) {
+void writeLobeChannels(int map, int iorEntry, MaterialInputs inputs, mat3 tbn, vec3 ng, vec3 n) {
 #ifdef FIXED_LOBE_MAP // specialised (GeometryFeatures): every channel index a constant
     map = FIXED_LOBE_MAP;
+#endif
+#ifdef FIXED_IOR_ENTRY
+    iorEntry = FIXED_IOR_ENTRY;
 #endif
     float ch[LOBE_CHANNEL_COUNT] = float[](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     int c = lobeChannel(map, LOBE_ANISOTROPY);
@@ -76,6 +79,9 @@ void writeLobeChannels(int map, MaterialInputs inputs, mat3 tbn, vec3 ng, vec3 n
         ch[c + 1] = spec.g;
         ch[c + 2] = spec.b;
     }
+    // KHR_materials_ior from the graph: (ior - 1) / 2, IORs 1 .. 3.
+    if (iorEntry != LOBE_PER_MATERIAL)
+        ch[iorEntry] = saturate((inputs.ior - 1.0) * 0.5);
     gLobes0 = vec4(ch[0], ch[1], ch[2], ch[3]);
     gLobes1 = vec4(ch[4], ch[5], ch[6], ch[7]);
 }
@@ -153,7 +159,7 @@ void main() {
     gMaterial = vec4(metallic, clamp(roughness, 0.0, 1.0), float(uMaterialId) / 255.0, 0.0);
     // The lobes this material varies, into the channels its map gives them, encoded relative to
     // the normal exactly as the lighting passes will decode it.
-    writeLobeChannels(m.terms2.w, inputs, tbn, ng, octDecodeUnorm16(gNormal));
+    writeLobeChannels(m.terms2.w, int(m.clearcoat.w), inputs, tbn, ng, octDecodeUnorm16(gNormal));
     // Emission per pixel (texture x colour x strength, or the graph's), into the HDR target the
     // lighting pass then adds to, as Killzone 2 wrote emissive into its light accumulation buffer
     // during the geometry pass; KHR_materials_clearcoat's attenuation of it by the coat's Fresnel

@@ -28,13 +28,13 @@ int readMaterialId(ivec2 pixel) {
     return decodeMaterialId(texelFetch(gMaterialTex, pixel, 0).b);
 }
 
-// The lobe values the material's map (render/lobe_channels.h) puts in the lobe channels, over the
-// material table's values in @p s. Encodings: gbuffer.frag.
-void readLobeChannels(ivec2 pixel, int map, vec3 n, inout Surface s) {
+// The lobe values the material's map (render/lobe_channels.h: @p map, and @p iorEntry for the IOR)
+// puts in the lobe channels, over the material table's values in @p s. Encodings: gbuffer.frag.
+void readLobeChannels(ivec2 pixel, int map, int iorEntry, vec3 n, inout Surface s) {
 #if !WITH_LOBE_CHANNELS
     return; // no drawn material has a lobe map (render/lighting_features.h)
 #endif
-    if (map == -1) // every entry LOBE_PER_MATERIAL (15): nothing per pixel
+    if (map == -1 && iorEntry == LOBE_PER_MATERIAL) // nothing per pixel
         return;
     vec4 l0 = texelFetch(gLobes0Tex, pixel, 0);
     vec4 l1 = texelFetch(gLobes1Tex, pixel, 0);
@@ -65,6 +65,8 @@ void readLobeChannels(ivec2 pixel, int map, vec3 n, inout Surface s) {
     c = lobeChannel(map, LOBE_SPECULAR_COLOR);
     if (c != LOBE_PER_MATERIAL)
         s.specularColor = srgbDecode(vec3(ch[c], ch[c + 1], ch[c + 2]));
+    if (iorEntry != LOBE_PER_MATERIAL)
+        s.ior = 1.0 + 2.0 * ch[iorEntry];
 }
 
 // Decodes @p pixel, whose hardware depth is @p depth (read by the caller, which decides what the
@@ -98,7 +100,7 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     p.occlusion = rt0.a;
     p.n = octDecodeUnorm16(rt1);
     setIsotropicSingleNormal(p.s, p.n);
-    readLobeChannels(pixel, m.terms2.w, p.n, p.s);
+    readLobeChannels(pixel, m.terms2.w, int(m.clearcoat.w), p.n, p.s);
     // Lobes no drawn material has are constants, so the code that shades them folds away.
 #if !WITH_SHEEN
     p.s.sheenColor = vec3(0.0);

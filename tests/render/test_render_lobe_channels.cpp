@@ -1,13 +1,17 @@
 // Every lobe per pixel (render/lobe_channels.h): the channel assignment on its own, then, through
 // the real renderer, a two-valued map in each lobe slot draws each half of the sphere exactly as
-// the material with that value as a constant does; the clear coat's own normal map moves the
-// coat's highlight and not the base's; the compact 16-byte layout is still there to compare.
+// the material with that value as a constant does, and a graph's IOR likewise; the clear coat's
+// own normal map moves the coat's highlight and not the base's; the compact 16-byte layout is
+// still there to compare.
+#include "core/graph/graph.h"
+#include "core/graph/node_catalogue.h"
 #include "core/image.h"
 #include "render/gbuffer_layout.h"
 #include "render/lobe_channels.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
+#include "tests/core/graph_test_util.h"
 
 #include <QtTest>
 #include <cmath>
@@ -106,17 +110,22 @@ private slots:
         QCOMPARE((velvet.packed() >> (4 * int(LobeValue::SheenRoughness))) & 15, 3);
         QCOMPARE((velvet.packed() >> (4 * int(LobeValue::Clearcoat))) & 15, 15);
 
-        // All of them: 14 channels' worth, 8 fit (anisotropy 2, sheen 3 + 1, coat 1 + 1); the
-        // coat normal and the specular weight and colour stay per material.
+        // All of them: 15 channels' worth, 8 fit (anisotropy 2, sheen 3 + 1, coat 1 + 1); the
+        // coat normal, the specular weight and colour and the IOR stay per material.
         const render::LobeValueSet all = (1u << render::kLobeValueCount) - 1;
         const auto full = render::assignLobeChannels(all);
         QCOMPARE(full.channelsUsed, 8);
         QCOMPARE(full.overflow, lobeBit(LobeValue::ClearcoatNormal) |
                                     lobeBit(LobeValue::SpecularWeight) |
-                                    lobeBit(LobeValue::SpecularColor));
+                                    lobeBit(LobeValue::SpecularColor) | lobeBit(LobeValue::Ior));
         QCOMPARE(full.firstChannel[size_t(LobeValue::ClearcoatRoughness)], 7);
         QCOMPARE(render::lobeValueNames(full.overflow),
-                 std::string("clearcoat normal, specular, specular colour"));
+                 std::string("clearcoat normal, specular, specular colour, IOR"));
+        // The IOR's entry lives outside the packed word (GpuMaterial::clearcoat.w).
+        QCOMPARE(full.iorEntry(), render::kLobePerMaterial);
+        const auto ior = render::assignLobeChannels(lobeBit(LobeValue::Ior));
+        QCOMPARE(ior.iorEntry(), 0);
+        QCOMPARE(ior.packed(), std::int32_t(-1));
         // A smaller value still takes a channel a larger one before it could not.
         const auto gap = render::assignLobeChannels(
             lobeBit(LobeValue::Anisotropy) | lobeBit(LobeValue::SheenColor) |
@@ -146,6 +155,7 @@ private slots:
                  render::lobeBit(LobeValue::SheenColor));
         QCOMPARE(render::varyingLobeValues(m, slot(TextureSlot::SpecRoughMetal), {}),
                  render::lobeBit(LobeValue::SpecularWeight));
+        QCOMPARE(render::varyingLobeValues(m, 0, {"ior"}), render::lobeBit(LobeValue::Ior));
         // A normal map alone bends no coat when there is none.
         QCOMPARE(render::varyingLobeValues(m, slot(TextureSlot::Normal), {}),
                  render::LobeValueSet(0));
@@ -249,6 +259,52 @@ private slots:
         const Image hi = render(constant(high), debugView);
         const Image lo = render(constant(low), debugView);
         const Image normals = render(base, render::DebugView::Normal);
+        expectHalves(got, hi, lo, normals);
+    }
+
+    // KHR_materials_ior through the material graph (it has no texture slot): an image whose
+    // halves hold 1.0 and 0.4, plus 1, drives the IOR (2.0 and 1.4, stored as (ior - 1) / 2 in a
+    // lobe channel: 128/255 and 51/255); each half of the sphere draws as the material with that
+    // IOR as its parameter.
+    void graphIorIsPerPixel() {
+        // A black dielectric in a white uniform environment: all it shows is its reflection,
+        // whose strength is the IOR's Fresnel (F0 0.111 at 2.0, 0.028 at 1.4).
+        Scene base = litSphere();
+        base.lights.clear();
+        base.environment.color = glm::vec3(1.0f);
+        base.material.setColor(ParamId::BaseColor, glm::vec3(0.0f));
+        base.material.setScalar(ParamId::Roughness, 0.25f);
+        graph::Graph g;
+        const graph::NodeId tex = g.addNode("texture.image").node;
+        const graph::NodeId plus = g.addNode("math.add").node;
+        const graph::NodeId out = g.addNode(graph::kOutputTypeId).node;
+        const fs::path file = write("ior_halves.png", halves(glm::vec4(glm::vec3(1.0f), 1.0f),
+                                                             glm::vec4(glm::vec3(0.4f), 1.0f)));
+        QVERIFY(g.setSetting(tex, "file", file.string()).ok);
+        QVERIFY(g.setSetting(tex, "colorSpace", "Raw").ok);
+        QVERIFY(g.setInputValue(plus, 1, glm::vec4(1.0f)).ok);
+        QVERIFY(g.connect(test::link(g, tex, "color", plus, "a")).ok);
+        QVERIFY(g.connect(test::link(g, plus, "result", out, "ior")).ok);
+        Scene mapped = base;
+        mapped.material.graph = SharedGraph(g);
+        const auto constant = [&](float ior) {
+            Scene scene = base;
+            scene.material.setScalar(ParamId::Ior, ior);
+            return scene;
+        };
+        Problems problems;
+        render(mapped, render::DebugView::Final, &problems);
+        render(mapped); // the frame after a new structure draws with its specialised program
+        const Image got = render(mapped, render::DebugView::Final, &problems);
+        QVERIFY(!problems.hasErrors());
+        const Image hi = render(constant(2.0f));
+        const Image lo = render(constant(1.4f));
+        expectHalves(got, hi, lo, render(base, render::DebugView::Normal));
+    }
+
+    /// Every sphere pixel of @p got where @p hi and @p lo (the two constants' images) differ
+    /// matches one of them, and both show: a two-valued map drawn per pixel.
+    void expectHalves(const Image& got, const Image& hi, const Image& lo, const Image& normals) {
         const auto tolerance = [](float e) { return 0.03f * e + 2.0f / 255.0f; };
         int sphere = 0, matchHigh = 0, matchLow = 0, differ = 0;
         for (int y = 0; y < kSize; ++y)

@@ -1,8 +1,5 @@
 #include "ui/graph/node_item.h"
 
-#include "render/renderer.h"
-
-#include <QCoreApplication>
 #include <QFont>
 #include <QFontMetricsF>
 #include <QGraphicsScene>
@@ -95,15 +92,6 @@ NodeItem::NodeItem(const graph::Node& node) : m_node(node.id) {
         p->setPos(0, y);
         m_inputs[i] = p;
         m_inputLabels.push_back(qs(t.inputs[i].label));
-        // The Material output's inputs the viewport cannot draw per pixel are dimmed and say so.
-        const bool perMaterial = t.isOutput && !render::graphOutputIsPerPixel(t.inputs[i].name);
-        m_inputDimmed.push_back(perMaterial);
-        if (perMaterial)
-            p->setToolTip(p->toolTip() +
-                          QCoreApplication::translate(
-                              "velvet::ui::NodeItem",
-                              "\nViewport: not drawn per pixel (the G-buffer carries no IOR); the "
-                              "parameter's value applies. Exports keep the connection."));
         ++rows;
     }
     for (size_t i = 0; i < t.outputs.size(); ++i) {
@@ -138,11 +126,8 @@ void NodeItem::paint(QPainter* painter, const QStyleOptionGraphicsItem* option, 
     painter->setPen(Qt::white);
     painter->drawText(QRectF(8, 0, m_width - 16, kTitleHeight), Qt::AlignVCenter, m_title);
     painter->setPen(QColor(220, 220, 220));
-    for (size_t i = 0; i < m_inputLabels.size(); ++i) {
-        painter->setPen(m_inputDimmed[i] ? QColor(140, 140, 140) : QColor(220, 220, 220));
+    for (size_t i = 0; i < m_inputLabels.size(); ++i)
         painter->drawText(inputLabelRect(i), Qt::AlignVCenter | Qt::AlignLeft, m_inputLabels[i]);
-    }
-    painter->setPen(QColor(220, 220, 220));
     for (size_t i = 0; i < m_outputLabels.size(); ++i)
         painter->drawText(outputLabelRect(i), Qt::AlignVCenter | Qt::AlignRight, m_outputLabels[i]);
     if (m_hasPreview) {

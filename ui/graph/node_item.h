@@ -80,7 +80,6 @@ private:
     graph::NodeId m_node;
     QString m_title;
     std::vector<QString> m_inputLabels, m_outputLabels;
-    std::vector<bool> m_inputDimmed; ///< per input label: the viewport does not draw it per pixel
     std::vector<PortItem*> m_inputs, m_outputs; ///< indexed like the type's ports
     qreal m_width = 160, m_height = 60;
     qreal m_inputColumn = 70, m_outputColumn = 70; ///< the label columns' widths

@@ -2,7 +2,6 @@
 
 #include "core/graph/graph.h"
 #include "core/graph/node_catalogue.h"
-#include "render/renderer.h"
 
 #include <QFormLayout>
 #include <QToolButton>
@@ -50,22 +49,15 @@ void GraphDrivenRows::refresh(const Material& material) {
             row.editor->setEnabled(true);
             continue;
         }
-        const graph::NodeType& outType = *g->node(out)->type;
-        const bool perPixel = render::graphOutputIsPerPixel(outType.inputs[size_t(port)].name);
+        // The viewport draws every graph output per pixel (render/lobe_channels.h): the
+        // parameter's own value changes nothing while a node drives it.
         const QString node = tr("%1 (node %2)").arg(fromView(from->type->label)).arg(from->id);
-        row.link->setText(
-            perPixel ? tr("Driven by %1 in the graph — show").arg(node)
-                     : tr("Graph: %1 (exports); the viewport uses this value — show").arg(node));
-        row.link->setToolTip(
-            perPixel ? tr("The material graph's %1 feeds this parameter, so its own value is not "
-                          "used; click to select the node")
-                           .arg(node)
-                     : tr("The material graph's %1 feeds this parameter in exports; the viewport "
-                          "cannot draw it per pixel and uses the value here; click to select "
-                          "the node")
-                           .arg(node));
+        row.link->setText(tr("Driven by %1 in the graph — show").arg(node));
+        row.link->setToolTip(tr("The material graph's %1 feeds this parameter, so its own value "
+                                "is not used; click to select the node")
+                                 .arg(node));
         row.form->setRowVisible(row.link, true);
-        row.editor->setEnabled(!perPixel);
+        row.editor->setEnabled(false);
     }
 }
 

@@ -2,9 +2,8 @@
 /// @file graph_driven_rows.h
 /// Properties' material page, for parameters a material graph drives (issue 17 item 5): under
 /// each such parameter a link "Driven by Weave (node 3) in the graph" that jumps to that node;
-/// the parameter's own editor is disabled where the viewport draws the graph's value per pixel
-/// (its value would change nothing), and stays editable where the viewport uses the value
-/// (render::graphOutputIsPerPixel: the link says so).
+/// the parameter's own editor is disabled (the viewport draws the graph's value per pixel, so
+/// its own value would change nothing).
 
 #include "core/graph/graph_types.h"
 #include "core/material.h"
