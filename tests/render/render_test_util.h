@@ -54,6 +54,9 @@ struct OffscreenRenderer {
                Problems* problems = nullptr) {
         if (scene)
             renderer->setScene(*scene, problems);
+        // Drawn with the bake complete, as `velvet render` draws: the same image whether the
+        // environment and the DFG LUT came from the disk cache or were baked just now.
+        renderer->finishEnvironment();
         render::FrameSettings fs;
         fs.width = fs.height = size;
         fs.view = view;

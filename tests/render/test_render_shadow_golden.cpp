@@ -46,6 +46,11 @@ Image drawDisplay(const Scene& scene, render::LightPath path = render::LightPath
     test::OffscreenRenderer* r = rig();
     Problems problems;
     r->renderer->setScene(scene, &problems);
+    // The finished bake, whether or not the environment and the DFG LUT came from the disk
+    // cache: a frame drawn while they bake shows the approximate path (render/ibl_bake.h), so
+    // without this the images depended on what the cache held (a warm one moved 2-14 % of the
+    // pixels against references drawn cold).
+    r->renderer->finishEnvironment();
     render::FrameSettings fs;
     fs.width = fs.height = kSize;
     fs.lightPath = path;

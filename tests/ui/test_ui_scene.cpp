@@ -105,17 +105,6 @@ private slots:
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
-    /// Frames before the environment's bake completes differ from later ones (each frame runs a
-    /// slice of it, and each test bakes afresh in its own cache folder): draws frames until it
-    /// is complete, so images compared across an edit are both baked.
-    bool waitForBakedEnvironment() {
-        return QTest::qWaitFor(
-            [&] {
-                viewportImage();
-                return m_window->viewport()->environmentProgress() >= 1.0;
-            },
-            60000);
-    }
     template <class T>
     T* find(const QString& name) {
         T* w = m_window->findChild<T*>(name);
@@ -412,7 +401,8 @@ void TestUiScene::libraryDoubleClickAppliesAndCtrlZUndoes() {
     QVERIFY(gold.isValid());
     view->scrollTo(gold);
     const Material velvet = m_doc->material();
-    QVERIFY(waitForBakedEnvironment()); // "before" is the settled image the undo returns to
+    // "before" is the settled image the undo returns to.
+    QVERIFY(test::drawUntilEnvironmentBaked(m_window->viewport()));
     const double before = centreLuma(viewportImage());
     const QPoint at = view->visualRect(gold).center();
     QTest::mouseClick(view->viewport(), Qt::LeftButton, Qt::NoModifier, at);
@@ -439,7 +429,7 @@ void TestUiScene::postChainDragInWindowReordersAndRedraws() {
     m_window->findChild<QDockWidget*>(QStringLiteral("postChainDock"))->raise();
     PostChainListView* list = m_window->postChainPanel()->list();
     QCOMPARE(list->model()->rowCount(), 2);
-    QVERIFY(waitForBakedEnvironment());
+    QVERIFY(test::drawUntilEnvironmentBaked(m_window->viewport()));
     const QImage before = viewportImage();
 
     // The drop half of a drag of row 0 onto the lower half of row 1 (QDrag::exec's nested loop

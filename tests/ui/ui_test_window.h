@@ -41,4 +41,16 @@ inline QString showWithFirstFrame(ui::MainWindow* window, QSize size) {
     return {};
 }
 
+/// Draws frames of @p viewport until its environment's bake is complete (each frame runs a slice
+/// of it, and each test bakes afresh in its own cache folder: frames before the end differ from
+/// later ones), so images compared across an edit are both baked. False after @p timeoutMs.
+inline bool drawUntilEnvironmentBaked(ui::ViewportWidget* viewport, int timeoutMs = 60000) {
+    return QTest::qWaitFor(
+        [viewport] {
+            viewport->grabFramebuffer();
+            return viewport->environmentProgress() >= 1.0;
+        },
+        timeoutMs);
+}
+
 } // namespace velvet::test
