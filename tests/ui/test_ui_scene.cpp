@@ -46,35 +46,9 @@
 using namespace velvet;
 using namespace velvet::ui;
 
+using velvet::test::answerNextMessageBox;
+using velvet::test::centreLuma;
 using velvet::test::dropFile;
-
-namespace {
-
-/// Mean luma of a 9x9 block around the centre (on the sphere), 0..255.
-double centreLuma(const QImage& image) {
-    double sum = 0.0;
-    const int cx = image.width() / 2, cy = image.height() / 2;
-    for (int y = cy - 4; y <= cy + 4; ++y)
-        for (int x = cx - 4; x <= cx + 4; ++x) {
-            const QColor c = image.pixelColor(x, y);
-            sum += 0.2126 * c.red() + 0.7152 * c.green() + 0.0722 * c.blue();
-        }
-    return sum / 81.0;
-}
-
-/// Answers the next modal message box with the button whose role is @p role (as a click).
-void answerNextMessageBox(QMessageBox::StandardButton which) {
-    QTimer::singleShot(0, [which] {
-        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-        if (!box) {
-            answerNextMessageBox(which); // not shown yet: look again on the next turn
-            return;
-        }
-        QTest::mouseClick(box->button(which), Qt::LeftButton);
-    });
-}
-
-} // namespace
 
 class TestUiScene : public QObject {
     Q_OBJECT
