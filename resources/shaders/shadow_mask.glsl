@@ -3,9 +3,9 @@
 // (PCSS, shadow_sampling.glsl) into one channel of a half-resolution RGBA8 texture, so a lighting
 // pass reads upsampled texels instead of running the lookup inside its own, much larger shader.
 // This is the screen-space shadow mask of deferred renderers (Unity's "screen space shadows",
-// Unreal's shadow projection pass); on llvmpipe, which runs every side of a branch, the lighting shaders
-// are cheaper without the lookup's code and the lookup cheaper in a pass of its own
-// (BENCHMARKS.md). Channel s is slot s's light: kMaxShadowLights (4) fit one texel.
+// Unreal's shadow projection pass); on llvmpipe, which runs every side of a branch, the lighting
+// shaders are cheaper without the lookup's code and the lookup cheaper in a pass of its own, at
+// half resolution (BENCHMARKS.md). Channel s is slot s's light: kMaxShadowLights (4) fit one texel.
 #include "stage_interface.glsl"
 #include "common_frame.glsl"
 
@@ -29,7 +29,8 @@ vec4 shadowMaskAll(ivec2 pixel, float viewDepth, int materialId) {
     vec2 cornerUv = (vec2(b) + 1.0) / vec2(last + 1);
     vec4 depths = textureGather(uShadowKey, cornerUv, 0);
     vec4 ids = textureGather(uShadowKey, cornerUv, 1);
-    vec4 bilinear = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+    vec4 bilinear =
+        vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
     vec4 d = abs(depths - viewDepth) / (0.03 * viewDepth + 0.01);
     vec4 same = vec4(equal(ids, vec4(float(materialId))));
     vec4 nearness = 1.0 / (1.0 + d);
