@@ -11,7 +11,7 @@ namespace {
 /// @p value per pixel.
 bool perPixel(const GpuMaterial& m, LobeValue value) {
     if (value == LobeValue::Ior)
-        return int(m.clearcoat.w) != kLobePerMaterial;
+        return iorLobeEntry(m) != kLobePerMaterial;
     const auto map = static_cast<std::uint32_t>(m.terms2.w);
     return ((map >> (4 * static_cast<int>(value))) & 0xFu) != std::uint32_t(kLobePerMaterial);
 }

@@ -53,7 +53,7 @@ void MaterialGraphProgram::start(const Material& material) {
 }
 
 GeometryFeatures GeometryFeatures::of(const GpuMaterial& record) {
-    return {record.terms2.y, record.terms2.z, record.terms2.w, int(record.clearcoat.w)};
+    return {record.terms2.y, record.terms2.z, record.terms2.w, iorLobeEntry(record)};
 }
 
 std::vector<std::string> GeometryFeatures::defines() const {

@@ -9,6 +9,7 @@
 #include "core/diagnostics.h"
 #include "core/graph/graph_compiler.h"
 #include "core/material.h"
+#include "render/lobe_channels.h"
 #include "render/shader_program.h"
 
 #include <cstdint>
@@ -31,7 +32,7 @@ struct GpuMaterial;
 /// the slots the material leaves empty cost nothing and the lobe channels are written at constant
 /// indices (llvmpipe runs both sides of every branch and indexes local arrays slowly).
 struct GeometryFeatures {
-    int textureSlots = 0, atlasSlots = 0, lobeMap = -1, iorEntry = 15;
+    int textureSlots = 0, atlasSlots = 0, lobeMap = -1, iorEntry = kLobePerMaterial;
     static GeometryFeatures of(const GpuMaterial& record);
     /// gbuffer.frag's defines (FIXED_TEXTURE_SLOTS, FIXED_ATLAS_SLOTS, FIXED_LOBE_MAP,
     /// FIXED_IOR_ENTRY).

@@ -29,11 +29,17 @@ struct GpuMaterial {
 };
 static_assert(sizeof(GpuMaterial) == 144, "GpuMaterial must match the std430 layout");
 
+/// The IOR's lobe-channel entry of @p g (LobeChannelMap::iorEntry(), kept in clearcoat.w): its
+/// channel, or kLobePerMaterial.
+inline int iorLobeEntry(const GpuMaterial& g) {
+    return int(g.clearcoat.w);
+}
+
 /// Whether @p g varies some lobe value per pixel (its lobe-channel map, terms2.w and the IOR's
-/// entry in clearcoat.w, is not all "per material"): the geometry pass then writes the lobe
-/// targets and the lighting passes read them.
+/// entry, is not all "per material"): the geometry pass then writes the lobe targets and the
+/// lighting passes read them.
 inline bool hasLobeMap(const GpuMaterial& g) {
-    return g.terms2.w != -1 || int(g.clearcoat.w) != kLobePerMaterial;
+    return g.terms2.w != -1 || iorLobeEntry(g) != kLobePerMaterial;
 }
 
 /// The parameters alone (no texture presence, every lobe per material).

@@ -96,7 +96,7 @@ PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight) {
 }
 
 bool ShadowMaskPass::build(std::string* error) {
-    if (!m_program.build("fullscreen.vert", "shadow_mask.frag", {"FULLSCREEN_FAR_PLANE"}, error))
+    if (!m_program.build("fullscreen.vert", "shadow_mask.frag", {}, error))
         return false;
     ++m_compileCount;
     return true;
@@ -105,8 +105,7 @@ bool ShadowMaskPass::build(std::string* error) {
 int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slots,
                         const MeshBounds& bounds, bool ground, float groundHeight,
                         const glm::mat4& viewProj, int width, int height, unsigned emptyVao) {
-    // The mask is at half the frame's size: texel t looks up a pixel of the block 2t
-    // (shadow_mask.frag).
+    // The mask is at half the frame's size: texel t looks up pixel 2t (shadow_mask.frag).
     const int maskWidth = (width + 1) / 2, maskHeight = (height + 1) / 2;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, maskWidth, maskHeight);

@@ -8,8 +8,8 @@
 /// deferred engines shade shadows (Unity's screen-space shadows, Unreal's shadow projection into a
 /// light attenuation buffer). On llvmpipe, which runs every side of every branch, the lighting
 /// shaders without the lookup are cheaper for every frame, and the lookup is cheaper in a pass of
-/// its own, though it still costs most of a shadow's price: its taps (BENCHMARKS.md, the look-dev
-/// stage's shadow mask).
+/// its own, four times cheaper at half resolution (BENCHMARKS.md, the look-dev stage's shadow
+/// mask).
 ///
 /// Each slot's pass is scissored to the part of the frame where a receiver can lie inside the
 /// slot's map (shadowReceiverRect()); the mask is cleared to 1 first, which is exactly what the

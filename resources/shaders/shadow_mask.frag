@@ -1,11 +1,11 @@
 #version 450 core
 // The screen-space shadow mask (render/shadow_mask.h, docs/shadows.md), at half the frame's
-// resolution: shadow slot uSlot's visibility for mask texel t, looked up at one pixel of its 2x2
-// block (the texel's representative, below), written to the mask's channel uSlot (the other
-// channels are masked off by glColorMaski), and that pixel's view depth and material id to the
-// key, by which the lighting passes' upsample (shadow_mask.glsl) weighs the texel. Scissored to
+// resolution: shadow slot uSlot's visibility for mask texel t, looked up at pixel 2t, written to
+// the mask's channel uSlot (the other channels are masked off by glColorMaski), and that pixel's
+// view depth and material id to the key, by which the lighting passes' upsample
+// (shadow_mask.glsl) weighs the texel. No depth test: a background texel writes 1. Scissored to
 // the part of the frame where a receiver can be inside the slot's map (elsewhere the mask keeps
-// its clear value, 1: what the lookup returns there); a background texel writes 1 too.
+// its clear value, 1: what the lookup returns there).
 #include "gbuffer_read.glsl"
 #include "shadow_sampling.glsl"
 
