@@ -5,9 +5,12 @@
 // time of a frame to its last timer query (the frame has finished on the GPU), the same method as
 // `velvet bench`'s frame_nolights_wall_ms; the passes are GPU timer queries. The frame is drawn
 // as the editor's viewport draws it: display only (FrameSettings::displayOnly: the tone map
-// inside the lighting pass). Beside it, in turn, the same frame through the scene-linear target
-// with the tone map a pass of its own (hdr_), and with the generic lighting program (every term
-// and lobe at run time, generic_), so each gain is measured on the same machine state.
+// inside the lighting pass), after a material value edit (a slider dragged: each frame changes
+// the roughness, so the background's pixels are kept, render/background_reuse.h). Beside it, in
+// turn, the same frame while the camera orbits (orbit_: half a degree a frame, every pixel
+// drawn), through the scene-linear target with the tone map a pass of its own (hdr_), and with
+// the generic lighting program (every term and lobe at run time, generic_), so each gain is
+// measured on the same machine state.
 #include "app/cli.h"
 #include "core/document_io.h"
 #include "core/post_effects.h"
@@ -58,16 +61,20 @@ int runFrameBench(bool json, bool quick) {
     const int width = quick ? 320 : 1280, height = quick ? 180 : 720, frames = quick ? 5 : 21;
     // Two renderers, alternate frames: the lighting pass specialised to the frame (the default)
     // and the generic one, so both see the same machine state (render/lighting_features.h).
+    enum class Change { ValueEdit, Orbit };
     struct Variant {
         const char* name;
         bool specialised;
         bool displayOnly;
+        Change change;
         render::Renderer renderer;
         std::vector<double> wall, cpu, gbuffer, lighting, post;
+        int backgroundKept = 0;
     };
-    Variant variants[3] = {{"", true, true, {}, {}, {}, {}, {}, {}},
-                           {"hdr_", true, false, {}, {}, {}, {}, {}, {}},
-                           {"generic_", false, false, {}, {}, {}, {}, {}, {}}};
+    Variant variants[4] = {{"", true, true, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
+                           {"orbit_", true, true, Change::Orbit, {}, {}, {}, {}, {}, {}},
+                           {"hdr_", true, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
+                           {"generic_", false, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}}};
     render::OffscreenTarget target;
     if (!target.resize(width, height, &error)) {
         std::cerr << "velvet bench: " << error << "\n";
@@ -86,9 +93,22 @@ int runFrameBench(bool json, bool quick) {
     render::FrameSettings fs;
     fs.width = width;
     fs.height = height;
+    Scene edited = peerFrameScene();
+    const float roughness = edited.material.scalar(ParamId::Roughness);
     for (int i = 0; i < frames + 2; ++i)
         for (Variant& v : variants) {
             fs.displayOnly = v.displayOnly;
+            // What changed since the last frame: a value (the roughness, by turns 1 % either
+            // side) or the camera (the yaw).
+            fs.camera.reset();
+            if (v.change == Change::Orbit) {
+                Camera camera = edited.camera;
+                camera.yawDeg += 0.5f * float(i);
+                fs.camera = camera;
+            } else if (i >= 2) { // the warm-up builds the specialised programs (no edit)
+                edited.material.setScalar(ParamId::Roughness, roughness * (i % 2 ? 1.01f : 0.99f));
+                v.renderer.update(edited, ScenePart::MaterialValues);
+            }
             const auto start = std::chrono::steady_clock::now();
             const double cpuStart = processCpuMs();
             if (!v.renderer.render(fs, target.framebuffer(), &error)) {
@@ -107,6 +127,7 @@ int runFrameBench(bool json, bool quick) {
             v.gbuffer.push_back(t.gbufferMs);
             v.lighting.push_back(t.lightingMs);
             v.post.push_back(t.postMs);
+            v.backgroundKept += v.renderer.lastFramePasses().backgroundKept ? 1 : 0;
         }
     std::vector<std::pair<std::string, double>> figures{
         {"width", width}, {"height", height}, {"frames", frames}};
@@ -117,24 +138,32 @@ int runFrameBench(bool json, bool quick) {
         figures.emplace_back(p + "gbuffer_ms", median(v.gbuffer));
         figures.emplace_back(p + "lighting_ms", median(v.lighting));
         figures.emplace_back(p + "post_ms", median(v.post));
+        if (v.displayOnly)
+            figures.emplace_back(p + "background_kept_frames", v.backgroundKept);
     }
+    // What keeping the background saves: an orbit's frame against a value edit's.
+    figures.emplace_back("background_kept_speedup",
+                         median(variants[1].wall) / median(variants[0].wall));
     // The specialisation's gain: the generic programs against the specialised ones, both
     // through the scene-linear target; the inline display step's: that path against the frame.
     figures.emplace_back("specialised_lighting_speedup",
-                         median(variants[2].lighting) / median(variants[1].lighting));
+                         median(variants[3].lighting) / median(variants[2].lighting));
     figures.emplace_back("specialised_frame_speedup",
-                         median(variants[2].wall) / median(variants[1].wall));
+                         median(variants[3].wall) / median(variants[2].wall));
     figures.emplace_back("specialised_frames",
                          variants[0].renderer.lastFrameSpecialised() ? 1.0 : 0.0);
+    // The inline display step's gain, both frames drawing every pixel (an orbit's frame).
     figures.emplace_back("inline_display_cpu_speedup",
-                         median(variants[1].cpu) / median(variants[0].cpu));
+                         median(variants[2].cpu) / median(variants[1].cpu));
     figures.emplace_back("inline_display_speedup",
-                         median(variants[1].wall) / median(variants[0].wall));
+                         median(variants[2].wall) / median(variants[1].wall));
     const render::FramePasses passes = variants[0].renderer.lastFramePasses();
     figures.emplace_back("inline_display_frames", passes.inlineDisplay ? 1.0 : 0.0);
     figures.emplace_back("fullscreen_passes", passes.fullScreen);
-    figures.emplace_back("hdr_fullscreen_passes",
+    figures.emplace_back("orbit_fullscreen_passes",
                          variants[1].renderer.lastFramePasses().fullScreen);
+    figures.emplace_back("hdr_fullscreen_passes",
+                         variants[2].renderer.lastFramePasses().fullScreen);
     if (json) {
         std::cout << "{\"gl_renderer\": \"" << context->renderer() << "\"";
         for (const auto& [k, v] : figures)

@@ -57,6 +57,7 @@ bool Renderer::reloadShaders(std::string* error) {
     Impl& d = *m_impl;
     if (!d.initialized)
         return fail(error, "Renderer::reloadShaders called before initialize()");
+    d.backgroundReuse.invalidate();
     // Every program from disk; each failure keeps its last good program and adds its message.
     std::string errors;
     auto collect = [&](bool ok, const std::string& message) {
@@ -77,6 +78,7 @@ bool Renderer::reloadShaders(std::string* error) {
 
 void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
     Impl& d = *m_impl;
+    d.backgroundReuse.invalidate();
     d.colorManagement = std::move(colorManagement);
     d.display.setColorManagement(d.colorManagement);
     // Input colour space names are looked up in the new config too (without one, in the
@@ -98,6 +100,10 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     Impl& d = *m_impl;
     copyParts(d.scene, scene, parts);
     d.haveScene = true;
+    // A value edit leaves the background and the coverage as they were; anything else may not
+    // (a texture slot's cut-out, the mesh, the environment: render/background_reuse.h).
+    if (touches(parts, ~ScenePart::MaterialValues))
+        d.backgroundReuse.invalidate();
     if (!d.initialized)
         return; // uploaded by initialize()
     if (touches(parts, ScenePart::Mesh))
@@ -348,15 +354,21 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glBindTextureUnit(binding::kSheenLutTex, d.ibl.sheenLut());
     glBindTextureUnit(binding::kIblSpecularTex, d.ibl.specularCube());
     glBindTextureUnit(binding::kIblDfgTex, d.ibl.dfgLut());
-    d.uniforms.bindIbl(makeIblBlock(d.ibl, fs));
+    const IblBlock iblBlock = makeIblBlock(d.ibl, fs);
+    d.uniforms.bindIbl(iblBlock);
     d.stage.bind();
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glBindVertexArray(d.emptyVao);
     if (inlined) { // the background and the surfaces cover every pixel: no clear
-        d.drawInlineDisplay(inlineDisplay);
-        d.passes.fullScreen += 2;
-    } else if (!d.drawLitPasses(fs, block, emission, *surfaceProgram, error)) {
-        return false;
+        // After a value edit the background's pixels are already right (background_reuse.h).
+        const bool keep = d.keepsBackground(fs, block, iblBlock, inlineDisplay, targetFbo);
+        d.drawInlineDisplay(inlineDisplay, keep);
+        d.passes.fullScreen += keep ? 1 : 2;
+        d.passes.backgroundKept = keep;
+    } else {
+        d.backgroundReuse.invalidate(); // the display target is not drawn: nothing to keep
+        if (!d.drawLitPasses(fs, block, emission, *surfaceProgram, error))
+            return false;
     }
     glQueryCounter(d.lightsQuery, GL_TIMESTAMP);
 

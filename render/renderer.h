@@ -171,6 +171,9 @@ struct FramePasses {
     bool linear = false;
     /// The display step ran inside the lighting pass (FrameSettings::displayOnly).
     bool inlineDisplay = false;
+    /// The inline frame kept the last frame's background pixels: nothing they depend on
+    /// changed, as after a material value edit (render/background_reuse.h).
+    bool backgroundKept = false;
     /// G-buffer colour targets cleared and written: the lobe-channel targets only when a drawn
     /// material has a lobe map (or a split frame's B may have one).
     int gbufferTargets = 0;

@@ -209,13 +209,38 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
     return !failed;
 }
 
-void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d) {
+bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& b,
+                                     const IblBlock& ibl, const InlineDisplay& d,
+                                     unsigned targetFbo) {
+    // What the key cannot see (background_reuse.h): a split frame's B, textures arriving (a
+    // cut-out changes the coverage), the bake's slices, a graph structure adopted this frame.
+    const std::uint64_t uploaded = textures.uploadStats().bytes;
+    const bool steady = !fs.splitMaterial && textures.progress().loading == 0 &&
+                        uploaded == uploadedBytes && ibl.state.x > 0.5f &&
+                        !structureAdoptedThisFrame;
+    uploadedBytes = uploaded;
+    if (!steady)
+        backgroundReuse.invalidate();
+    IblBlock keyed = ibl;
+    const bool readsTime = b.modes.w == 3 || // the procedural background moves with the time
+                           (d.chain && postChainReadsTime(scene.post)); // grain, static
+    if (!readsTime)
+        keyed.background.y = 0.0f;
+    BackgroundKey key;
+    key.add(b).add(keyed).add(d.framebuffer).add(targetFbo).add(fs.width).add(fs.height);
+    key.add(fs.exposureEv).add(d.background->id()).add(d.chain).add(d.source.key);
+    key.add(fs.display).add(fs.displayView).add(fs.look);
+    return backgroundReuse.reuse(std::move(key)) && steady;
+}
+
+void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d, bool keepBackground) {
     const std::vector<unsigned> programs{d.background->id(), d.surfaces->id()};
     if (d.chain)
         post.bindInline(scene.post, d.inputs, programs);
     else
         display.bindInline(programs);
-    lighting.drawBackground(*d.background);
+    if (!keepBackground)
+        lighting.drawBackground(*d.background);
     lighting.drawSurfaces(*d.surfaces, /*emission=*/false, /*displayValues=*/true);
     if (d.chain)
         post.unbindInline();

@@ -8,6 +8,7 @@
 #include "core/color_management.h"
 #include "core/post_effects.h"
 #include "core/texture_cache.h"
+#include "render/background_reuse.h"
 #include "render/display_output.h"
 #include "render/environment_map.h"
 #include "render/frame_targets.h"
@@ -94,6 +95,10 @@ struct Renderer::Impl {
                (!texturesB || texturesB->progress().loading == 0);
     }
     bool geometryDeferred = false; ///< the last frame's G-buffer wanted an unbuilt specialisation
+    /// Inline frames keep the last frame's background pixels after a value edit
+    /// (render/background_reuse.h); uploadedBytes is the texture bytes uploaded as of that frame.
+    BackgroundReuse backgroundReuse;
+    std::uint64_t uploadedBytes = 0;
     /// Specialised builds that failed, lighting and G-buffer, already warned about.
     int reportedLightingFailures = 0, reportedGeometryFailures = 0;
     /// A specialised program that failed to build is a warning (once each): the generic one
@@ -298,8 +303,12 @@ struct Renderer::Impl {
     bool chooseInlineDisplay(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
                              const DisplayChoice& choice, bool emission, InlineDisplay& out,
                              bool& failed, std::string* error);
-    /// Draws the background and the surfaces with the inline programs into out.framebuffer.
-    void drawInlineDisplay(const InlineDisplay& d);
+    /// Whether this inline frame may keep the last one's background pixels (background_reuse.h).
+    bool keepsBackground(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
+                         const InlineDisplay& d, unsigned targetFbo);
+    /// Draws the background (unless @p keepBackground) and the surfaces with the inline
+    /// programs into out.framebuffer.
+    void drawInlineDisplay(const InlineDisplay& d, bool keepBackground);
     /// The background, the surfaces and the shadow catcher into the bound HDR target (cleared
     /// first unless the geometry pass wrote emission into it). False + message.
     bool drawLitPasses(const FrameSettings& fs, const FrameBlock& block, bool emission,

@@ -104,6 +104,9 @@ private slots:
                               "post_ms", "specialised_lighting_speedup"})
             QVERIFY2(o.value(k).isDouble() && o.value(k).toDouble() > 0.0, k);
         QCOMPARE(o.value("specialised_frames").toDouble(), 1.0);
+        // The value-edit frames keep the background's pixels, the orbit's draw them (counts).
+        QCOMPARE(o.value("background_kept_frames").toDouble(), o.value("frames").toDouble());
+        QCOMPARE(o.value("orbit_background_kept_frames").toDouble(), 0.0);
         const double speedup = o.value("specialised_frame_speedup").toDouble();
         QVERIFY2(speedup > 1.2, qPrintable(QString::number(speedup)));
     }
