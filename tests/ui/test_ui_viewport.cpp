@@ -589,7 +589,7 @@ void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
     ViewportWidget* viewport = m_window->viewport();
     // True once no frame has come for 500 ms (the frame a change asks for may take a while on a
     // loaded llvmpipe); false if frames keep coming for @p deadlineMs.
-    const auto settles = [viewport](int deadlineMs = 10000) {
+    const auto settles = [viewport](int deadlineMs = 30000) {
         QElapsedTimer deadline;
         deadline.start();
         int frames = viewport->frameCount();
