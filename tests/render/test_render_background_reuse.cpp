@@ -16,19 +16,6 @@ namespace {
 
 constexpr int kWidth = 160, kHeight = 96;
 
-/// `velvet bench --frame`'s scene: the default scene, its light's shadow off, the PBR Neutral
-/// tone map as the post chain (inlined into the lighting pass).
-Scene peerScene() {
-    Scene scene = defaultScene();
-    for (Light& light : scene.lights)
-        light.castShadows = false;
-    scene.post = PostChain{};
-    EffectInstance tonemap = makeEffect("tonemap");
-    tonemap.params["operator"] = {float(toneMapOperatorIndex("pbr-neutral"))};
-    scene.post.effects.push_back(tonemap);
-    return scene;
-}
-
 /// The largest channel difference between two images, in 1/255 steps.
 int maxDifference(const Image& a, const Image& b) {
     int worst = 0;
@@ -99,7 +86,7 @@ private slots:
 
     /// A value edit keeps the background, and the frame is the one drawn in full.
     void valueEditKeepsBackgroundSamePixels() {
-        settle(peerScene());
+        settle(test::peerScene());
         const Image before = draw();
         Scene edited = m_scene;
         edited.material.setColor(ParamId::BaseColor, {0.1f, 0.6f, 0.2f});
@@ -119,7 +106,7 @@ private slots:
 
     /// Everything the background's pixels depend on draws them again.
     void changesDrawBackground() {
-        settle(peerScene());
+        settle(test::peerScene());
         const Image still = draw();
         QVERIFY(kept());
 

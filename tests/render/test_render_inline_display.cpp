@@ -16,19 +16,6 @@ namespace {
 
 constexpr int kWidth = 256, kHeight = 144; // not square: a swapped axis would show
 
-/// `velvet bench --frame`'s scene (app/command_bench_frame.cpp): the default scene, its light's
-/// shadow off, the PBR Neutral tone map as the chain.
-Scene peerScene() {
-    Scene scene = defaultScene();
-    for (Light& light : scene.lights)
-        light.castShadows = false;
-    scene.post = PostChain{};
-    EffectInstance tonemap = makeEffect("tonemap");
-    tonemap.params["operator"] = {float(toneMapOperatorIndex("pbr-neutral"))};
-    scene.post.effects.push_back(tonemap);
-    return scene;
-}
-
 struct Comparison {
     int maxDifference = 0; ///< in 1/255 steps, any channel
     int differing = 0;     ///< pixels with any channel different
@@ -132,7 +119,7 @@ private slots:
 
     /// The bench's frame: the chain's tone map inside the lighting pass.
     void chainToneMapSamePixels() {
-        const Image image = checkSame(peerScene());
+        const Image image = checkSame(test::peerScene());
         const float* centre = image.at(kWidth / 2, kHeight / 2);
         QVERIFY2(centre[0] > centre[1] && centre[0] > 0.2f, "the sphere's centre");
         // Not a blank frame: the sphere's centre is lit crimson; the studio's dark backdrop is
@@ -143,7 +130,7 @@ private slots:
     /// Several pointwise effects in the one fused pass: HDR colour grading, the tone map (ACES),
     /// a vignette reading the pixel's position from the frame block.
     void fusedChainSamePixels() {
-        Scene scene = peerScene();
+        Scene scene = test::peerScene();
         EffectInstance grading = makeEffect("color_grading");
         grading.params["saturation"] = {1.4f};
         grading.params["exposure"] = {0.5f};
@@ -165,7 +152,7 @@ private slots:
     /// No chain: the built-in curve and the display encoding (display_output.frag's path), with
     /// an exposure and another curve.
     void builtInCurveSamePixels() {
-        Scene scene = peerScene();
+        Scene scene = test::peerScene();
         scene.post = PostChain{};
         m_fs.exposureEv = 0.7f;
         m_fs.toneMapper = render::ToneMapper::AcesFitted;
@@ -177,7 +164,7 @@ private slots:
     /// Frames the inline path cannot draw keep the linear target and the old passes.
     void otherFramesKeepTheLinearPath() {
         // A chain that reads neighbouring pixels.
-        Scene bloom = peerScene();
+        Scene bloom = test::peerScene();
         bloom.post.effects.insert(bloom.post.effects.begin(), makeEffect("bloom"));
         m_renderer->setScene(bloom);
         draw(true);
@@ -185,7 +172,7 @@ private slots:
         QVERIFY(!m_renderer->lastFramePasses().inlineDisplay);
         QVERIFY(m_renderer->lastFramePasses().linear);
         // Emission is added in the linear target.
-        Scene glowing = peerScene();
+        Scene glowing = test::peerScene();
         glowing.material.setColor(ParamId::EmissiveColor, {0.2f, 0.1f, 0.0f});
         glowing.material.setScalar(ParamId::EmissiveStrength, 1.0f);
         m_renderer->setScene(glowing);
@@ -193,7 +180,7 @@ private slots:
         draw(true);
         QVERIFY(!m_renderer->lastFramePasses().inlineDisplay);
         // A debug view.
-        m_renderer->setScene(peerScene());
+        m_renderer->setScene(test::peerScene());
         m_fs.view = render::DebugView::Normal;
         draw(true);
         m_fs.view = render::DebugView::Final;
@@ -204,10 +191,10 @@ private slots:
     /// The lobe-channel targets are cleared and written only when a drawn material has a lobe
     /// map: crimson velvet has none (3 of 5 targets); a split frame keeps them (B may have one).
     void lobeTargetsOnlyWhenRead() {
-        m_renderer->setScene(peerScene());
+        m_renderer->setScene(test::peerScene());
         draw(true);
         QCOMPARE(m_renderer->lastFramePasses().gbufferTargets, 3);
-        m_fs.splitMaterial = peerScene().material;
+        m_fs.splitMaterial = test::peerScene().material;
         draw(true);
         m_fs.splitMaterial.reset();
         QCOMPARE(m_renderer->lastFramePasses().gbufferTargets, 5);
@@ -216,7 +203,7 @@ private slots:
     /// A material value edit and a tone-map parameter edit compile nothing on the inline path
     /// and show at once.
     void valueEditsCompileNothing() {
-        Scene scene = peerScene();
+        Scene scene = test::peerScene();
         m_renderer->setScene(scene);
         draw(true);
         const Image before = draw(true);
