@@ -181,6 +181,10 @@ bool stageFigures(int width, int height, int frames,
     figures.emplace_back("stage_frame_shadow_ao_cpu_ms", stage.cpuStageMs);
     figures.emplace_back("stage_shadow_overhead_cpu", stage.cpuShadowOverhead);
     figures.emplace_back("stage_shadow_ao_overhead_cpu", stage.cpuStageOverhead);
+    figures.emplace_back("stage_frame_shadow_unsettled_cpu_ms", stage.cpuShadowUnsettledMs);
+    figures.emplace_back("stage_shadow_unsettled_overhead_cpu", stage.cpuShadowUnsettledOverhead);
+    figures.emplace_back("shadow_mask_texels", stage.shadowMaskTexels);
+    figures.emplace_back("shadow_mask_filtered_share", stage.shadowMaskFilteredShare);
     return true;
 }
 

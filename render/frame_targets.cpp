@@ -27,6 +27,8 @@ FrameTargets::~FrameTargets() {
         glDeleteFramebuffers(1, &m_geometryFbo);
     if (m_maskFbo)
         glDeleteFramebuffers(1, &m_maskFbo);
+    if (m_maskDepth)
+        glDeleteRenderbuffers(1, &m_maskDepth);
 }
 
 bool FrameTargets::resize(int width, int height, bool compactGBuffer, std::string* error) {
@@ -105,19 +107,38 @@ unsigned FrameTargets::shadowMaskFramebuffer(std::string* error) {
     // that pixel's view depth and material id.
     const int width = (m_hdr.width() + 1) / 2, height = (m_hdr.height() + 1) / 2;
     if (!m_shadowMask.resize(width, height, GL_RGBA8, error) ||
-        !m_shadowKey.resize(width, height, GL_RG32F, error))
+        !m_shadowKey.resize(width, height, GL_RG32F, error) ||
+        !m_groundShadowMask.resize(width, height, GL_RGBA8, error))
         return 0;
     if (!m_maskFbo)
         glCreateFramebuffers(1, &m_maskFbo);
     if (m_maskGeneration != m_shadowMask.generation() ||
-        m_keyGeneration != m_shadowKey.generation()) {
+        m_keyGeneration != m_shadowKey.generation() ||
+        m_groundMaskGeneration != m_groundShadowMask.generation()) {
         // The upsample gathers the key around a texel corner: the last row and column clamp.
         glTextureParameteri(m_shadowKey.texture(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(m_shadowKey.texture(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glNamedFramebufferTexture(m_maskFbo, GL_COLOR_ATTACHMENT0, m_shadowMask.texture(), 0);
         glNamedFramebufferTexture(m_maskFbo, GL_COLOR_ATTACHMENT1, m_shadowKey.texture(), 0);
-        const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-        glNamedFramebufferDrawBuffers(m_maskFbo, 2, buffers);
+        // The ground's mask is smooth across the mesh's silhouettes (the ground behind the mesh,
+        // not the mesh): the catcher reads it with the hardware's bilinear filter.
+        const GLuint ground = m_groundShadowMask.texture();
+        glTextureParameteri(ground, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(ground, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(ground, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(ground, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glNamedFramebufferTexture(m_maskFbo, GL_COLOR_ATTACHMENT2, ground, 0);
+        // Which texels the lookup pass shades: depth 0 where the settle pass settled them, 1
+        // where it did not, tested against its triangle's 0.5 (render/shadow_mask.cpp).
+        if (m_maskDepth)
+            glDeleteRenderbuffers(1, &m_maskDepth);
+        glCreateRenderbuffers(1, &m_maskDepth);
+        glNamedRenderbufferStorage(m_maskDepth, GL_DEPTH_COMPONENT16, width, height);
+        glNamedFramebufferRenderbuffer(m_maskFbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                       m_maskDepth);
+        const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                   GL_COLOR_ATTACHMENT2};
+        glNamedFramebufferDrawBuffers(m_maskFbo, 3, buffers);
         const GLenum status = glCheckNamedFramebufferStatus(m_maskFbo, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
             fail(error, "shadow mask framebuffer incomplete: " + framebufferStatusName(status));
@@ -125,6 +146,7 @@ unsigned FrameTargets::shadowMaskFramebuffer(std::string* error) {
         }
         m_maskGeneration = m_shadowMask.generation();
         m_keyGeneration = m_shadowKey.generation();
+        m_groundMaskGeneration = m_groundShadowMask.generation();
     }
     return m_maskFbo;
 }

@@ -46,14 +46,18 @@ public:
 
     /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): at half the frame's size
     /// (rounded up), the mask (RGBA8, attachment 0) and its key (RG32F: each texel's pixel's view
-    /// depth and material id, attachment 1), allocated the first time a frame has a shadowed
-    /// light. 0 + message when incomplete.
+    /// depth and material id, attachment 1) and the ground's mask (RGBA8, attachment 2: each
+    /// texel's visibility where its pixel's view ray meets the ground, read with bilinear
+    /// filtering by the shadow catcher), with a 16-bit depth buffer that marks the texels
+    /// the mask's settle pass left for the lookup (render/shadow_mask.h), allocated the first
+    /// time a frame has a shadowed light. 0 + message when incomplete.
     unsigned shadowMaskFramebuffer(std::string* error);
 
     const GBuffer& gbuffer() const { return m_gbuffer; }
     const ColorTarget& hdr() const { return m_hdr; }
     const ColorTarget& shadowMask() const { return m_shadowMask; }
     const ColorTarget& shadowKey() const { return m_shadowKey; }
+    const ColorTarget& groundShadowMask() const { return m_groundShadowMask; }
 
 private:
     GBuffer m_gbuffer;
@@ -64,9 +68,9 @@ private:
     int m_geometryDrawBuffers = -1;
     unsigned m_litFbo = 0;
     unsigned m_litHdrGeneration = 0, m_litGbufferGeneration = 0;
-    ColorTarget m_shadowMask, m_shadowKey;
-    unsigned m_maskFbo = 0;
-    unsigned m_maskGeneration = 0, m_keyGeneration = 0;
+    ColorTarget m_shadowMask, m_shadowKey, m_groundShadowMask;
+    unsigned m_maskFbo = 0, m_maskDepth = 0; ///< the depth: a renderbuffer of the mask's size
+    unsigned m_maskGeneration = 0, m_keyGeneration = 0, m_groundMaskGeneration = 0;
     ColorTarget m_display;
     unsigned m_displayFbo = 0;
     unsigned m_displayGeneration = 0, m_displayGbufferGeneration = 0;

@@ -52,6 +52,7 @@ std::vector<std::string> LightingFeatures::defines() const {
     without("WITH_LOBE_CHANNELS", lobeChannels);
     without("WITH_DIRECTIONAL_SHADOWS", directionalShadows);
     without("WITH_SHADOW_MASK", shadowMask);
+    without("WITH_LOCAL_SHADOWS", localShadows);
     without("WITH_OCCLUSION", occlusion);
     fixed("FIXED_IBL_BAKED", iblBaked);
     fixed("FIXED_MULTIPLE_SCATTERING", multipleScattering);

@@ -43,6 +43,9 @@ struct LightingFeatures {
     bool directionalShadows = true;
     /// Some light has a shadow map: the frame has a shadow mask (render/shadow_mask.h).
     bool shadowMask = true;
+    /// Some light with a shadow map is a local one (point, spot, area): the shadow catcher
+    /// weighs its mask channel by the light's illuminance (stage_shading.glsl).
+    bool localShadows = true;
     /// Screen-space ambient occlusion is on.
     bool occlusion = true;
     /// The baked IBL (prefiltered cube and DFG LUT) is ready: the approximate path compiles out.

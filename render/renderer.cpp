@@ -339,8 +339,9 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     if (d.stage.hasShadows() && !(maskFbo = d.targets.shadowMaskFramebuffer(error)))
         return false;
     d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(),
-                           d.targets.shadowKey().texture(), d.scene.environment,
-                           block.viewProjMatrix, fs.width, fs.height, d.emptyVao);
+                           d.targets.shadowKey().texture(), d.targets.groundShadowMask().texture(),
+                           d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
+                           d.emptyVao, fs.settleShadows);
     glViewport(0, 0, fs.width, fs.height);
 
     // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only
@@ -497,6 +498,7 @@ FrameTimings Renderer::lastTimings() const {
         d.timings.shadowMapsMs = d.stage.lastShadowMs();
         d.timings.occlusionMs = d.stage.lastOcclusionMs();
         d.timings.shadowMaskMs = d.stage.lastShadowMaskMs();
+        d.stage.lastShadowMaskTexels(&d.timings.shadowMaskTexels, &d.timings.shadowMaskFiltered);
     }
     d.timings.shadowMaskPasses = d.stage.lastShadowMaskPasses();
     return d.timings;

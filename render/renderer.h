@@ -103,6 +103,10 @@ struct FrameSettings {
     /// surfaces.
     bool specularMultiScatter = true;
     /// @}
+    /// Lets the maps' depth bounds settle shadow-mask texels without filtering them
+    /// (render/shadow_depth_bounds.h). The result is the same either way; off filters every
+    /// texel: the reference the settled mask is tested against, and the bench's "before".
+    bool settleShadows = true;
     /// @name OpenColorIO display (docs/color-management.md)
     /// The display encoding is always OCIO's own GPU shader. An empty display is the config's
     /// default display (sRGB in the shipped config), an empty displayView that display's default
@@ -195,6 +199,9 @@ struct FrameTimings {
     /// How many shadow-mask passes the frame drew: one per shadowed light with receivers on
     /// screen, never more than the cap (kMaxShadowLights). Counted, not timed: always set.
     int shadowMaskPasses = 0;
+    /// The shadow masks' texels drawn (settled or filtered) and, of those, the ones the PCSS
+    /// lookup filtered (occlusion queries; with the timers: 0 when none were issued).
+    long long shadowMaskTexels = 0, shadowMaskFiltered = 0;
 };
 
 /// What the renderer uploaded since construction (Renderer::uploadStats), one count per kind

@@ -228,6 +228,7 @@ struct Renderer::Impl {
             lightingFeaturesOf(records, stage.shadowsDirectionalLight(scene.lights),
                                scene.environment.ambientOcclusion, true, fs.specularMultiScatter);
         f.shadowMask = stage.hasShadows();
+        f.localShadows = stage.shadowsLocalLight(scene.lights);
         return f;
     }
 

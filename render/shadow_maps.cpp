@@ -171,9 +171,10 @@ bool ShadowMaps::initialize(std::string* error) {
 }
 
 bool ShadowMaps::reload(std::string* error) {
-    if (!m_program.build("shadow_depth.vert", "shadow_depth.frag", {}, error))
+    if (!m_program.build("shadow_depth.vert", "shadow_depth.frag", {}, error) ||
+        !m_bounds.build(error))
         return false;
-    ++m_compileCount;
+    m_compileCount += 2;
     m_dirty = true;
     return true;
 }
@@ -246,6 +247,7 @@ bool ShadowMaps::draw(const GpuMesh& mesh) {
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(0.0f, 0.0f);
+    m_bounds.update(m_texture, m_layers, m_size);
     return true;
 }
 
@@ -282,11 +284,13 @@ void ShadowMaps::bind() const {
     glBindSampler(stage_binding::kShadowCompareTex, m_compareSampler);
     glBindTextureUnit(stage_binding::kShadowDepthTex, m_texture);
     glBindSampler(stage_binding::kShadowDepthTex, m_depthSampler);
+    glBindTextureUnit(stage_binding::kShadowBoundsTex, m_bounds.texture());
 }
 
 void ShadowMaps::unbind() const {
     for (GLuint unit :
-         {GLuint(stage_binding::kShadowCompareTex), GLuint(stage_binding::kShadowDepthTex)}) {
+         {GLuint(stage_binding::kShadowCompareTex), GLuint(stage_binding::kShadowDepthTex),
+          GLuint(stage_binding::kShadowBoundsTex)}) {
         glBindTextureUnit(unit, 0);
         glBindSampler(unit, 0);
     }

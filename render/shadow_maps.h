@@ -12,6 +12,7 @@
 #include "core/mesh.h"
 #include "core/scene.h"
 #include "render/shader_program.h"
+#include "render/shadow_depth_bounds.h"
 #include "render/stage_interface.h"
 
 #include <glm/mat4x4.hpp>
@@ -69,7 +70,8 @@ public:
     bool draw(const class GpuMesh& mesh);
     /// Fills the shadow members of @p block (the scene's lights for the catcher's radiance).
     void fill(StageBlock& block, const std::vector<Light>& lights) const;
-    /// Binds the depth array at both shadow units with their samplers.
+    /// Binds the depth array at both shadow units with their samplers, and its depth bounds
+    /// (render/shadow_depth_bounds.h) at theirs.
     void bind() const;
     void unbind() const;
 
@@ -77,6 +79,7 @@ private:
     void allocate(int layers, int size);
 
     ShaderProgram m_program;
+    ShadowDepthBounds m_bounds; ///< the maps' min-max chain, rebuilt with them
     int m_compileCount = 0;
     std::vector<ShadowSlot> m_slots;
     bool m_dirty = true;

@@ -83,6 +83,13 @@ PixelRect shadowReceiverRect(const ShadowSlot& slot, const MeshBounds& bounds, b
     return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
 }
 
+PixelRect intersection(const PixelRect& a, const PixelRect& b) {
+    const int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+    const int x1 = std::min(a.x + a.width, b.x + b.width);
+    const int y1 = std::min(a.y + a.height, b.y + b.height);
+    return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
+}
+
 PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight) {
     // Texel t stands for pixel 2t, and a pixel of the rectangle blends the texels either side of
     // it (shadow_mask.glsl): from the texel at or below its first pixel to the one above its last.
@@ -96,33 +103,85 @@ PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight) {
 }
 
 bool ShadowMaskPass::build(std::string* error) {
-    if (!m_program.build("fullscreen.vert", "shadow_mask.frag", {}, error))
-        return false;
-    ++m_compileCount;
+    const std::vector<std::string> defines[kPassCount] = {
+        {"SHADOW_MASK_GROUND", "SHADOW_MASK_SETTLE"},
+        {"SHADOW_MASK_GROUND"},
+        {"SHADOW_MASK_SETTLE"},
+        {}};
+    for (int p = 0; p < kPassCount; ++p)
+        if (!m_programs[p].build("fullscreen.vert", "shadow_mask.frag", defines[p], error))
+            return false;
+    m_compileCount += kPassCount;
     return true;
+}
+
+ShadowMaskPass::~ShadowMaskPass() {
+    if (m_queries[0])
+        glDeleteQueries(kMaxQueries, m_queries);
+}
+
+void ShadowMaskPass::draw(Pass pass, int slot, bool settle) {
+    const unsigned program = m_programs[pass].id();
+    // A settle pass writes every texel's depth (0 settled, 1 left for the lookup; without
+    // settling, 1 wherever there is a receiver); its lookup pass, drawn at depth 0.5, shades
+    // only where the test LESS passes. llvmpipe tests depth before shading, so blocks of settled
+    // texels skip the lookup.
+    const bool settlePass = pass == kGroundSettle || pass == kMeshSettle;
+    glDepthFunc(settlePass ? GL_ALWAYS : GL_LESS);
+    glUseProgram(program);
+    glProgramUniform1i(program, 0, slot);
+    glProgramUniform1i(program, 1, settle ? 1 : 0);
+    const bool counted = !settlePass && m_queriesUsed < kMaxQueries;
+    if (counted)
+        glBeginQuery(GL_SAMPLES_PASSED, m_queries[m_queriesUsed]);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (counted) {
+        glEndQuery(GL_SAMPLES_PASSED);
+        ++m_queriesUsed;
+    }
+}
+
+void ShadowMaskPass::lastTexels(long long* texels, long long* filtered) const {
+    *texels = m_texels;
+    *filtered = 0;
+    for (int i = 0; i < m_queriesUsed; ++i) {
+        GLuint64 n = 0;
+        glGetQueryObjectui64v(m_queries[i], GL_QUERY_RESULT, &n);
+        *filtered += (long long)n;
+    }
 }
 
 int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slots,
                         const MeshBounds& bounds, bool ground, float groundHeight,
-                        const glm::mat4& viewProj, int width, int height, unsigned emptyVao) {
-    // The mask is at half the frame's size: texel t looks up pixel 2t (shadow_mask.frag).
+                        const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
+                        bool settle) {
+    if (!m_queries[0])
+        glCreateQueries(GL_SAMPLES_PASSED, kMaxQueries, m_queries);
+    m_queriesUsed = 0;
+    m_texels = 0;
+    // The masks are at half the frame's size: texel t looks up pixel 2t (shadow_mask.frag).
     const int maskWidth = (width + 1) / 2, maskHeight = (height + 1) / 2;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, maskWidth, maskHeight);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);
-    glDisable(GL_DEPTH_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     const float lit[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     glClearBufferfv(GL_COLOR, 0, lit);
+    glClearBufferfv(GL_COLOR, 2, lit);
     // A texel no slot draws keeps a key no pixel matches (depth 0, no material): the upsample
     // never weighs it, but then its mask value is 1 anyway.
     const float noKey[4] = {0.0f, -1.0f, 0.0f, 0.0f};
     glClearBufferfv(GL_COLOR, 1, noKey);
     glEnable(GL_SCISSOR_TEST);
-    glUseProgram(m_program.id());
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
     glBindVertexArray(emptyVao);
+    // Where the mesh's own texels can be: its bounds on screen.
+    const PixelRect meshRect =
+        maskRect(shadowReceiverRect({}, bounds, false, 0.0f, viewProj, width, height), maskWidth,
+                 maskHeight);
     int drawn = 0;
     const int count = std::min(int(slots.size()), kMaxShadowLights);
     for (int s = 0; s < count; ++s) {
@@ -132,12 +191,38 @@ int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slo
         if (r.width <= 0 || r.height <= 0)
             continue;
         glScissor(r.x, r.y, r.width, r.height);
-        glColorMaski(0, s == 0, s == 1, s == 2, s == 3);       // slot s writes channel s alone
-        glColorMaski(1, GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE); // every slot writes the key
-        glProgramUniform1i(m_program.id(), 0, s);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        const GLboolean c[4] = {s == 0, s == 1, s == 2, s == 3}; // slot s: channel s alone
+        glColorMaski(0, c[0], c[1], c[2], c[3]);
+        if (ground) {
+            // The ground where each texel's view ray meets it, into the ground's mask and (the
+            // mesh's texels overwritten below) the mask; the settle pass writes every key.
+            glColorMaski(1, GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);
+            glColorMaski(2, c[0], c[1], c[2], c[3]);
+            draw(kGroundSettle, s, settle);
+            m_texels += (long long)r.width * r.height;
+            glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            draw(kGroundLookup, s, settle);
+        }
+        // The mesh's own texels: its settle pass discards the others (the background's keep the
+        // clear values, which are what they would write), so they keep depth 0, settled.
+        const PixelRect m = intersection(r, meshRect);
         ++drawn;
+        if (m.width <= 0 || m.height <= 0)
+            continue;
+        glScissor(m.x, m.y, m.width, m.height);
+        const float settled = 0.0f;
+        glClearBufferfv(GL_DEPTH, 0, &settled);
+        const GLboolean key = ground ? GL_FALSE : GL_TRUE; // else the ground's pass wrote it
+        glColorMaski(1, key, key, GL_FALSE, GL_FALSE);
+        glColorMaski(2, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        draw(kMeshSettle, s, settle);
+        if (!ground)
+            m_texels += (long long)m.width * m.height;
+        glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        draw(kMeshLookup, s, settle);
     }
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_SCISSOR_TEST);
     return drawn;

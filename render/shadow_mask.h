@@ -11,9 +11,17 @@
 /// its own, four times cheaper at half resolution (BENCHMARKS.md, the look-dev stage's shadow
 /// mask).
 ///
-/// Each slot's pass is scissored to the part of the frame where a receiver can lie inside the
-/// slot's map (shadowReceiverRect()); the mask is cleared to 1 first, which is exactly what the
-/// lookup returns for a receiver outside its map.
+/// Two masks: the mask proper, each texel's own surface (the mesh's texels read it with a depth-
+/// and material-aware upsample), and the ground's mask, where each texel's view ray meets the
+/// ground (behind the mesh too), which is smooth across the mesh's silhouettes, so the shadow
+/// catcher reads it with one bilinear fetch. Each is drawn in two passes per slot: a settle pass
+/// (the key; the visibility wherever the maps' depth bounds settle it without filtering,
+/// render/shadow_depth_bounds.h; a depth of 1 where they do not) and the lookup, drawn with a
+/// depth test that passes only there (llvmpipe then skips whole blocks of settled texels). The
+/// ground's passes also write the mask (the ground's own texels), the mesh's overwrite it on the
+/// mesh's texels. Each slot's passes are scissored to the part of the frame where a receiver can
+/// lie inside the slot's map (shadowReceiverRect()), the mesh's to its bounds; the masks are
+/// cleared to 1 first, which is exactly what the lookup returns for a receiver outside its map.
 
 #include "core/mesh.h"
 #include "render/shader_program.h"
@@ -41,28 +49,53 @@ struct PixelRect {
 PixelRect shadowReceiverRect(const ShadowSlot& slot, const MeshBounds& bounds, bool ground,
                              float groundHeight, const glm::mat4& viewProj, int width, int height);
 
+/// The pixels both @p a and @p b hold (empty: width or height 0).
+PixelRect intersection(const PixelRect& a, const PixelRect& b);
+
 /// The texels of a half-resolution mask (@p maskWidth x @p maskHeight; texel t stands for pixel
 /// 2t) that the pixels of @p frameRect read when they upsample it. Pure: test_render_shadow_mask.
 PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight);
 
 class ShadowMaskPass {
 public:
+    ShadowMaskPass() = default;
+    /// Needs the renderer's context current.
+    ~ShadowMaskPass();
+    ShadowMaskPass(const ShadowMaskPass&) = delete;
+    ShadowMaskPass& operator=(const ShadowMaskPass&) = delete;
+
     bool build(std::string* error);
     int compileCount() const { return m_compileCount; }
 
-    /// Draws the mask of @p slots for a @p width x @p height frame into @p framebuffer (the
-    /// mask's half-resolution RGBA8 colour, FrameTargets::shadowMaskFramebuffer()), cleared to 1
-    /// first. Expects the frame and stage blocks, the G-buffer's textures and the shadow maps
+    /// Draws the masks of @p slots for a @p width x @p height frame into @p framebuffer
+    /// (FrameTargets::shadowMaskFramebuffer(): the mask, its key, the ground's mask and the
+    /// depth that marks unsettled texels), cleared to 1 first; the ground's passes only with
+    /// @p ground. Expects the frame and stage blocks, the G-buffer's textures and the shadow maps
     /// bound. Returns the slot passes drawn (one per slot whose receivers are on screen). Leaves
     /// the depth test, scissor and blending disabled and every colour channel writable; the
     /// viewport is the mask's.
+    /// Without @p settle every texel is filtered (the same masks: the reference of the tests).
     int run(unsigned framebuffer, const std::vector<ShadowSlot>& slots, const MeshBounds& bounds,
             bool ground, float groundHeight, const glm::mat4& viewProj, int width, int height,
-            unsigned emptyVao);
+            unsigned emptyVao, bool settle = true);
+    /// The last run's texels drawn (the settle passes' scissors) and, of those, the ones its
+    /// lookup passes filtered (GL_SAMPLES_PASSED; waits for the GPU).
+    void lastTexels(long long* texels, long long* filtered) const;
 
 private:
-    ShaderProgram m_program;
+    /// shadow_mask.frag's programs: for the ground where each texel's view ray meets it, and
+    /// for the mesh's own texels, a settle pass (the texels the depth bounds settle) and the
+    /// lookup where they do not.
+    enum Pass { kGroundSettle, kGroundLookup, kMeshSettle, kMeshLookup, kPassCount };
+    void draw(Pass pass, int slot, bool settle);
+
+    ShaderProgram m_programs[kPassCount];
     int m_compileCount = 0;
+    /// One occlusion query per lookup pass drawn (two per slot at most).
+    static constexpr int kMaxQueries = 2 * kMaxShadowLights;
+    unsigned m_queries[kMaxQueries] = {};
+    int m_queriesUsed = 0;
+    long long m_texels = 0;
 };
 
 } // namespace velvet::render

@@ -97,6 +97,14 @@ bool Stage::shadowsDirectionalLight(const std::vector<Light>& lights) const {
     return false;
 }
 
+bool Stage::shadowsLocalLight(const std::vector<Light>& lights) const {
+    return std::any_of(m_shadows.slots().begin(), m_shadows.slots().end(),
+                       [&](const ShadowSlot& s) {
+                           return size_t(s.light) < lights.size() &&
+                                  lights[size_t(s.light)].type != LightType::Directional;
+                       });
+}
+
 void Stage::drawShadows(const GpuMesh& mesh) {
     glQueryCounter(m_queries[0], GL_TIMESTAMP);
     m_shadowTimed = m_shadows.draw(mesh);
@@ -157,21 +165,23 @@ bool Stage::drawOcclusion(const Environment& environment, int width, int height,
 }
 
 void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
-                           const Environment& environment, const glm::mat4& viewProj, int width,
-                           int height, unsigned emptyVao) {
-    m_maskTexture = m_keyTexture = 0;
+                           unsigned groundMaskTexture, const Environment& environment,
+                           const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
+                           bool settle) {
+    m_maskTexture = m_keyTexture = m_groundMaskTexture = 0;
     m_maskPasses = 0;
     if (!hasShadows())
         return;
     m_maskTexture = maskTexture;
     m_keyTexture = keyTexture;
+    m_groundMaskTexture = groundMaskTexture;
     const float r = sphereOf(m_bounds).radius;
     const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
     m_shadows.bind();
     glQueryCounter(m_queries[4], GL_TIMESTAMP);
     m_maskPasses =
         m_mask.run(framebuffer, m_shadows.slots(), m_bounds, environment.ground != GroundMode::Off,
-                   height0, viewProj, width, height, emptyVao);
+                   height0, viewProj, width, height, emptyVao, settle);
     glQueryCounter(m_queries[5], GL_TIMESTAMP);
     m_shadows.unbind();
 }
@@ -207,6 +217,7 @@ bool Stage::meshRectangle(const glm::mat4& viewProj, int width, int height, int 
 void Stage::bind() const {
     glBindTextureUnit(stage_binding::kShadowMaskTex, m_maskTexture);
     glBindTextureUnit(stage_binding::kShadowKeyTex, m_keyTexture);
+    glBindTextureUnit(stage_binding::kGroundShadowMaskTex, m_groundMaskTexture);
     if (m_occlusionOn)
         m_occlusion.bind();
 }
@@ -214,6 +225,7 @@ void Stage::bind() const {
 void Stage::unbind() const {
     glBindTextureUnit(stage_binding::kShadowMaskTex, 0);
     glBindTextureUnit(stage_binding::kShadowKeyTex, 0);
+    glBindTextureUnit(stage_binding::kGroundShadowMaskTex, 0);
     glBindTextureUnit(stage_binding::kOcclusionTex, 0);
 }
 

@@ -63,6 +63,8 @@ public:
     /// the viewport for the caller to reset.
     bool drawOcclusion(const Environment& environment, int width, int height, unsigned emptyVao,
                        std::string* error);
+    /// Whether a point, spot or area light has a shadow slot (the catcher's slot loop).
+    bool shadowsLocalLight(const std::vector<Light>& lights) const;
     /// Whether a light casts a shadow this frame (the frame then needs a shadow mask).
     bool hasShadows() const { return !m_shadows.slots().empty(); }
     /// After the occlusion: the screen-space shadow mask of every shadow slot into
@@ -71,8 +73,9 @@ public:
     /// textures bound and @p viewProj the frame's camera. Leaves the viewport and depth state for
     /// the caller to set.
     void drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
-                        const Environment& environment, const glm::mat4& viewProj, int width,
-                        int height, unsigned emptyVao);
+                        unsigned groundMaskTexture, const Environment& environment,
+                        const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
+                        bool settle = true);
     /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through
     /// @p viewProj in a @p width x @p height frame; false when they reach behind the camera.
     /// With a shadow catcher the surface pass is scissored to it, so the ground's pixels outside
@@ -89,6 +92,10 @@ public:
     /// shadow slot with receivers on screen; at most kMaxShadowLights).
     double lastShadowMaskMs() const;
     int lastShadowMaskPasses() const { return m_maskPasses; }
+    /// The last frame's shadow-mask texels drawn and filtered (ShadowMaskPass::lastTexels).
+    void lastShadowMaskTexels(long long* texels, long long* filtered) const {
+        m_mask.lastTexels(texels, filtered);
+    }
 
 private:
     ShadowMaps m_shadows;
@@ -100,8 +107,9 @@ private:
     unsigned m_ubo = 0;
     unsigned m_queries[6] = {};
     mutable bool m_shadowTimed = false, m_occlusionTimed = false;
-    unsigned m_maskTexture = 0; ///< this frame's shadow mask (0: no light casts a shadow)
-    unsigned m_keyTexture = 0;  ///< its key (view depth, material id per texel)
+    unsigned m_maskTexture = 0;       ///< this frame's shadow mask (0: no light casts a shadow)
+    unsigned m_keyTexture = 0;        ///< its key (view depth, material id per texel)
+    unsigned m_groundMaskTexture = 0; ///< the ground's mask, read by the shadow catcher
     int m_maskPasses = 0;
     bool m_occlusionOn = false;
 };

@@ -71,7 +71,7 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     // Interleaved, so the three see the same machine state; each variant's first frame after a
     // switch redraws the shadow map, so the second is timed (an orbit's frame).
     std::vector<double> offMs, shadowMs, fullMs, mapMs, maskMs, occlusionMs, offCpu, shadowCpu,
-        fullCpu;
+        fullCpu, unsettledCpu, texels, filteredShare;
     for (int i = 0; i < frames; ++i) {
         double ms = 0.0, cpu = 0.0;
         if (!frame(off, ScenePart::Lights | ScenePart::Environment, nullptr) ||
@@ -86,7 +86,18 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
             return false;
         shadowMs.push_back(ms);
         shadowCpu.push_back(cpu);
-        maskMs.push_back(renderer.lastTimings().shadowMaskMs);
+        const FrameTimings t = renderer.lastTimings();
+        maskMs.push_back(t.shadowMaskMs);
+        texels.push_back(double(t.shadowMaskTexels));
+        filteredShare.push_back(double(t.shadowMaskFiltered) /
+                                double(std::max(t.shadowMaskTexels, 1LL)));
+        // The same frame filtering every texel (the maps are still the shadow frame's).
+        fs.settleShadows = false;
+        const bool unsettled = frame(shadow, ScenePart::None, nullptr, &cpu);
+        fs.settleShadows = true;
+        if (!unsettled)
+            return false;
+        unsettledCpu.push_back(cpu);
         if (!frame(full, ScenePart::Lights | ScenePart::Environment, nullptr) ||
             !frame(full, ScenePart::None, &ms, &cpu))
             return false;
@@ -107,6 +118,11 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     report.cpuStageMs = median(fullCpu);
     report.cpuShadowOverhead = report.cpuShadowMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
     report.cpuStageOverhead = report.cpuStageMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
+    report.cpuShadowUnsettledMs = median(unsettledCpu);
+    report.cpuShadowUnsettledOverhead =
+        report.cpuShadowUnsettledMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
+    report.shadowMaskTexels = median(texels);
+    report.shadowMaskFilteredShare = median(filteredShare);
     return true;
 }
 

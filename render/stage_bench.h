@@ -22,6 +22,11 @@ struct StageBenchReport {
     double cpuOffMs = 0, cpuShadowMs = 0, cpuStageMs = 0;
     double cpuShadowOverhead = 0; ///< cpuShadowMs / cpuOffMs - 1
     double cpuStageOverhead = 0;  ///< cpuStageMs / cpuOffMs - 1
+    /// The shadowed frame with every shadow-mask texel filtered (FrameSettings::settleShadows
+    /// off: what the maps' depth bounds save), CPU time, and its overhead over cpuOffMs.
+    double cpuShadowUnsettledMs = 0, cpuShadowUnsettledOverhead = 0;
+    /// The shadowed frame's shadow-mask texels and the share of them the lookup filtered.
+    double shadowMaskTexels = 0, shadowMaskFilteredShare = 0;
 };
 
 /// Median of @p frames frames each; needs a current context. False + message on failure.

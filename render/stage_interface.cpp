@@ -1,5 +1,7 @@
 #include "render/stage_interface.h"
 
+#include "render/shadow_depth_bounds.h"
+
 #include <cstddef>
 
 namespace velvet::render {
@@ -33,6 +35,13 @@ std::string stageInterfaceGlsl() {
          "\n";
     s += "#define BINDING_SHADOW_MASK_TEX " + std::to_string(stage_binding::kShadowMaskTex) + "\n";
     s += "#define BINDING_SHADOW_KEY_TEX " + std::to_string(stage_binding::kShadowKeyTex) + "\n";
+    s += "#define BINDING_SHADOW_BOUNDS_TEX " + std::to_string(stage_binding::kShadowBoundsTex) +
+         "\n";
+    s += "#define BINDING_GROUND_SHADOW_MASK_TEX " +
+         std::to_string(stage_binding::kGroundShadowMaskTex) + "\n";
+    s += "#define SHADOW_BOUNDS_SIZE " + std::to_string(kShadowMapSize / kShadowBoundsBlock) + "\n";
+    s += "#define SHADOW_BOUNDS_LEVELS " +
+         std::to_string(shadowBoundsLevels(kShadowMapSize / kShadowBoundsBlock)) + "\n";
     s += "layout(std140, binding = " + std::to_string(stage_binding::kStageUbo) +
          ") uniform StageBlock {\n"
          "    mat4 shadowViewProj[" +

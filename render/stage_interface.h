@@ -35,6 +35,10 @@ inline constexpr int kShadowMaskTex = 7;
 /// The mask's key (RG32F: view depth and material id of each texel's pixel), what its upsample
 /// weighs texels by; above the OCIO LUTs' units (binding::kDisplayLutTexFirst = 16).
 inline constexpr int kShadowKeyTex = 31;
+/// The maps' depth bounds (render/shadow_depth_bounds.h), read by the mask's pass alone.
+inline constexpr int kShadowBoundsTex = 30;
+/// The ground's shadow mask (render/shadow_mask.h): the shadow catcher's, filtered bilinearly.
+inline constexpr int kGroundShadowMaskTex = 29;
 } // namespace stage_binding
 
 /// std140, vec4 / mat4 members only. Slot s describes the s-th shadow-casting light.

@@ -66,7 +66,7 @@ void main() {
     vec3 posView = viewPositionFromDepth(ndcXY, texelFetch(gDepthTex, pixel, 0).r);
     vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
     float ssao = screenSpaceOcclusion(pixel, -posView.z);
-    vec4 shadows = frameShadowMask(pixel, -posView.z, GROUND_CATCHER_MATERIAL_ID);
+    vec4 shadows = groundShadowMask(pixel);
     outColor = vec4(background(ndcXY) * catcherTransmission(posWorld, ssao, shadows), 1.0);
 }
 #else

@@ -11,6 +11,7 @@
 
 layout(binding = BINDING_SHADOW_MASK_TEX) uniform sampler2D uShadowMask;
 layout(binding = BINDING_SHADOW_KEY_TEX) uniform sampler2D uShadowKey;
+layout(binding = BINDING_GROUND_SHADOW_MASK_TEX) uniform sampler2D uGroundShadowMask;
 
 // Every slot's visibility at @p pixel, whose view depth is @p viewDepth and material id
 // @p materialId, from the half-resolution mask: texel t holds the lookup at pixel 2t, so an even
@@ -62,6 +63,19 @@ vec4 frameShadowMask(ivec2 pixel, float viewDepth, int materialId) {
 vec4 surfaceShadowMask(ivec2 pixel, float viewDepth, int materialId) {
 #if WITH_SHADOW_MASK && WITH_DIRECTIONAL_SHADOWS
     return shadowMaskAll(pixel, viewDepth, materialId);
+#else
+    return vec4(1.0);
+#endif
+}
+
+// Every slot's visibility on the ground seen at @p pixel, from the ground's half-resolution mask
+// (shadow_mask.frag's SHADOW_MASK_GROUND): it holds the ground behind the mesh too, so it is smooth
+// across the mesh's silhouettes and one bilinear fetch upsamples it (texel t is pixel 2t, so
+// pixel p sits at texel p / 2). Compiled out without a shadow slot (WITH_SHADOW_MASK 0).
+vec4 groundShadowMask(ivec2 pixel) {
+#if WITH_SHADOW_MASK
+    vec2 size = vec2(textureSize(uGroundShadowMask, 0));
+    return textureLod(uGroundShadowMask, (vec2(pixel) * 0.5 + 0.5) / size, 0.0);
 #else
     return vec4(1.0);
 #endif

@@ -38,6 +38,10 @@ float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
     return weights > 0.0 ? sum / weights : 1.0;
 }
 
+#ifndef WITH_LOCAL_SHADOWS
+#define WITH_LOCAL_SHADOWS 1
+#endif
+
 // Illuminance a shadow slot's local light gives a horizontal ground point (its shadow apart).
 vec3 slotIlluminance(int s, vec3 pos, vec3 n) {
     vec4 L = stage.shadowLight[s];
@@ -71,6 +75,9 @@ vec3 catcherTransmission(vec3 pos, float occlusion, vec4 mask) {
         full += e;
         lit += e * directionalShadow(i, mask);
     }
+    // WITH_LOCAL_SHADOWS 0 (render/lighting_features.h): every slot is a directional light's,
+    // which the loop above has; llvmpipe would run slotIlluminance for them all the same.
+#if WITH_LOCAL_SHADOWS
     for (int s = 0; s < stage.counts.x; ++s) {
         vec3 e = slotIlluminance(s, pos, n);
         if (max3(e) <= 0.0)
@@ -78,6 +85,7 @@ vec3 catcherTransmission(vec3 pos, float occlusion, vec4 mask) {
         full += e;
         lit += e * mask[clamp(s, 0, 3)];
     }
+#endif
     return clamp(lit / max(full, vec3(1e-6)), 0.0, 1.0);
 }
 
