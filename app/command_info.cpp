@@ -1,5 +1,6 @@
 // velvet info: version, the headless OpenGL context, dependency versions.
 #include "app/cli.h"
+#include "app/huge_pages.h"
 #include "core/resources.h"
 #include "core/versions.h"
 #include "render/headless_context.h"
@@ -37,6 +38,11 @@ int runInfo(const std::vector<std::string>& argv) {
         std::cout << "OpenGL (headless): unavailable: " << error << "\n";
         code = RenderFailure;
     }
+    // app/huge_pages.h: llvmpipe's textures and targets fault in 2 MiB at a time, not 4 KiB.
+    const std::string thp = app::kernelHugePageMode();
+    std::cout << "Memory: transparent huge pages for large allocations "
+              << (app::hugePagesRequested() ? "on (GLIBC_TUNABLES glibc.malloc.hugetlb=1)" : "off")
+              << "; kernel: " << (thp.empty() ? "unknown" : thp) << "\n";
     std::cout << "Dependencies\n  Qt: " << qVersion() << "\n";
     for (const auto& [name, version] : dependencyVersions())
         std::cout << "  " << name << ": " << version << "\n";

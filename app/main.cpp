@@ -1,5 +1,6 @@
 // velvet: the editor when run alone (or with a FILE), a headless CLI with a subcommand.
 #include "app/cli.h"
+#include "app/huge_pages.h"
 #include "app/resource_root.h"
 #include "core/image.h"
 #include "core/mesh_import.h"
@@ -12,6 +13,9 @@
 #include <vector>
 
 int main(int argc, char** argv) {
+    // First of all (glibc reads its tunables at start only): huge pages for llvmpipe's textures
+    // and targets, which otherwise spend seconds in page faults (app/huge_pages.h).
+    velvet::app::reexecWithHugePages(argc, argv);
     velvet::app::locateResources(argv[0]);
     // Custom meshes are imported by this same executable in a child process (`velvet
     // import-mesh`), so a crashing importer cannot take the document down (DESIGN.md).

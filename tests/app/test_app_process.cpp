@@ -147,6 +147,29 @@ private slots:
         }
     }
 
+    // app/huge_pages.h: velvet runs itself again with glibc's huge-page tunable (not in ASan
+    // builds, whose allocator is not glibc's); VELVET_HUGE_PAGES=0 and a user's own
+    // glibc.malloc.hugetlb value keep it off, and other tunables stay as they were.
+    void hugePagesForLargeAllocations() {
+        const auto memoryLine = [](const Result& r) {
+            const QStringList lines = r.out.split('\n').filter("Memory:");
+            return lines.isEmpty() ? QString() : lines[0];
+        };
+        Result r = runVelvet({"info"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err + r.out));
+#if defined(__SANITIZE_ADDRESS__)
+        QVERIFY2(memoryLine(r).contains("pages for large allocations off"), qPrintable(r.out));
+#else
+        QVERIFY2(memoryLine(r).contains("pages for large allocations on"), qPrintable(r.out));
+        r = runVelvet({"info"}, Display::None, {{"GLIBC_TUNABLES", "glibc.malloc.arena_max=4"}});
+        QVERIFY2(memoryLine(r).contains("pages for large allocations on"), qPrintable(r.out));
+#endif
+        r = runVelvet({"info"}, Display::None, {{"VELVET_HUGE_PAGES", "0"}});
+        QVERIFY2(memoryLine(r).contains("pages for large allocations off"), qPrintable(r.out));
+        r = runVelvet({"info"}, Display::None, {{"GLIBC_TUNABLES", "glibc.malloc.hugetlb=0"}});
+        QVERIFY2(memoryLine(r).contains("pages for large allocations off"), qPrintable(r.out));
+    }
+
     // pack then unpack gives back the pixel values of every map, for every layout.
     void packUnpackRoundTrips_data() {
         QTest::addColumn<QString>("layout");
