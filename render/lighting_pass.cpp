@@ -1,5 +1,7 @@
 #include "render/lighting_pass.h"
 
+#include "render/background_downsample.h"
+
 #include <algorithm>
 #include <epoxy/gl.h>
 #include <vector>
@@ -172,6 +174,17 @@ bool LightingPass::inlinePrograms(BackgroundMode background, bool prefilteredRea
                                     std::vector<std::string>{}, mayBuild, &inlinePost);
     surfaces = specialised(kFinal, features, mayBuild, &inlinePost);
     return backgroundProgram && surfaces;
+}
+
+const ShaderProgram* LightingPass::downsampledBackground(BackgroundMode background,
+                                                         bool prefilteredReady, int factor,
+                                                         const InlinePost& inlinePost,
+                                                         bool mayBuild) {
+    if (background == BackgroundMode::Blurred && !prefilteredReady)
+        background = BackgroundMode::Sharp;
+    return specialised(Variant(kBackground + modeIndex(background)),
+                       std::vector<std::string>{"BACKGROUND_DOWNSAMPLE " + std::to_string(factor)},
+                       mayBuild, &inlinePost);
 }
 
 void LightingPass::drawSurfaces(const ShaderProgram& program, bool emission, bool displayValues) {

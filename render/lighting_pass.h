@@ -61,6 +61,12 @@ public:
                         const LightingFeatures& features, const InlinePost& inlinePost,
                         bool mayBuild, const ShaderProgram*& backgroundProgram,
                         const ShaderProgram*& surfaces);
+    /// The background of inlinePrograms() built to draw into a target @p factor times smaller
+    /// each way (lighting.frag's BACKGROUND_DOWNSAMPLE; render/background_downsample.h), under
+    /// the same rules; null when not available.
+    const ShaderProgram* downsampledBackground(BackgroundMode background, bool prefilteredReady,
+                                               int factor, const InlinePost& inlinePost,
+                                               bool mayBuild);
     /// The surfaces, from @p program (surfaceProgram()). With @p emission the geometry pass's
     /// emission is kept: result = surface + emission x alpha (lighting.frag's header), the
     /// target's alpha staying 1; without it the surfaces replace the black (no blend to pay).

@@ -366,6 +366,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         d.drawInlineDisplay(inlineDisplay, keep);
         d.passes.fullScreen += keep ? 1 : 2;
         d.passes.backgroundKept = keep;
+        d.passes.backgroundDownsample =
+            !keep && inlineDisplay.smallBackground ? inlineDisplay.downsample : 1;
     } else {
         d.backgroundReuse.invalidate(); // the display target is not drawn: nothing to keep
         if (!d.drawLitPasses(fs, block, emission, *surfaceProgram, error))

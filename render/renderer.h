@@ -178,6 +178,9 @@ struct FramePasses {
     /// The inline frame kept the last frame's background pixels: nothing they depend on
     /// changed, as after a material value edit (render/background_reuse.h).
     bool backgroundKept = false;
+    /// How many times smaller each way the inline frame drew its background before upsampling
+    /// it (render/background_downsample.h); 1: full size (or kept, or not inline).
+    int backgroundDownsample = 1;
     /// G-buffer colour targets cleared and written: the lobe-channel targets only when a drawn
     /// material has a lobe map (or a split frame's B may have one).
     int gbufferTargets = 0;

@@ -204,6 +204,24 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
     if (!lighting.inlinePrograms(stageBackground(), ibl.specularReady(), frameFeatures(fs),
                                  out.source, mayBuildSpecialised(), out.background, out.surfaces))
         return false;
+    // A picture without fine detail under a smooth display step: drawn smaller and upsampled.
+    // A sharp HDRI's detail is its texels: screen pixels per texel at the frame's centre (an
+    // orthographic camera sees one direction: one colour).
+    const float pixelsPerRadian = 0.5f * float(fs.height) * b.projMatrix[1][1];
+    const float texelsPerRadian =
+        environment && environment->width > 0 ? float(environment->width) / 6.2831853f : 0.0f;
+    const float pixelsPerTexel = b.cameraPosition.w > 0.5f ? 1e9f
+                                 : texelsPerRadian > 0.0f  ? pixelsPerRadian / texelsPerRadian
+                                                           : 0.0f;
+    out.smallBackground = nullptr;
+    out.downsample = backgroundDownsampleFactor(stageBackground(), ibl.specularReady(),
+                                                out.chain ? &scene.post : nullptr, pixelsPerTexel);
+    if (out.downsample > 1)
+        out.smallBackground =
+            lighting.downsampledBackground(stageBackground(), ibl.specularReady(), out.downsample,
+                                           out.source, mayBuildSpecialised());
+    out.width = fs.width;
+    out.height = fs.height;
     out.framebuffer = targets.displayFramebuffer(format, error);
     failed = out.framebuffer == 0;
     return !failed;
@@ -229,18 +247,28 @@ bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& 
     BackgroundKey key;
     key.add(b).add(keyed).add(d.framebuffer).add(targetFbo).add(fs.width).add(fs.height);
     key.add(fs.exposureEv).add(d.background->id()).add(d.chain).add(d.source.key);
+    key.add(d.smallBackground ? d.smallBackground->id() : 0u);
     key.add(fs.display).add(fs.displayView).add(fs.look);
     return backgroundReuse.reuse(std::move(key)) && steady;
 }
 
 void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d, bool keepBackground) {
-    const std::vector<unsigned> programs{d.background->id(), d.surfaces->id()};
+    // The programs the display step's inputs are bound on (the small background's too).
+    const unsigned small = d.smallBackground ? d.smallBackground->id() : 0u;
+    const std::vector<unsigned> programs =
+        small ? std::vector<unsigned>{d.background->id(), d.surfaces->id(), small}
+              : std::vector<unsigned>{d.background->id(), d.surfaces->id()};
     if (d.chain)
         post.bindInline(scene.post, d.inputs, programs);
     else
         display.bindInline(programs);
-    if (!keepBackground)
-        lighting.drawBackground(*d.background);
+    if (!keepBackground) {
+        std::string error; // the small target could not be made: the full-size pass instead
+        if (!d.smallBackground ||
+            !backgroundDownsample.draw(*d.smallBackground, d.downsample, d.framebuffer, d.width,
+                                       d.height, &error))
+            lighting.drawBackground(*d.background);
+    }
     lighting.drawSurfaces(*d.surfaces, /*emission=*/false, /*displayValues=*/true);
     if (d.chain)
         post.unbindInline();

@@ -8,6 +8,7 @@
 #include "core/color_management.h"
 #include "core/post_effects.h"
 #include "core/texture_cache.h"
+#include "render/background_downsample.h"
 #include "render/background_reuse.h"
 #include "render/display_output.h"
 #include "render/environment_map.h"
@@ -98,6 +99,7 @@ struct Renderer::Impl {
     /// Inline frames keep the last frame's background pixels after a value edit
     /// (render/background_reuse.h); uploadedBytes is the texture bytes uploaded as of that frame.
     BackgroundReuse backgroundReuse;
+    BackgroundDownsample backgroundDownsample; ///< the inline background at a quarter size
     std::uint64_t uploadedBytes = 0;
     /// Specialised builds that failed, lighting and G-buffer, already warned about.
     int reportedLightingFailures = 0, reportedGeometryFailures = 0;
@@ -161,6 +163,8 @@ struct Renderer::Impl {
         }
         std::string message;
         if (!lighting.build(&message, keepGoing))
+            errors += (errors.empty() ? "" : "\n") + message;
+        if (!backgroundDownsample.build(&message))
             errors += (errors.empty() ? "" : "\n") + message;
         return errors.empty() || fail(error, errors);
     }
@@ -295,8 +299,13 @@ struct Renderer::Impl {
         bool chain = false; ///< the post chain's fused pass (else the built-in curve)
         PostRunInputs inputs;
         const ShaderProgram* background = nullptr;
+        /// The background drawn at a quarter size and upsampled (render/background_downsample.h),
+        /// when the picture and the display step allow it; else null.
+        const ShaderProgram* smallBackground = nullptr;
+        int downsample = 1; ///< its factor (backgroundDownsampleFactor)
         const ShaderProgram* surfaces = nullptr;
         unsigned framebuffer = 0;
+        int width = 0, height = 0;
     };
     /// Whether this frame takes the inline path (FrameSettings::displayOnly's conditions, the
     /// programs built or allowed to build); fills @p out. False + message only on a GL failure

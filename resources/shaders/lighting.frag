@@ -6,6 +6,7 @@
 // Built in variants (render/renderer.cpp, one program each, so that a pixel pays only for the
 // code of its own variant; llvmpipe runs both sides of every branch):
 //   LIGHTING_BACKGROUND     the background only; drawn where the G-buffer depth is the far plane
+//                           (or, with BACKGROUND_DOWNSAMPLE, everywhere in a smaller target)
 //   LIGHTING_LOBE_VIEWS     surfaces, the lobe views and lights per pixel
 //   LIGHTING_GBUFFER_VIEWS  surfaces, the G-buffer views (albedo .. material id)
 //   LIGHTING_CATCHER        the shadow-catching ground only, per BACKGROUND_MODE (docs/shadows.md)
@@ -35,12 +36,15 @@ layout(location = 0) out vec4 outColor;
 // inside one would shift every later line of this file in error messages.
 #include "inline_post.glsl"
 #if defined(LIGHTING_INLINE_POST)
-vec4 finalColor(vec3 linear, float alpha) {
-    return postInline(vec4(linear, 1.0), ivec2(gl_FragCoord.xy));
+vec4 finalColorAt(vec3 linear, float alpha, ivec2 pixel) {
+    return postInline(vec4(linear, 1.0), pixel);
 }
 #else
-vec4 finalColor(vec3 linear, float alpha) { return vec4(linear, alpha); }
+vec4 finalColorAt(vec3 linear, float alpha, ivec2 pixel) { return vec4(linear, alpha); }
 #endif
+vec4 finalColor(vec3 linear, float alpha) {
+    return finalColorAt(linear, alpha, ivec2(gl_FragCoord.xy));
+}
 
 vec3 background(vec2 ndcXY) {
     vec3 dirView = frame.cameraPosition.w > 0.5
@@ -51,9 +55,18 @@ vec3 background(vec2 ndcXY) {
 }
 
 #if defined(LIGHTING_BACKGROUND)
+// BACKGROUND_DOWNSAMPLE n: drawn into a target n times smaller each way
+// (render/background_downsample.h), each texel standing for the full-resolution point at the
+// centre of its n x n pixels (the frame block's viewport stays the full frame's).
+#if defined(BACKGROUND_DOWNSAMPLE)
+const float BACKGROUND_SCALE = float(BACKGROUND_DOWNSAMPLE);
+#else
+const float BACKGROUND_SCALE = 1.0;
+#endif
 void main() {
-    vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
-    outColor = finalColor(background(ndcXY), 1.0);
+    vec2 fragCoord = gl_FragCoord.xy * BACKGROUND_SCALE;
+    vec2 ndcXY = fragCoord * frame.viewport.zw * 2.0 - 1.0;
+    outColor = finalColorAt(background(ndcXY), 1.0, ivec2(fragCoord));
 }
 #elif defined(LIGHTING_CATCHER)
 // The shadow catcher's pixels only (stage_shading.glsl): the background times how much of the

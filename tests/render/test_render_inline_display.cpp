@@ -9,6 +9,7 @@
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
+#include <glm/trigonometric.hpp>
 
 using namespace velvet;
 
@@ -162,6 +163,56 @@ private slots:
     }
 
     /// Frames the inline path cannot draw keep the linear target and the old passes.
+    // render/background_downsample.h: a picture without fine detail under a smooth display step
+    // is drawn smaller and upsampled; the linear path draws it at full size. The blurred level
+    // at a quarter, the shipped 1024-wide HDRI through a narrow lens (about 9 pixels a texel) at
+    // a half; grain and the sharp HDRI at this size (1.4 pixels a texel) at full size.
+    void backgroundDrawnSmallerLooksTheSame_data() {
+        QTest::addColumn<int>("background");
+        QTest::addColumn<float>("fovY");
+        QTest::addColumn<bool>("grain");
+        QTest::addColumn<int>("factor");
+        QTest::addColumn<int>("tolerance"); // in 1/255: measured 1, 3, 1, 1
+        QTest::newRow("blurred") << int(BackgroundMode::Blurred) << 35.0f << false << 4 << 1;
+        QTest::newRow("sharp, 6 degrees") << int(BackgroundMode::Sharp) << 6.0f << false << 2 << 4;
+        QTest::newRow("sharp, 35 degrees")
+            << int(BackgroundMode::Sharp) << 35.0f << false << 1 << 1;
+        QTest::newRow("blurred, grain") << int(BackgroundMode::Blurred) << 35.0f << true << 1 << 1;
+    }
+    void backgroundDrawnSmallerLooksTheSame() {
+        QFETCH(int, background);
+        QFETCH(float, fovY);
+        QFETCH(bool, grain);
+        QFETCH(int, factor);
+        QFETCH(int, tolerance);
+        Scene scene = test::peerScene();
+        scene.environment.background = BackgroundMode(background);
+        scene.camera.fovYDeg = fovY;
+        // The sphere the same size in the frame.
+        scene.camera.distance =
+            4.5f * std::tan(glm::radians(17.5f)) / std::tan(glm::radians(fovY * 0.5f));
+        if (grain)
+            scene.post.effects.push_back(makeEffect("film_grain"));
+        m_renderer->setScene(scene);
+        m_renderer->finishEnvironment();
+        m_renderer->finishGraph();
+        const Image linearPath = draw(false);
+        draw(true);                                   // builds the inline programs
+        m_renderer->update(scene, ScenePart::Camera); // not a value edit: the background is drawn
+        const Image inlinePath = draw(true);
+        QCOMPARE(m_renderer->lastFramePasses().backgroundDownsample, factor);
+        QVERIFY(m_renderer->lastFramePasses().inlineDisplay);
+        const Comparison c = compare(linearPath, inlinePath);
+        qInfo("downsampled %d: max %d/255, %d of %d pixels differ", factor, c.maxDifference,
+              c.differing, kWidth * kHeight);
+        // The linear path's half-float rounding moves 1.5 % of the pixels by 1/255 already
+        // (checkSame); a smaller background moves up to 10 % by 1/255 (the blurred level), and
+        // a sharp HDRI's texel edges by a few 255ths in 4 % of the pixels.
+        QVERIFY2(c.maxDifference <= tolerance, qPrintable(QString::number(c.maxDifference)));
+        QVERIFY2(c.differing <= kWidth * kHeight * 3 / 20,
+                 qPrintable(QString::number(c.differing)));
+    }
+
     void otherFramesKeepTheLinearPath() {
         // A chain that reads neighbouring pixels.
         Scene bloom = test::peerScene();
