@@ -26,6 +26,9 @@ namespace velvet::render {
 /// The bytes the background pixels of an inline frame depend on (see the header).
 class BackgroundKey {
 public:
+    // Room for the frame and IBL blocks and the rest at once (and no false -Wstringop-overflow
+    // from GCC 12 on inserting into an empty vector).
+    BackgroundKey() { m_bytes.reserve(2048); }
     template <typename T>
     BackgroundKey& add(const T& value) {
         static_assert(std::is_trivially_copyable_v<T>);
