@@ -222,6 +222,9 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
                                            out.source, mayBuildSpecialised());
     out.width = fs.width;
     out.height = fs.height;
+    // The surfaces' pass shades only where the mesh is (its depth test), but llvmpipe still
+    // tests every block of the frame: scissored to the mesh's rectangle it visits only those.
+    out.scissored = stage.meshRectangle(b.viewProjMatrix, fs.width, fs.height, out.meshRect);
     out.framebuffer = targets.displayFramebuffer(format, error);
     failed = out.framebuffer == 0;
     return !failed;
@@ -269,7 +272,12 @@ void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d, bool keepBackgrou
                                        d.height, &error))
             lighting.drawBackground(*d.background);
     }
+    if (d.scissored) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(d.meshRect[0], d.meshRect[1], d.meshRect[2], d.meshRect[3]);
+    }
     lighting.drawSurfaces(*d.surfaces, /*emission=*/false, /*displayValues=*/true);
+    glDisable(GL_SCISSOR_TEST);
     if (d.chain)
         post.unbindInline();
     else

@@ -306,6 +306,10 @@ struct Renderer::Impl {
         const ShaderProgram* surfaces = nullptr;
         unsigned framebuffer = 0;
         int width = 0, height = 0;
+        /// The mesh's pixel rectangle (Stage::meshRectangle), the surfaces' scissor; unset when
+        /// its bounds reach behind the camera.
+        bool scissored = false;
+        int meshRect[4] = {};
     };
     /// Whether this frame takes the inline path (FrameSettings::displayOnly's conditions, the
     /// programs built or allowed to build); fills @p out. False + message only on a GL failure
