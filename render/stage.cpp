@@ -189,28 +189,13 @@ void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned 
 bool Stage::meshRectangle(const glm::mat4& viewProj, int width, int height, int rect[4]) const {
     if (m_bounds.empty())
         return false;
-    glm::vec2 lo(1e30f), hi(-1e30f);
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec3 corner((i & 1) ? m_bounds.max.x : m_bounds.min.x,
-                               (i & 2) ? m_bounds.max.y : m_bounds.min.y,
-                               (i & 4) ? m_bounds.max.z : m_bounds.min.z);
-        const glm::vec4 clip = viewProj * glm::vec4(corner, 1.0f);
-        if (clip.w <= 1e-4f)
-            return false;
-        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-        lo = glm::min(lo, ndc);
-        hi = glm::max(hi, ndc);
-    }
-    // To pixels, one pixel of margin each side, clamped to the frame.
-    const auto px = [](float ndc, int size) { return (ndc * 0.5f + 0.5f) * float(size); };
-    const int x0 = std::clamp(int(std::floor(px(lo.x, width))) - 1, 0, width);
-    const int y0 = std::clamp(int(std::floor(px(lo.y, height))) - 1, 0, height);
-    const int x1 = std::clamp(int(std::ceil(px(hi.x, width))) + 1, 0, width);
-    const int y1 = std::clamp(int(std::ceil(px(hi.y, height))) + 1, 0, height);
-    rect[0] = x0;
-    rect[1] = y0;
-    rect[2] = x1 - x0;
-    rect[3] = y1 - y0;
+    // The shadow mask's rectangle of the mesh alone (no ground: the slot is not looked at); the
+    // whole frame where the bounds reach behind the camera.
+    const PixelRect r = shadowReceiverRect({}, m_bounds, false, 0.0f, viewProj, width, height);
+    rect[0] = r.x;
+    rect[1] = r.y;
+    rect[2] = r.width;
+    rect[3] = r.height;
     return true;
 }
 

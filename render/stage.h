@@ -77,7 +77,8 @@ public:
                         const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
                         bool settle = true);
     /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through
-    /// @p viewProj in a @p width x @p height frame; false when they reach behind the camera.
+    /// @p viewProj in a @p width x @p height frame (the whole frame when they reach behind the
+    /// camera); false when there is no mesh.
     /// With a shadow catcher the surface pass is scissored to it, so the ground's pixels outside
     /// pay nothing for the mesh's shading (llvmpipe shades a discarded pixel to the end).
     bool meshRectangle(const glm::mat4& viewProj, int width, int height, int rect[4]) const;
