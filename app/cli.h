@@ -61,8 +61,6 @@ int runTextureBench(bool json, bool quick);
 double median(std::vector<double> values);
 /// `velvet bench --frame` (app/command_bench_frame.cpp): the forward peer's scene, its frame.
 int runFrameBench(bool json, bool quick);
-/// That scene: the default scene, the key light's shadow off, the PBR Neutral tone map only.
-velvet::Scene peerFrameScene();
 /// velvet bench's G-buffer layout figures (app/command_bench_gbuffer.cpp): the 24-byte layout
 /// with lobe channels beside the compact 16-byte one, side by side. Needs a current context.
 bool gbufferLayoutFigures(int width, int height, int frames,

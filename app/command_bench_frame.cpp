@@ -26,17 +26,6 @@
 #include <iostream>
 
 namespace velvet::cli {
-Scene peerFrameScene() {
-    Scene scene = defaultScene();
-    for (Light& light : scene.lights)
-        light.castShadows = false;
-    scene.post = PostChain{};
-    EffectInstance tonemap = makeEffect("tonemap");
-    tonemap.params["operator"] = {float(toneMapOperatorIndex("pbr-neutral"))};
-    scene.post.effects.push_back(tonemap);
-    return scene;
-}
-
 namespace {
 
 /// CPU time of the whole process (llvmpipe's rasteriser threads included), in ms. On a machine
@@ -86,14 +75,14 @@ int runFrameBench(bool json, bool quick) {
             return RenderFailure;
         }
         v.renderer.setSpecialisedPrograms(v.specialised);
-        v.renderer.setScene(peerFrameScene());
+        v.renderer.setScene(forwardPeerScene());
         v.renderer.finishEnvironment(); // the bake runs in slices across frames: not measured
         v.renderer.finishGraph();
     }
     render::FrameSettings fs;
     fs.width = width;
     fs.height = height;
-    Scene edited = peerFrameScene();
+    Scene edited = forwardPeerScene();
     const float roughness = edited.material.scalar(ParamId::Roughness);
     for (int i = 0; i < frames + 2; ++i)
         for (Variant& v : variants) {

@@ -5,6 +5,7 @@
 #include "core/json_value.h"
 #include "core/light_rigs.h"
 #include "core/material_json.h"
+#include "core/post_effects.h"
 #include "core/resources.h"
 #include "core/scene_json.h"
 
@@ -139,6 +140,17 @@ Scene sceneWithMaterial(Material material) {
     Scene scene = defaultScene();
     scene.material = std::move(material);
     scene.materialPreset.clear();
+    return scene;
+}
+
+Scene forwardPeerScene() {
+    Scene scene = defaultScene();
+    for (Light& light : scene.lights)
+        light.castShadows = false;
+    scene.post = PostChain{};
+    EffectInstance tonemap = makeEffect("tonemap");
+    tonemap.params["operator"] = {float(toneMapOperatorIndex("pbr-neutral"))};
+    scene.post.effects.push_back(tonemap);
     return scene;
 }
 

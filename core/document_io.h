@@ -52,6 +52,10 @@ Scene sceneWithMaterial(Material material);
 /// The built-in default scene: the library's velvet preset on a sphere, a key light, the studio
 /// HDRI. Never fails: a missing preset falls back to the default material (and is reported).
 Scene defaultScene(Problems* problems = nullptr);
+/// The forward peer's scene (`velvet bench --frame`, bench/peers/three, the inline-display
+/// tests): the default scene with the key light's shadow off and the PBR Neutral tone map as
+/// the whole post chain.
+Scene forwardPeerScene();
 
 /// The JSON Schema (draft 2020-12) generated from the parameter metadata, for
 /// resources/schemas/. @p kind is Material or Scene.

@@ -71,19 +71,6 @@ struct OffscreenRenderer {
 /// The shipped default scene (core/document_io.h), loaded exactly as `velvet render` and the editor
 /// load it, so the golden image is the default scene and not a copy of it. Fails the test when the
 /// default preset reports any problem.
-/// `velvet bench --frame`'s scene (app/command_bench_frame.cpp): the default scene, its light's
-/// shadow off, the PBR Neutral tone map as the chain.
-inline Scene peerScene() {
-    Scene scene = defaultScene();
-    for (Light& light : scene.lights)
-        light.castShadows = false;
-    scene.post = PostChain{};
-    EffectInstance tonemap = makeEffect("tonemap");
-    tonemap.params["operator"] = {float(toneMapOperatorIndex("pbr-neutral"))};
-    scene.post.effects.push_back(tonemap);
-    return scene;
-}
-
 inline Scene shippedDefaultScene() {
     Problems problems;
     Scene scene = defaultScene(&problems);

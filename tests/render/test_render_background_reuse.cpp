@@ -86,7 +86,7 @@ private slots:
 
     /// A value edit keeps the background, and the frame is the one drawn in full.
     void valueEditKeepsBackgroundSamePixels() {
-        settle(test::peerScene());
+        settle(forwardPeerScene());
         const Image before = draw();
         Scene edited = m_scene;
         edited.material.setColor(ParamId::BaseColor, {0.1f, 0.6f, 0.2f});
@@ -106,7 +106,7 @@ private slots:
 
     /// Everything the background's pixels depend on draws them again.
     void changesDrawBackground() {
-        settle(test::peerScene());
+        settle(forwardPeerScene());
         const Image still = draw();
         QVERIFY(kept());
 

@@ -120,7 +120,7 @@ private slots:
 
     /// The bench's frame: the chain's tone map inside the lighting pass.
     void chainToneMapSamePixels() {
-        const Image image = checkSame(test::peerScene());
+        const Image image = checkSame(forwardPeerScene());
         const float* centre = image.at(kWidth / 2, kHeight / 2);
         QVERIFY2(centre[0] > centre[1] && centre[0] > 0.2f, "the sphere's centre");
         // Not a blank frame: the sphere's centre is lit crimson; the studio's dark backdrop is
@@ -131,7 +131,7 @@ private slots:
     /// Several pointwise effects in the one fused pass: HDR colour grading, the tone map (ACES),
     /// a vignette reading the pixel's position from the frame block.
     void fusedChainSamePixels() {
-        Scene scene = test::peerScene();
+        Scene scene = forwardPeerScene();
         EffectInstance grading = makeEffect("color_grading");
         grading.params["saturation"] = {1.4f};
         grading.params["exposure"] = {0.5f};
@@ -153,7 +153,7 @@ private slots:
     /// No chain: the built-in curve and the display encoding (display_output.frag's path), with
     /// an exposure and another curve.
     void builtInCurveSamePixels() {
-        Scene scene = test::peerScene();
+        Scene scene = forwardPeerScene();
         scene.post = PostChain{};
         m_fs.exposureEv = 0.7f;
         m_fs.toneMapper = render::ToneMapper::AcesFitted;
@@ -185,7 +185,7 @@ private slots:
         QFETCH(bool, grain);
         QFETCH(int, factor);
         QFETCH(int, tolerance);
-        Scene scene = test::peerScene();
+        Scene scene = forwardPeerScene();
         scene.environment.background = BackgroundMode(background);
         scene.camera.fovYDeg = fovY;
         // The sphere the same size in the frame.
@@ -215,7 +215,7 @@ private slots:
 
     void otherFramesKeepTheLinearPath() {
         // A chain that reads neighbouring pixels.
-        Scene bloom = test::peerScene();
+        Scene bloom = forwardPeerScene();
         bloom.post.effects.insert(bloom.post.effects.begin(), makeEffect("bloom"));
         m_renderer->setScene(bloom);
         draw(true);
@@ -223,7 +223,7 @@ private slots:
         QVERIFY(!m_renderer->lastFramePasses().inlineDisplay);
         QVERIFY(m_renderer->lastFramePasses().linear);
         // Emission is added in the linear target.
-        Scene glowing = test::peerScene();
+        Scene glowing = forwardPeerScene();
         glowing.material.setColor(ParamId::EmissiveColor, {0.2f, 0.1f, 0.0f});
         glowing.material.setScalar(ParamId::EmissiveStrength, 1.0f);
         m_renderer->setScene(glowing);
@@ -231,7 +231,7 @@ private slots:
         draw(true);
         QVERIFY(!m_renderer->lastFramePasses().inlineDisplay);
         // A debug view.
-        m_renderer->setScene(test::peerScene());
+        m_renderer->setScene(forwardPeerScene());
         m_fs.view = render::DebugView::Normal;
         draw(true);
         m_fs.view = render::DebugView::Final;
@@ -242,10 +242,10 @@ private slots:
     /// The lobe-channel targets are cleared and written only when a drawn material has a lobe
     /// map: crimson velvet has none (3 of 5 targets); a split frame keeps them (B may have one).
     void lobeTargetsOnlyWhenRead() {
-        m_renderer->setScene(test::peerScene());
+        m_renderer->setScene(forwardPeerScene());
         draw(true);
         QCOMPARE(m_renderer->lastFramePasses().gbufferTargets, 3);
-        m_fs.splitMaterial = test::peerScene().material;
+        m_fs.splitMaterial = forwardPeerScene().material;
         draw(true);
         m_fs.splitMaterial.reset();
         QCOMPARE(m_renderer->lastFramePasses().gbufferTargets, 5);
@@ -254,7 +254,7 @@ private slots:
     /// A material value edit and a tone-map parameter edit compile nothing on the inline path
     /// and show at once.
     void valueEditsCompileNothing() {
-        Scene scene = test::peerScene();
+        Scene scene = forwardPeerScene();
         m_renderer->setScene(scene);
         draw(true);
         const Image before = draw(true);
