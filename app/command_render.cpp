@@ -45,7 +45,7 @@ const std::vector<OptionSpec> kOptions{
      "final (default), albedo, normal, depth, roughness, metallic, position, specular, "
      "clearcoat, sheen, occlusion, emissive, material-id, lights-per-pixel (heat map), "
      "diffuse-only, specular-only, base-specular, sheen-only, clearcoat-only (lobe views: direct "
-     "light only), anisotropy (direction x strength)"},
+     "light only), anisotropy (direction x strength), specular-occlusion"},
     {"thumbnail", 0, false, "",
      "show a material preset as its library thumbnail does: fabrics and leather on the cloth "
      "drape, other materials on the sphere (what velvet thumbnails renders)"},
@@ -133,6 +133,7 @@ const std::pair<const char*, render::DebugView> kDebugViews[] = {
     {"sheen-only", render::DebugView::SheenOnly},
     {"clearcoat-only", render::DebugView::ClearcoatOnly},
     {"anisotropy", render::DebugView::Anisotropy},
+    {"specular-occlusion", render::DebugView::SpecularOcclusion},
 };
 
 int usage(const std::string& message) {

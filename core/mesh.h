@@ -25,6 +25,10 @@ struct MeshData {
     std::vector<std::uint32_t> indices; ///< triangles, counter-clockwise front faces
     /// An open surface (plane, cloth) whose back is meant to be seen: drawn without culling.
     bool doubleSided = false;
+    /// Per vertex, or empty: xyz the bent normal, w the share of the hemisphere the mesh does
+    /// not hide from the vertex (render/mesh_visibility.h). Empty means nothing is hidden (a
+    /// convex mesh), which the renderer draws as (0, 0, 0, 1): no cone, all open.
+    std::vector<glm::vec4> visibility;
     size_t triangleCount() const { return indices.size() / 3; }
 };
 
@@ -67,6 +71,9 @@ MeshData makeClothDrape(int steps = 96);
 MeshData makeShaderBall(int segments = 96);
 /// The procedural mesh of @p kind (PreviewMeshKind::Custom gives an empty mesh: import it).
 MeshData makePreviewMesh(PreviewMeshKind kind);
+/// Whether the preview mesh of @p kind is convex or flat (sphere, cube, rounded cube, plane), so
+/// no part of it hides another from the environment: no visibility to bake.
+bool previewMeshIsConvex(PreviewMeshKind kind);
 /// @}
 
 } // namespace velvet

@@ -274,4 +274,9 @@ MeshData makePreviewMesh(PreviewMeshKind kind) {
     return {};
 }
 
+bool previewMeshIsConvex(PreviewMeshKind kind) {
+    return kind == PreviewMeshKind::Sphere || kind == PreviewMeshKind::Cube ||
+           kind == PreviewMeshKind::RoundedCube || kind == PreviewMeshKind::Plane;
+}
+
 } // namespace velvet

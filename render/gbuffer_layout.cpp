@@ -22,7 +22,7 @@ constexpr std::array<GBufferAttachment, 6> kAttachments{{
     {"gNormal", "GBUFFER_NORMAL", GBufferFormat::RG16, 4,
      "rg: world normal, octahedral, 16-bit unorm each (precise encoding)", 1, false},
     {"gMaterial", "GBUFFER_MATERIAL", GBufferFormat::RGBA8, 4,
-     "r: metallic, g: perceptual roughness, b: material id / 255, a: spare", 2, false},
+     "r: metallic, g: perceptual roughness, b: material id / 255, a: specular occlusion", 2, false},
     {"gLobes0", "GBUFFER_LOBES0", GBufferFormat::RGBA8, 4,
      "lobe channels 0..3: the material's per-pixel lobe values, placed by its lobe-channel map "
      "(render/lobe_channels.h)",

@@ -48,7 +48,8 @@ void drawGeometryPass(const GeometryPassInputs& in, const MeshCache::Entry& mesh
     };
     clearGeometry();
     auto programOf = [&](MaterialGraphProgram& p, const GpuMaterial& record) {
-        return in.specialise ? p.programFor(GeometryFeatures::of(record), in.mayBuild, in.deferred)
+        return in.specialise ? p.programFor(GeometryFeatures::of(record, mesh.gpu.hasVisibility()),
+                                            in.mayBuild, in.deferred)
                              : p.program();
     };
     const unsigned program = programOf(graph, in.recordA);

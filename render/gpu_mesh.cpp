@@ -16,7 +16,9 @@ void GpuMesh::release() {
         glDeleteBuffers(1, &m_vbo);
     if (m_ibo)
         glDeleteBuffers(1, &m_ibo);
-    m_vao = m_vbo = m_ibo = 0;
+    if (m_visibilityVbo)
+        glDeleteBuffers(1, &m_visibilityVbo);
+    m_vao = m_vbo = m_ibo = m_visibilityVbo = 0;
     m_indexCount = 0;
 }
 
@@ -44,11 +46,28 @@ void GpuMesh::upload(const MeshData& mesh) {
         glVertexArrayAttribFormat(m_vao, a.location, a.size, GL_FLOAT, GL_FALSE, GLuint(a.offset));
         glVertexArrayAttribBinding(m_vao, a.location, 0);
     }
+    // The mesh's visibility from itself (MeshData::visibility) from a second buffer; without it
+    // the attribute stays disabled and draw() sets its generic value.
+    if (!mesh.visibility.empty() && mesh.visibility.size() == mesh.vertices.size()) {
+        glCreateBuffers(1, &m_visibilityVbo);
+        glNamedBufferStorage(m_visibilityVbo,
+                             GLsizeiptr(mesh.visibility.size() * sizeof(glm::vec4)),
+                             mesh.visibility.data(), 0);
+        glVertexArrayVertexBuffer(m_vao, 1, m_visibilityVbo, 0, sizeof(glm::vec4));
+        glEnableVertexArrayAttrib(m_vao, kVisibilityLocation);
+        glVertexArrayAttribFormat(m_vao, kVisibilityLocation, 4, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(m_vao, kVisibilityLocation, 1);
+    }
     m_indexCount = int(mesh.indices.size());
 }
 
 void GpuMesh::draw() const {
     glBindVertexArray(m_vao);
+    // A disabled attribute reads the context's current generic value, which is not part of the
+    // vertex array and which others (Qt's paint engine in the editor) leave as they please: set
+    // it to (0, 0, 0, 1), no bent normal and nothing hidden, for a mesh without visibility.
+    if (!m_visibilityVbo)
+        glVertexAttrib4f(kVisibilityLocation, 0.0f, 0.0f, 0.0f, 1.0f);
     glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
 }
 

@@ -13,13 +13,18 @@ public:
     GpuMesh(const GpuMesh&) = delete;
     GpuMesh& operator=(const GpuMesh&) = delete;
 
+    /// gbuffer.vert's location of MeshData::visibility.
+    static constexpr unsigned kVisibilityLocation = 4;
+
     void upload(const MeshData& mesh);
     void draw() const;
     bool empty() const { return m_indexCount == 0; }
+    /// Whether the mesh was uploaded with its visibility from itself (MeshData::visibility).
+    bool hasVisibility() const { return m_visibilityVbo != 0; }
 
 private:
     void release();
-    unsigned m_vao = 0, m_vbo = 0, m_ibo = 0;
+    unsigned m_vao = 0, m_vbo = 0, m_ibo = 0, m_visibilityVbo = 0;
     int m_indexCount = 0;
 };
 

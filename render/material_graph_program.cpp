@@ -52,15 +52,17 @@ void MaterialGraphProgram::start(const Material& material) {
     }
 }
 
-GeometryFeatures GeometryFeatures::of(const GpuMaterial& record) {
-    return {record.terms2.y, record.terms2.z, record.terms2.w, iorLobeEntry(record)};
+GeometryFeatures GeometryFeatures::of(const GpuMaterial& record, bool meshVisibility) {
+    return {record.terms2.y, record.terms2.z, record.terms2.w, iorLobeEntry(record),
+            meshVisibility};
 }
 
 std::vector<std::string> GeometryFeatures::defines() const {
     return {"FIXED_TEXTURE_SLOTS " + std::to_string(textureSlots),
             "FIXED_ATLAS_SLOTS " + std::to_string(atlasSlots),
             "FIXED_LOBE_MAP (" + std::to_string(lobeMap) + ")",
-            "FIXED_IOR_ENTRY " + std::to_string(iorEntry)};
+            "FIXED_IOR_ENTRY " + std::to_string(iorEntry),
+            "FIXED_MESH_VISIBILITY " + std::to_string(int(meshVisibility))};
 }
 
 bool MaterialGraphProgram::build(std::string* error) {

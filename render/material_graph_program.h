@@ -33,9 +33,12 @@ struct GpuMaterial;
 /// indices (llvmpipe runs both sides of every branch and indexes local arrays slowly).
 struct GeometryFeatures {
     int textureSlots = 0, atlasSlots = 0, lobeMap = -1, iorEntry = kLobePerMaterial;
-    static GeometryFeatures of(const GpuMaterial& record);
+    /// Whether the mesh carries its visibility from itself (GpuMesh::hasVisibility): without,
+    /// the specular occlusion's code is compiled out.
+    bool meshVisibility = false;
+    static GeometryFeatures of(const GpuMaterial& record, bool meshVisibility);
     /// gbuffer.frag's defines (FIXED_TEXTURE_SLOTS, FIXED_ATLAS_SLOTS, FIXED_LOBE_MAP,
-    /// FIXED_IOR_ENTRY).
+    /// FIXED_IOR_ENTRY, FIXED_MESH_VISIBILITY).
     std::vector<std::string> defines() const;
     auto operator<=>(const GeometryFeatures&) const = default;
 };

@@ -2,6 +2,7 @@
 
 #include "core/mesh.h"
 #include "core/mesh_import.h"
+#include "render/mesh_visibility.h"
 
 #include <algorithm>
 #include <glm/geometric.hpp>
@@ -25,6 +26,10 @@ const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems
         else if (!custom)
             data = makePreviewMesh(ref.kind);
         if (entry->failure.empty()) {
+            // The mesh's visibility from itself, for image-based light's occlusion; the convex
+            // preview meshes hide nothing from themselves, so they skip the rays.
+            if (!previewMeshIsConvex(ref.kind))
+                data.visibility = bakeMeshVisibility(data);
             entry->gpu.upload(data);
             entry->doubleSided = data.doubleSided;
             entry->bounds = meshBounds(data);

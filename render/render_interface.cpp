@@ -116,15 +116,15 @@ static_assert(std140Packed(kPostFrameMembers, sizeof(PostFrameBlock)),
               "PostFrameBlock: a member is not at its std140 offset");
 
 /// DebugView's GLSL names, in enum order (the numbers are the enum's).
-constexpr std::array<std::string_view, 20> kDebugViewNames{
+constexpr std::array<std::string_view, 21> kDebugViewNames{
     "DEBUG_FINAL",          "DEBUG_ALBEDO",           "DEBUG_NORMAL",
     "DEBUG_DEPTH",          "DEBUG_ROUGHNESS",        "DEBUG_METALLIC",
     "DEBUG_POSITION",       "DEBUG_SPECULAR",         "DEBUG_CLEARCOAT",
     "DEBUG_SHEEN",          "DEBUG_OCCLUSION",        "DEBUG_EMISSIVE",
     "DEBUG_MATERIAL_ID",    "DEBUG_LIGHTS_PER_PIXEL", "DEBUG_DIFFUSE_ONLY",
     "DEBUG_SPECULAR_ONLY",  "DEBUG_BASE_SPECULAR",    "DEBUG_SHEEN_ONLY",
-    "DEBUG_CLEARCOAT_ONLY", "DEBUG_ANISOTROPY"};
-static_assert(kDebugViewNames.size() == size_t(DebugView::Anisotropy) + 1,
+    "DEBUG_CLEARCOAT_ONLY", "DEBUG_ANISOTROPY",       "DEBUG_SPECULAR_OCCLUSION"};
+static_assert(kDebugViewNames.size() == size_t(DebugView::SpecularOcclusion) + 1,
               "every DebugView needs its GLSL name");
 
 constexpr std::string_view debugName(DebugView v) {

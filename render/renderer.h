@@ -69,6 +69,10 @@ enum class DebugView {
     /// (its length is the strength, 0 where the surface is isotropic; its sign is arbitrary, as
     /// t and -t stretch the lobe alike, so the display image shows seams where it flips).
     Anisotropy,
+    /// The specular occlusion image-based light's reflections get (the G-buffer's RT2 alpha:
+    /// the material's occlusion times the share of the reflection's lobe the mesh's visibility
+    /// from itself leaves open, render/mesh_visibility.h), times screen-space occlusion.
+    SpecularOcclusion,
 };
 
 /// How point, spot and area lights are drawn (render/light_passes.h); all give the same image.

@@ -47,6 +47,7 @@ constexpr DebugViewEntry kDebugViews[] = {
     {DebugView::SheenOnly, "Sheen only"},
     {DebugView::ClearcoatOnly, "Clearcoat only"},
     {DebugView::Anisotropy, "Anisotropy"},
+    {DebugView::SpecularOcclusion, "Specular occlusion"},
 };
 
 const char* const kDebugViewKey = "viewport/debugView";

@@ -169,18 +169,67 @@ vec3 backgroundRadiance(vec3 dir, vec2 uv) {
     return environmentRadiance(dir, frame.backgroundColor.w);
 }
 
-// The reflection direction an anisotropic base (KHR_materials_anisotropy) looks the prefiltered
-// environment up with: the bent-normal approximation of the Khronos glTF Sample Viewer
-// (getIBLRadianceAnisotropy; after McAuley's and Filament's "bent reflection vector"). The normal
-// is bent towards the plane that holds v and the direction across the stretch (b = n x t), the
-// more so the stronger and smoother the stretch (bend^4, bend = 1 - strength (1 - roughness)), so
-// the highlight of the environment smears across the stretch direction like the direct one.
-vec3 anisotropicReflection(Surface s, vec3 n, vec3 v) {
-    vec3 b = cross(n, s.anisotropyDirection);
-    vec3 anisotropicTangent = cross(b, v);
-    vec3 anisotropicNormal = cross(anisotropicTangent, b);
-    float bend = 1.0 - s.anisotropyStrength * (1.0 - s.roughness);
-    float bend4 = bend * bend * bend * bend;
-    vec3 bentNormal = normalize(mix(anisotropicNormal, n, bend4));
-    return reflect(-v, bentNormal);
+// The prefiltered radiance an anisotropic base (KHR_materials_anisotropy) reflects. The stretched
+// GGX lobe is treated as the isotropic lobe of its narrow width alpha_b (the prefiltered cube's
+// level for it) swept along the stretch direction t: in slope space the anisotropic GGX is the
+// isotropic one stretched, and a sweep of slopes x along t whose width is
+// alpha_r = sqrt(alpha_t^2 - alpha_b^2) gives the stretched width (exact for Gaussian slopes,
+// close for GGX's). The sweep is GGX's marginal slope distribution along one axis (Heitz 2014,
+// "Understanding the Masking-Shadowing Function", P22 integrated over y: a Student t of two
+// degrees of freedom), whose inverse CDF is closed: x = alpha_r s / sqrt(1 - s^2), s = 2u - 1.
+// Stratified u give every pixel the same smooth sweep (no noise): as many as the sweep is wide
+// against the narrow width (4 alpha_r / alpha_b, 4 to ANISOTROPY_IBL_SAMPLES: brushed aluminium
+// 22, satin 14), so a slight stretch costs little (each is a cube lookup: on llvmpipe brushed
+// aluminium's 22 cost about 20 ms of CPU per 640x360 frame); a sample far from its neighbours is read from a
+// blurrier level (filtered importance sampling, Colbert & Krivanek 2007), and the samples are
+// weighted by n.l as the cube's bake weights them (Karis 2013).
+// The bent-normal approximation used before (the Khronos sample viewer's
+// getIBLRadianceAnisotropy) missed the reference path tracer by a mean CIEDE2000 of 14 on brushed
+// aluminium (BENCHMARKS.md, "Anisotropy under image-based light").
+#ifndef ANISOTROPY_IBL_SAMPLES
+#define ANISOTROPY_IBL_SAMPLES 32
+#endif
+vec3 anisotropicSpecularRadiance(Surface s, vec3 n, vec3 v, float perceptualRoughness) {
+    vec2 a = anisotropicAlphas(perceptualRoughness, s.anisotropyStrength); // (alpha_t, alpha_b)
+    float alphaSweep = sqrt(max(a.x * a.x - a.y * a.y, 0.0));
+    vec3 t = s.anisotropyDirection;
+    float count = clamp(ceil(4.0 * alphaSweep / a.y), 4.0, float(ANISOTROPY_IBL_SAMPLES));
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (int i = 0; i < int(count); ++i) {
+        float u = 2.0 * (float(i) + 0.5) / count - 1.0; // s in (-1, 1)
+        float rest = 1.0 - u * u;
+        float slope = alphaSweep * u * inversesqrt(rest);
+        // The slope's distance to the next sample, dx/du / count: the blur that closes the gap.
+        float gap = 2.0 * alphaSweep / (count * rest * sqrt(rest));
+        vec3 h = normalize(n - slope * t);
+        vec3 l = reflect(-v, h);
+        float NdotL = dot(n, l);
+        if (NdotL <= 0.0)
+            continue;
+        float alphaLookup = max(a.y, 0.5 * gap);
+        sum += specularRadiance(l, sqrt(min(alphaLookup, 1.0))) * NdotL;
+        weight += NdotL;
+    }
+    return weight > 0.0 ? sum / weight : specularRadiance(reflect(-v, n), perceptualRoughness);
+}
+
+// Where image-based light's sheen looks the environment up (lighting.frag). The Charlie lobe
+// (Estevez & Kulla 2017) with the Neubelt-Pettineo visibility is not centred on the reflection
+// direction: its n.l-weighted mean direction lies on the viewer's side of n, tilted towards v by
+// an angle that depends on the sheen roughness and hardly on n.v (numerical moments over
+// n.v in [0.05, 0.97]: about 70 degrees at roughness 0.2, 55 at 0.3, 33 at 0.5, 17 at 0.8, 12
+// at 1; fitted by 100 exp(-2.1 roughness) degrees), and it is as broad as a cosine lobe (mean
+// resultant length 0.53-0.70 against the cosine's 2/3). So its light is the irradiance (the
+// radiance convolved with a cosine lobe: the SH9 of irradianceOverPi) about that tilt, the same
+// before and after the bake. At normal incidence the lobe is a ring about n and the tilt fades
+// to n. Measured against the reference path tracer in BENCHMARKS.md ("Sheen and
+// anisotropy under image-based light").
+vec3 sheenLightDirection(vec3 n, vec3 v, float NdotV, float sheenRoughness) {
+    vec3 across = v - n * NdotV;
+    float len = length(across);
+    if (len < 1e-4)
+        return n;
+    float tilt = min(1.745 * exp(-2.1 * sheenRoughness), 1.48) * smoothstep(0.0, 0.25, len);
+    return n * cos(tilt) + across / len * sin(tilt);
 }

@@ -8,11 +8,13 @@
 // struct MaterialInputs and velvetGraph(uv, m), which overwrites the inputs the graph feeds.
 #include "material_graph.glsl"
 #include "material_lobe_inputs.glsl"
+#include "mesh_visibility.glsl"
 
 in vec3 vNormal;
 in vec4 vTangent;
 in vec2 vUv;
 in vec3 vWorldPosition;
+in vec4 vVisibility;
 
 layout(location = 0) uniform int uMaterialId;
 
@@ -152,11 +154,28 @@ void main() {
         ng = -ng;
         tbn = -tbn;
     }
-    // The occlusion channel holds 1 - strength * (1 - ao).
+    // The occlusion channel holds 1 - strength * (1 - ao); the specular occlusion channel the
+    // same times the share of the reflection's lobe the mesh leaves open (mesh_visibility.glsl),
+    // which screen-space occlusion cannot see (what a reflection meets is mostly off screen or
+    // behind). The diffuse term keeps screen-space occlusion alone: the baked visibility on top
+    // of it counted the same cavities twice (BENCHMARKS.md, "The mesh's visibility from
+    // itself"). The visibility is the front side's: the back of a double-sided mesh is open.
     float occlusion = 1.0 + inputs.occlusionStrength * (inputs.occlusion - 1.0);
+    float specularOcclusion = occlusion;
+#if !defined(FIXED_MESH_VISIBILITY) || FIXED_MESH_VISIBILITY == 1 // GeometryFeatures: convex out
+    if (gl_FrontFacing) {
+        vec3 v = frame.cameraPosition.w > 0.5
+                     ? normalize((frame.invViewMatrix * vec4(0.0, 0.0, 1.0, 0.0)).xyz)
+                     : normalize(frame.cameraPosition.xyz - vWorldPosition);
+        float lobeOpen = specularVisibility(vVisibility, n, reflect(-v, n), roughness * roughness);
+        vec3 f0 = mix(vec3(0.04), baseColor, metallic);
+        specularOcclusion *= saturate(dot(multiBounceOcclusion(lobeOpen, f0), vec3(1.0 / 3.0)));
+    }
+#endif
     gBaseColorOcclusion = vec4(encodeBaseColor(baseColor), occlusion);
     gNormal = octEncodeUnorm16(n);
-    gMaterial = vec4(metallic, clamp(roughness, 0.0, 1.0), float(uMaterialId) / 255.0, 0.0);
+    gMaterial = vec4(metallic, clamp(roughness, 0.0, 1.0), float(uMaterialId) / 255.0,
+                     specularOcclusion);
     // The lobes this material varies, into the channels its map gives them, encoded relative to
     // the normal exactly as the lighting passes will decode it.
     writeLobeChannels(m.terms2.w, int(m.clearcoat.w), inputs, tbn, ng, octDecodeUnorm16(gNormal));

@@ -19,7 +19,8 @@ struct ShadingPoint {
     vec3 v;          // world direction to the eye
     vec3 posView;    // view-space position
     vec3 posWorld;   // world position
-    float occlusion; // ambient occlusion (RT0 alpha)
+    float occlusion; // ambient occlusion (RT0 alpha): of image-based light's diffuse terms
+    float specularOcclusion; // of its specular terms (RT2 alpha; gbuffer.frag)
     int materialId;  // index into the material table
 };
 
@@ -98,6 +99,7 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     p.s.terms = m.terms;
     p.s.sheenModel = m.terms2.x;
     p.occlusion = rt0.a;
+    p.specularOcclusion = rt2.a;
     p.n = octDecodeUnorm16(rt1);
     setIsotropicSingleNormal(p.s, p.n);
     readLobeChannels(pixel, m.terms2.w, int(m.clearcoat.w), p.n, p.s);

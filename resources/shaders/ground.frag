@@ -14,7 +14,7 @@ void main() {
     gBaseColorOcclusion = vec4(encodeBaseColor(m.baseColorMetallic.rgb), 1.0);
     gNormal = octEncodeUnorm16(vec3(0.0, 1.0, 0.0));
     gMaterial = vec4(0.0, clamp(m.roughIorOcclusionNormal.x, 0.0, 1.0), float(uMaterialId) / 255.0,
-                     0.0);
+                     1.0); // a: specular occlusion (none)
     gLobes0 = gLobes1 = vec4(0.0); // its lobe-channel map keeps every lobe per material
     gEmission = vec4(0.0, 0.0, 0.0, 1.0);
 }

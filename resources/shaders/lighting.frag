@@ -131,6 +131,8 @@ void main() {
                      : view == DEBUG_OCCLUSION ? vec3(occlusion * screenSpaceOcclusion(pixel, -posView.z))
                      : view == DEBUG_EMISSIVE  ? vec3(0.0)
                      : view == DEBUG_ANISOTROPY ? s.anisotropyDirection * s.anisotropyStrength
+                     : view == DEBUG_SPECULAR_OCCLUSION
+                         ? vec3(p.specularOcclusion * screenSpaceOcclusion(pixel, -posView.z))
                                                : vec3(float(p.materialId));
         // Alpha 0 replaces the emission the geometry pass wrote; the emissive view keeps it
         // (alpha 1, nothing added): the per-pixel emission itself.
@@ -158,21 +160,28 @@ void main() {
     vec3 r = reflect(-v, n);
     float rough = max(s.roughness, MIN_ROUGHNESS);
     irradiance *= diffuseDirectionalAlbedo(s.terms.w, NdotV, rough);
-    // An anisotropic base looks its reflection up along a bent normal (anisotropicReflection).
-    vec3 prefiltered = specularRadiance(usesAnisotropy(s) ? anisotropicReflection(s, n, v) : r, rough);
+    // An anisotropic base sweeps the lookup along its stretch (anisotropicSpecularRadiance).
+    vec3 prefiltered = usesAnisotropy(s) ? anisotropicSpecularRadiance(s, n, v, rough)
+                                         : specularRadiance(r, rough);
     vec2 ab = environmentDfg(NdotV, rough);
     vec3 specDielectric = s.specularWeight * specularAlbedo(dielectricF0(s), ab);
     vec3 specMetal = specularAlbedo(s.baseColor, ab);
-    vec3 ambient = mix((1.0 - max3(specDielectric)) * s.baseColor * irradiance +
-                           specDielectric * prefiltered,
-                       specMetal * prefiltered, s.metallic);
+    // The diffuse and specular parts each under their own occlusion (gbuffer.frag: the
+    // material's occlusion, and the mesh's visibility from itself where it has one).
+    float diffuseOcclusion = p.occlusion, specularOcclusion = p.specularOcclusion;
+    vec3 ambient = (1.0 - s.metallic) * (1.0 - max3(specDielectric)) * s.baseColor * irradiance *
+                       diffuseOcclusion +
+                   mix(specDielectric, specMetal, s.metallic) * prefiltered * specularOcclusion;
 #if WITH_SHEEN // (common_brdf.glsl's specialisation)
     if (max3(s.sheenColor) > 0.0) {
         // The sheen model's own albedo for both the scaling and the sheen lobe, lit by the
-        // prefiltered radiance at the sheen roughness (as Filament's evaluateSheenIBL).
+        // irradiance about the lobe's mean direction (sheenLightDirection): not the prefiltered
+        // radiance along the reflection at the sheen roughness (Filament's evaluateSheenIBL),
+        // which lit velvet with a lamp highlight its lobe does not have.
         float e = sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel);
+        vec3 sheenLight = irradianceOverPi(sheenLightDirection(n, v, NdotV, s.sheenRoughness));
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
-                  s.sheenColor * e * specularRadiance(r, s.sheenRoughness);
+                  s.sheenColor * e * sheenLight * diffuseOcclusion;
     }
 #endif
     float keepEmission = 1.0; // KHR_materials_clearcoat: emission seen through the coat's Fresnel
@@ -185,11 +194,12 @@ void main() {
         vec2 abc = environmentDfg(NdotVc, cr);
         float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotVc);
         ambient = ambient * (1.0 - fc) +
-                  s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(reflect(-v, nc), cr);
+                  s.clearcoat * (0.04 * abc.x + abc.y) * specularRadiance(reflect(-v, nc), cr) *
+                      specularOcclusion;
         keepEmission = 1.0 - fc;
     }
 #endif
-    color += ambient * occlusion * ssao;
+    color += ambient * ssao;
 #if defined(STAGE_GROUND_PLAIN)
     if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher
         color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, shadows),

@@ -29,7 +29,7 @@ private slots:
         for (auto it = std::sregex_iterator(glsl.begin(), glsl.end(), define);
              it != std::sregex_iterator(); ++it, ++count)
             QCOMPARE(std::stoi((*it)[2]), count); // dense, in enum order
-        QCOMPARE(count, int(render::DebugView::Anisotropy) + 1);
+        QCOMPARE(count, int(render::DebugView::SpecularOcclusion) + 1);
         int lightViews = 0;
         for (int v = 0; v < count; ++v)
             lightViews += render::isLightView(render::DebugView(v));
