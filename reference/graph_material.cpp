@@ -68,7 +68,7 @@ struct GraphMaterial::Impl {
     float sheenWeight = 0, emissionStrength = 0, normalScale = 1;
     glm::vec3 sheenColor{0}, emissionColor{0};
     int sheenWeightIn = -1, sheenColorIn = -1, emissionColorIn = -1, emissionStrengthIn = -1;
-    int normalIn = -1, anisotropyDirectionIn = -1;
+    int normalIn = -1, anisotropyDirectionIn = -1, occlusionIn = -1;
 };
 
 GraphMaterial::GraphMaterial(const Material& material, TextureCache& cache, Problems* problems)
@@ -105,6 +105,7 @@ GraphMaterial::GraphMaterial(const Material& material, TextureCache& cache, Prob
     if (const graph::NodeType* out = graph::findNodeType(graph::kOutputTypeId)) {
         d.normalIn = out->inputIndex("normal");
         d.anisotropyDirectionIn = out->inputIndex("anisotropyDirection");
+        d.occlusionIn = out->inputIndex("occlusion");
     }
 }
 
@@ -115,7 +116,7 @@ bool GraphMaterial::active() const {
 }
 
 void GraphMaterial::apply(glm::vec2 uv, brdf::Surface& s, glm::vec3& tangentNormal, bool& normalFed,
-                          AnisotropyInputs* anisotropy) const {
+                          AnisotropyInputs* anisotropy, float* occlusion) const {
     if (!active())
         return;
     const Impl& d = *m_impl;
@@ -148,6 +149,9 @@ void GraphMaterial::apply(glm::vec2 uv, brdf::Surface& s, glm::vec3& tangentNorm
         if (const auto* v = fed(d.anisotropyDirectionIn))
             anisotropy->direction = glm::vec2(**v);
     }
+    if (occlusion)
+        if (const auto* v = fed(d.occlusionIn))
+            *occlusion = (**v).x;
     if (fed(d.sheenWeightIn) || fed(d.sheenColorIn)) {
         const float w = fed(d.sheenWeightIn) ? (**fed(d.sheenWeightIn)).x : d.sheenWeight;
         const glm::vec3 c = fed(d.sheenColorIn) ? glm::vec3(**fed(d.sheenColorIn)) : d.sheenColor;

@@ -50,9 +50,10 @@ public:
     /// colour, emission as colour x strength, from the material's values where the graph feeds
     /// only one of the two) and the tangent-space normal @p tangentNormal (@p normalFed set true
     /// when the graph feeds it; it is then scaled by the normal scale like a normal map), and the
-    /// anisotropy direction and rotation in @p anisotropy when given.
+    /// anisotropy direction and rotation in @p anisotropy and the ambient occlusion in
+    /// @p occlusion (before the strength) when given.
     void apply(glm::vec2 uv, brdf::Surface& s, glm::vec3& tangentNormal, bool& normalFed,
-               AnisotropyInputs* anisotropy = nullptr) const;
+               AnisotropyInputs* anisotropy = nullptr, float* occlusion = nullptr) const;
 
 private:
     struct Impl;

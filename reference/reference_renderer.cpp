@@ -67,7 +67,7 @@ glm::vec3 trace(const Context& ctx, glm::vec3 o, glm::vec3 d, Rng& rng, bool& on
             if (pdfEnv > 0.0f && glm::dot(hit.n, l) > 0.0f && glm::dot(hit.ng, l) > 0.0f) {
                 const glm::vec3 f = brdf::evalDirectional(hit.s, hit.n, v, l);
                 if (maxComponent(f) > 0.0f && !occluded(ctx, origin, l, 1e30f))
-                    radiance += throughput * f * ctx.env.radiance(l) *
+                    radiance += throughput * hit.occlusion * f * ctx.env.radiance(l) *
                                 powerHeuristic(pdfEnv, brdfPdf(hit.s, hit.n, v, l)) / pdfEnv;
             }
         }
@@ -82,6 +82,7 @@ glm::vec3 trace(const Context& ctx, glm::vec3 o, glm::vec3 d, Rng& rng, bool& on
         Hit next;
         const bool hitSurface = intersect(ctx, origin, l, 1e30f, next);
         radiance += throughput * areaEmission(ctx, origin, l, hitSurface ? next.t : 1e30f, pdf);
+        throughput *= hit.occlusion; // what follows is indirect light (the material's occlusion)
         if (!hitSurface) {
             radiance += throughput * ctx.env.radiance(l) * powerHeuristic(pdf, ctx.env.pdf(l));
             break;
@@ -184,8 +185,15 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
     ctx.tex.specular = load(TextureSlot::Specular);
     ctx.tex.specularColor = load(TextureSlot::SpecularColor);
     ctx.tex.anisotropy = load(TextureSlot::Anisotropy);
-    // A path tracer finds occlusion itself, so the occlusion map (a real-time stand-in for it)
-    // is not applied; the coat's own normal map has no counterpart in brdf::Surface yet.
+    // The occlusion map (or the graph's occlusion) scales the indirect light a hit receives, as
+    // glTF 2.0 defines it ("areas that receive less indirect lighting"): the environment and the
+    // light bounced off the mesh, not the lights. The path tracer finds the mesh's own occlusion
+    // itself, but not a material's micro-geometry that exists only as a normal map (a weave's
+    // gaps between threads, which its node feeds to occlusion), which the map stands for; the
+    // viewport applies it to its image-based light. The coat's own normal map has no
+    // counterpart in brdf::Surface yet.
+    ctx.tex.occlusion = load(TextureSlot::Occlusion);
+    ctx.occlusionStrength = scene.material.scalar(ParamId::OcclusionStrength);
     if (!scene.material.texture(TextureSlot::ClearcoatNormal).empty() && problems)
         problems->warning(scene.material.texture(TextureSlot::ClearcoatNormal).file,
                           "textures.clearcoatNormal",

@@ -86,8 +86,10 @@ bool intersect(const Context& ctx, glm::vec3 o, glm::vec3 d, float tMax, Hit& hi
         tn.x *= ctx.normalScale, tn.y *= ctx.normalScale;
         normalMapped = true;
     }
+    float ao = ctx.tex.occlusion ? sampleTexture(*ctx.tex.occlusion, uv).r : 1.0f;
     if (ctx.graph) // the graph's outputs over the parameters and textures (gbuffer.frag)
-        ctx.graph->apply(uv, s, tn, normalMapped, &aniso);
+        ctx.graph->apply(uv, s, tn, normalMapped, &aniso, &ao);
+    hit.occlusion = std::clamp(1.0f + ctx.occlusionStrength * (ao - 1.0f), 0.0f, 1.0f);
     s.roughness = std::clamp(s.roughness, 0.0f, 1.0f);
     if (normalMapped) { // Gram-Schmidt frame from the interpolated tangent
         glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));

@@ -18,7 +18,8 @@ namespace velvet::reference::detail {
 
 // ---- Material at a hit: parameters and texture slots (glTF: factor x texture) ----
 struct Textures {
-    std::shared_ptr<const Image> baseColor, metallicRoughness, specRoughMetal, normal, emissive;
+    std::shared_ptr<const Image> baseColor, metallicRoughness, specRoughMetal, normal, emissive,
+        occlusion;
     // The KHR lobes' slots (factor x texture, the channels of texture_ref.h).
     std::shared_ptr<const Image> clearcoat, clearcoatRoughness, sheenColor, sheenRoughness,
         specular, specularColor, anisotropy;
@@ -38,6 +39,7 @@ struct Context {
     Textures tex;
     const GraphMaterial* graph = nullptr; ///< the material graph, when it feeds any input
     float normalScale = 1;
+    float occlusionStrength = 1;
     float anisotropyRotation = 0; ///< degrees, counter-clockwise from the tangent
     EnvironmentLight env;
     std::vector<LocalLight> lights;
@@ -51,6 +53,9 @@ struct Hit {
     float t;
     glm::vec3 p, n, ng;
     brdf::Surface s;
+    /// The material's occlusion at the hit, 1 - strength (1 - ao) (the texture's R or the
+    /// graph's output, as gbuffer.frag), which scales the indirect light arriving there.
+    float occlusion = 1;
 };
 
 /// The first surface along o + t d, t < tMax, with its material evaluated and its shading frame

@@ -36,28 +36,28 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // (sub-pixel at 32x32), and the shader ball's cavities (occluded by the mesh's baked visibility
 // as a cone, render/mesh_visibility.h, where the path tracer sees the mesh's own reflections).
 // Re-recorded on 2026-12-03 after the anisotropic sweep, the sheen's irradiance about its mean
-// direction and the baked visibility lowered every row they touch.
+// direction and the baked visibility lowered every row they touch; and again after the
+// reference honoured the material's occlusion as glTF defines it (the weaves' gaps), which
+// lowered most fabric rows and raised wool's and tweed's under the rig (BENCHMARKS.md).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 8.88, 19.56},
     {"brushed_aluminium", kSphere, "three-point", 5.37, 12.46},
     {"ceramic", kSphere, "environment", 2.41, 5.36},
     {"copper", kSphere, "environment", 4.38, 11.51},
     {"copper", kSphere, "three-point", 3.15, 8.80},
-    {"cotton", kSphere, "environment", 4.36, 9.02},
+    {"cotton", kSphere, "environment", 3.09, 7.65},
     {"crushed_velvet", kSphere, "environment", 2.93, 12.95},
     {"crushed_velvet", kSphere, "three-point", 2.35, 10.58},
-    {"denim", kSphere, "environment", 2.50, 5.98},
-    {"denim", kSphere, "three-point", 2.88, 6.41},
+    {"denim", kSphere, "three-point", 2.83, 6.72},
     {"gold", kSphere, "environment", 3.97, 10.56},
     {"gold", kSphere, "three-point", 2.99, 8.23},
-    {"leather", kSphere, "environment", 2.27, 4.02},
-    {"linen", kSphere, "environment", 4.54, 8.67},
-    {"silk", kSphere, "environment", 4.27, 8.44},
+    {"linen", kSphere, "environment", 2.28, 5.17},
+    {"silk", kSphere, "environment", 2.34, 5.56},
     {"terry", kSphere, "environment", 3.20, 7.56},
-    {"tweed", kSphere, "environment", 3.36, 7.50},
-    {"tweed", kSphere, "three-point", 2.78, 6.16},
-    {"wool", kSphere, "environment", 3.87, 9.08},
-    {"wool", kSphere, "three-point", 2.46, 6.51},
+    {"tweed", kSphere, "environment", 3.01, 6.29},
+    {"tweed", kSphere, "three-point", 3.01, 7.06},
+    {"wool", kSphere, "environment", 3.95, 9.11},
+    {"wool", kSphere, "three-point", 2.88, 8.44},
     {"plastic", kBall, "environment", 2.78, 7.24},
     {"plastic", kBall, "three-point", 2.95, 8.52},
     {"gold", kBall, "environment", 8.50, 36.46},

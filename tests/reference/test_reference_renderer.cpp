@@ -120,6 +120,52 @@ private slots:
         }
     }
 
+    // The material's occlusion (here the graph's occlusion output, 0.4, at strength 0.5: 0.7)
+    // scales the indirect light a hit receives, as glTF defines it: under the white furnace the
+    // white Lambertian sphere (convex: every path leaves after one bounce) reads 0.7; a
+    // directional light on a black environment is not scaled at all.
+    void occlusionScalesIndirectLightOnly() {
+        using namespace velvet::graph;
+        Graph g;
+        const NodeId out = g.addNode(kOutputTypeId).node;
+        const NodeId ao = g.addNode("constant.float").node;
+        QVERIFY(g.setInputValue(ao, 0, glm::vec4(0.4f)));
+        const graph::NodeType* outType = findNodeType(kOutputTypeId);
+        QVERIFY(outType && outType->inputIndex("occlusion") >= 0);
+        QVERIFY(g.connect({ao, 0, out, PortIndex(outType->inputIndex("occlusion"))}));
+        reference::Options o;
+        o.width = o.height = 24;
+        o.samplesPerPixel = 512;
+        o.maxBounces = 16;
+        Scene furnace = furnaceScene();
+        furnace.material.setScalar(ParamId::OcclusionStrength, 0.5f);
+        furnace.material.graph = SharedGraph(g);
+        const reference::Result r = renderOrFail(furnace, o);
+        const int c = r.image.channels;
+        double centre = 0.0;
+        for (int y = 8; y < 16; ++y)
+            for (int x = 8; x < 16; ++x)
+                centre += r.image.pixels[(size_t(y) * 24 + x) * size_t(c)];
+        centre /= 64.0;
+        qInfo("furnace with occlusion 0.7: centre %.4f", centre);
+        QVERIFY2(std::abs(centre - 0.7) < 0.02, qPrintable(QString::number(centre)));
+
+        // A directional light on the black environment: the same image with and without it.
+        Scene lit = variedScene();
+        lit.environment.color = glm::vec3(0.0f);
+        Light key;
+        key.type = LightType::Directional;
+        key.direction = glm::vec3(0.5f, -0.6f, -0.62f);
+        key.intensity = 3.0f;
+        lit.lights = {key};
+        o.samplesPerPixel = 4;
+        const reference::Result plain = renderOrFail(lit, o);
+        lit.material.graph = SharedGraph(g);
+        const reference::Result occluded = renderOrFail(lit, o);
+        QVERIFY(!plain.image.pixels.empty());
+        QVERIFY(plain.image.pixels == occluded.image.pixels);
+    }
+
     // The material graph is evaluated at every hit by the graph compiler's CPU twin: a graph
     // feeding constants renders exactly what the same values as parameters render, and a
     // checker feeding the base colour shows per-hit variation a constant cannot.
