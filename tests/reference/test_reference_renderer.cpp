@@ -55,6 +55,18 @@ reference::Result renderOrFail(const Scene& scene, reference::Options o) {
     return r;
 }
 
+/// The red channel's mean over the centre 8x8 pixels of a 24x24 image: all on the sphere and
+/// seen within 30 degrees of its normal.
+double centreMean(const Image& image) {
+    double sum = 0.0;
+    for (int y = 8; y < 16; ++y)
+        for (int x = 8; x < 16; ++x)
+            sum +=
+                image
+                    .pixels[(size_t(y) * size_t(image.width) + size_t(x)) * size_t(image.channels)];
+    return sum / 64.0;
+}
+
 double rmse(const Image& a, const Image& b) {
     double sum = 0.0;
     for (size_t i = 0; i < a.pixels.size(); ++i) {
@@ -107,13 +119,7 @@ private slots:
             o.maxBounces = 16;
             const reference::Result r = renderOrFail(scene, o);
             QCOMPARE(r.passesDone, o.samplesPerPixel);
-            // The centre 8x8 pixels, all on the sphere and seen within 30 degrees of its normal.
-            const int c = r.image.channels;
-            double centre = 0.0;
-            for (int y = 8; y < 16; ++y)
-                for (int x = 8; x < 16; ++x)
-                    centre += r.image.pixels[(size_t(y) * 24 + x) * size_t(c)];
-            centre /= 64.0;
+            const double centre = centreMean(r.image);
             qInfo("white metal, roughness %.1f, furnace: centre %.4f", rough, centre);
             QVERIFY2(std::abs(centre - 1.0) < 0.03,
                      qPrintable(QString("roughness %1: %2").arg(rough).arg(centre)));
@@ -141,12 +147,7 @@ private slots:
         furnace.material.setScalar(ParamId::OcclusionStrength, 0.5f);
         furnace.material.graph = SharedGraph(g);
         const reference::Result r = renderOrFail(furnace, o);
-        const int c = r.image.channels;
-        double centre = 0.0;
-        for (int y = 8; y < 16; ++y)
-            for (int x = 8; x < 16; ++x)
-                centre += r.image.pixels[(size_t(y) * 24 + x) * size_t(c)];
-        centre /= 64.0;
+        const double centre = centreMean(r.image);
         qInfo("furnace with occlusion 0.7: centre %.4f", centre);
         QVERIFY2(std::abs(centre - 0.7) < 0.02, qPrintable(QString::number(centre)));
 

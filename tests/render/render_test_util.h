@@ -68,6 +68,27 @@ struct OffscreenRenderer {
     }
 };
 
+/// The test process's one OffscreenRenderer, started at @p side on first use (qFatal if it cannot
+/// start); stopProcessRenderer() frees it while the context is still current (cleanupTestCase).
+inline std::unique_ptr<OffscreenRenderer>& processRendererSlot() {
+    static std::unique_ptr<OffscreenRenderer> renderer;
+    return renderer;
+}
+inline OffscreenRenderer* processRenderer(int side) {
+    auto& r = processRendererSlot();
+    if (!r) {
+        r = std::make_unique<OffscreenRenderer>();
+        const std::string error = r->start(side);
+        if (!error.empty())
+            qFatal("renderer: %s", error.c_str());
+    }
+    return r.get();
+}
+inline void stopProcessRenderer() {
+    if (auto& r = processRendererSlot())
+        r->stop();
+}
+
 /// The shipped default scene (core/document_io.h), loaded exactly as `velvet render` and the editor
 /// load it, so the golden image is the default scene and not a copy of it. Fails the test when the
 /// default preset reports any problem.

@@ -16,16 +16,9 @@ using namespace velvet;
 
 namespace {
 
-/// The test::OffscreenRenderer fixture, resized per test (renderLinear).
-std::unique_ptr<test::OffscreenRenderer> fx;
+/// The process's test::OffscreenRenderer, resized per test (renderLinear).
 test::OffscreenRenderer* rig() {
-    if (!fx) {
-        fx = std::make_unique<test::OffscreenRenderer>();
-        const std::string error = fx->start(128);
-        if (!error.empty())
-            qFatal("renderer: %s", error.c_str());
-    }
-    return fx.get();
+    return test::processRenderer(128);
 }
 
 /// The next frame of @p r's renderer (its scene as it stands) in @p view, linear.
@@ -153,8 +146,7 @@ private slots:
         QVERIFY2(test::headlessContext(&error), error.c_str());
     }
     void cleanupTestCase() {
-        if (fx)
-            fx->stop(); // while the context is current
+        test::stopProcessRenderer(); // while the context is current
     }
 
     void directionalShadowOfSphereOnGround() {
