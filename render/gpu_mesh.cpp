@@ -46,19 +46,25 @@ void GpuMesh::upload(const MeshData& mesh) {
         glVertexArrayAttribFormat(m_vao, a.location, a.size, GL_FLOAT, GL_FALSE, GLuint(a.offset));
         glVertexArrayAttribBinding(m_vao, a.location, 0);
     }
-    // The mesh's visibility from itself (MeshData::visibility) from a second buffer; without it
-    // the attribute stays disabled and draw() sets its generic value.
-    if (!mesh.visibility.empty() && mesh.visibility.size() == mesh.vertices.size()) {
-        glCreateBuffers(1, &m_visibilityVbo);
-        glNamedBufferStorage(m_visibilityVbo,
-                             GLsizeiptr(mesh.visibility.size() * sizeof(glm::vec4)),
-                             mesh.visibility.data(), 0);
-        glVertexArrayVertexBuffer(m_vao, 1, m_visibilityVbo, 0, sizeof(glm::vec4));
-        glEnableVertexArrayAttrib(m_vao, kVisibilityLocation);
-        glVertexArrayAttribFormat(m_vao, kVisibilityLocation, 4, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(m_vao, kVisibilityLocation, 1);
-    }
+    m_vertexCount = mesh.vertices.size();
+    uploadVisibility(mesh.visibility);
     m_indexCount = int(mesh.indices.size());
+}
+
+void GpuMesh::uploadVisibility(const std::vector<glm::vec4>& visibility) {
+    // The mesh's visibility from itself from a second buffer; without it the attribute stays
+    // disabled and draw() sets its generic value.
+    if (!m_vao || visibility.empty() || visibility.size() != m_vertexCount)
+        return;
+    if (m_visibilityVbo)
+        glDeleteBuffers(1, &m_visibilityVbo);
+    glCreateBuffers(1, &m_visibilityVbo);
+    glNamedBufferStorage(m_visibilityVbo, GLsizeiptr(visibility.size() * sizeof(glm::vec4)),
+                         visibility.data(), 0);
+    glVertexArrayVertexBuffer(m_vao, 1, m_visibilityVbo, 0, sizeof(glm::vec4));
+    glEnableVertexArrayAttrib(m_vao, kVisibilityLocation);
+    glVertexArrayAttribFormat(m_vao, kVisibilityLocation, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(m_vao, kVisibilityLocation, 1);
 }
 
 void GpuMesh::draw() const {

@@ -5,6 +5,7 @@
 #include "render/mesh_visibility.h"
 
 #include <algorithm>
+#include <chrono>
 #include <glm/geometric.hpp>
 
 namespace velvet::render {
@@ -28,9 +29,18 @@ const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems
         if (entry->failure.empty()) {
             // The mesh's visibility from itself, for image-based light's occlusion; the convex
             // preview meshes hide nothing from themselves, so they skip the rays.
-            if (!previewMeshIsConvex(ref.kind))
+            const bool bake = !previewMeshIsConvex(ref.kind);
+            if (bake && !m_asyncBake)
                 data.visibility = bakeMeshVisibility(data);
             entry->gpu.upload(data);
+            if (bake && m_asyncBake) {
+                MeshData geometry;
+                geometry.vertices = data.vertices;
+                geometry.indices = data.indices;
+                entry->bake = std::async(std::launch::async, [geometry = std::move(geometry)] {
+                    return bakeMeshVisibility(geometry);
+                });
+            }
             entry->doubleSided = data.doubleSided;
             entry->bounds = meshBounds(data);
             float radius = 0.0f;
@@ -46,6 +56,24 @@ const MeshCache::Entry& MeshCache::select(const MeshRef& ref, Problems* problems
     }
     m_selected = entry.get();
     return *entry;
+}
+
+bool MeshCache::adoptBakes() {
+    bool adopted = false;
+    for (auto& [key, entry] : m_entries)
+        if (entry->bake.valid() &&
+            entry->bake.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+            entry->gpu.uploadVisibility(entry->bake.get());
+            adopted = true;
+        }
+    return adopted;
+}
+
+bool MeshCache::bakePending() const {
+    for (const auto& [key, entry] : m_entries)
+        if (entry->bake.valid())
+            return true;
+    return false;
 }
 
 } // namespace velvet::render

@@ -174,6 +174,14 @@ std::string Renderer::lightingSpecialisationError() const {
     return m_impl->lighting.lastSpecialisationError();
 }
 
+void Renderer::setAsyncMeshBake(bool async) {
+    m_impl->meshes.setAsyncBake(async);
+}
+
+bool Renderer::meshBakePending() const {
+    return m_impl->meshes.bakePending();
+}
+
 void Renderer::setAsyncTextures(bool async) {
     Impl& d = *m_impl;
     if (async == d.textures.async())
@@ -232,6 +240,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     Impl& d = *m_impl;
     if (!d.initialized)
         return fail(error, "Renderer::render called before initialize()");
+    d.meshes.adoptBakes(); // a mesh's visibility baked on a worker since the last frame
     if (fs.width <= 0 || fs.height <= 0 || fs.width > 16384 || fs.height > 16384)
         return fail(error, "invalid frame size " + std::to_string(fs.width) + "x" +
                                std::to_string(fs.height));

@@ -344,6 +344,17 @@ public:
     void setAsyncTextures(bool async);
     /// @}
 
+    /// @name The mesh's visibility from itself (render/mesh_visibility.h)
+    /// Ray traced when a mesh that is not convex is first selected: before update() returns by
+    /// default; on a worker thread when asynchronous (the editor: about 90 ms for the shader ball,
+    /// more for a large import, that no frame waits for), the mesh drawing without the specular
+    /// occlusion until a later render() adopts it. A host should keep repainting while
+    /// meshBakePending().
+    /// @{
+    void setAsyncMeshBake(bool async);
+    bool meshBakePending() const;
+    /// @}
+
     /// The 16-byte G-buffer without the lobe channels (render/gbuffer_layout.h): every lobe per
     /// material, its textures as their mean, no anisotropy, as before the lobe channels. For
     /// velvet bench's side-by-side comparison; off by default.

@@ -340,6 +340,7 @@ void ViewportWidget::initializeGL() {
     // Texture files load on a worker thread and upload a bounded slice a frame: the window
     // keeps drawing (parameter value, then a coarse proxy) while a 4K map loads (issue 16).
     renderer->setAsyncTextures(true);
+    renderer->setAsyncMeshBake(true);
     m_renderer = std::move(renderer);
     m_pendingParts = ScenePart::All; // a new renderer has none of the scene
 }
@@ -412,8 +413,9 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
     // program at a later frame, so keep frames coming (a short pause each: polling, not spinning).
     if (m_renderer->graphPending())
         QTimer::singleShot(kGraphPollMs, this, &ViewportWidget::requestFrame);
-    // Textures loading or uploading: frames keep coming until every one is complete.
-    if (m_renderer->textureProgress().loading > 0)
+    // Textures loading or uploading, or a mesh's visibility baking: frames keep coming until
+    // every one is complete.
+    if (m_renderer->textureProgress().loading > 0 || m_renderer->meshBakePending())
         QTimer::singleShot(kGraphPollMs, this, &ViewportWidget::requestFrame);
     // A value edit drew with a generic program: once the edits pause, one more frame builds the
     // specialised one (render/lighting_features.h), so no compile ever lands inside a drag.

@@ -11,6 +11,7 @@
 #include "render/renderer.h"
 #include "render_test_util.h"
 
+#include <QElapsedTimer>
 #include <QtTest>
 #include <algorithm>
 #include <glm/geometric.hpp>
@@ -183,6 +184,30 @@ private slots:
         QVERIFY(compared > 500 && occluded > 20);
         QVERIFY(agree > compared * 0.9);
         QVERIFY(occludedAgree > occluded * 0.9);
+    }
+
+    // The editor's asynchronous bake: frames draw while it runs (the ball without occlusion),
+    // and once a frame adopts it the image is the synchronous bake's, to the bit.
+    void asyncBakeEndsInTheSameImage() {
+        const Scene scene = uniformScene(PreviewMeshKind::ShaderBall, 0.1f);
+        const Image synchronous = draw(scene, render::DebugView::Final);
+        test::OffscreenRenderer async;
+        QVERIFY2(async.start(96).empty(), "second renderer");
+        async.renderer->setAsyncMeshBake(true);
+        Problems problems;
+        async.renderer->setScene(scene, &problems);
+        QElapsedTimer clock;
+        clock.start();
+        int frames = 0;
+        do {
+            async.draw(nullptr, render::DebugView::Final);
+            ++frames;
+        } while (async.renderer->meshBakePending() && clock.elapsed() < 20000);
+        QVERIFY(!async.renderer->meshBakePending());
+        qInfo("bake adopted after %d frames", frames);
+        const Image adopted = async.draw(nullptr, render::DebugView::Final);
+        QVERIFY(adopted.pixels == synchronous.pixels);
+        async.stop();
     }
 
     void cleanupTestCase() { test::stopProcessRenderer(); }
