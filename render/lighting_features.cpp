@@ -54,6 +54,7 @@ std::vector<std::string> LightingFeatures::defines() const {
     without("WITH_SHADOW_MASK", shadowMask);
     without("WITH_LOCAL_SHADOWS", localShadows);
     without("WITH_OCCLUSION", occlusion);
+    without("WITH_GEOMETRIC_HORIZON", geometricHorizon);
     fixed("FIXED_IBL_BAKED", iblBaked);
     fixed("FIXED_MULTIPLE_SCATTERING", multipleScattering);
     return out;
@@ -82,6 +83,7 @@ LightingFeatures lightingFeaturesOf(std::span<const GpuMaterial> records, bool d
                (m.sheenWeightAnisotropy.y > 0.0f || perPixel(m, LobeValue::Anisotropy));
     });
     f.lobeChannels = any([](const GpuMaterial& m) { return hasLobeMap(m); });
+    f.geometricHorizon = any([](const GpuMaterial& m) { return m.sheenWeightAnisotropy.w > 0.5f; });
     f.directionalShadows = directionalShadows;
     f.occlusion = occlusion;
     f.iblBaked = iblBaked ? 1 : 0;

@@ -48,6 +48,10 @@ struct LightingFeatures {
     bool localShadows = true;
     /// Screen-space ambient occlusion is on.
     bool occlusion = true;
+    /// Some drawn material bends its shading normal per pixel
+    /// (GpuMaterial::sheenWeightAnisotropy.w): the lighting reconstructs the geometric normal to
+    /// keep light from below the surface out.
+    bool geometricHorizon = true;
     /// The baked IBL (prefiltered cube and DFG LUT) is ready: the approximate path compiles out.
     /// Unknown (-1), 0 or 1; the same for the multiple-scattering energy switch.
     int iblBaked = -1;

@@ -52,6 +52,10 @@ std::string_view lobeValueMacro(LobeValue value) {
     return kValues[size_t(value)].macro;
 }
 
+bool perturbsNormal(std::uint32_t presentSlots, const std::vector<std::string>& graphFields) {
+    return has(presentSlots, TextureSlot::Normal) || connected(graphFields, {"normal"});
+}
+
 LobeValueSet varyingLobeValues(const Material& m, std::uint32_t presentSlots,
                                const std::vector<std::string>& graphFields) {
     LobeValueSet set = 0;

@@ -67,6 +67,12 @@ inline constexpr LobeValueSet lobeBit(LobeValue v) {
 LobeValueSet varyingLobeValues(const Material& material, std::uint32_t presentSlots,
                                const std::vector<std::string>& graphFields);
 
+/// Whether the shading normal of a material with @p presentSlots and @p graphFields (as above)
+/// differs from the mesh's per pixel: a normal map, or a graph that writes the normal (the
+/// fabric nodes' weave relief). The lighting then keeps light from below the surface's geometric
+/// horizon out (gbuffer_read.glsl's geometricHorizon).
+bool perturbsNormal(std::uint32_t presentSlots, const std::vector<std::string>& graphFields);
+
 /// Where each value sits: the first channel (0 .. 7) or kLobePerMaterial.
 struct LobeChannelMap {
     std::array<int, kLobeValueCount> firstChannel{};

@@ -44,6 +44,7 @@ GpuMaterial packMaterialRecord(const Material& m, const TextureSet& textures,
                            compactGBuffer ? 0 : kLobeChannelCount);
     g.terms2.w = map.packed();
     g.clearcoat.w = float(map.iorEntry());
+    g.sheenWeightAnisotropy.w = perturbsNormal(textures.presentSlots(), graphFields) ? 1.0f : 0.0f;
     textures.applyTo(g, map);
     if (overflow)
         *overflow = compactGBuffer ? 0u : map.overflow;

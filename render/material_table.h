@@ -23,6 +23,8 @@ struct GpuMaterial {
     glm::vec4 emissive;
     glm::vec4 sheenColorRoughness;
     glm::vec4 clearcoat;
+    /// Sheen weight, anisotropy strength and rotation (radians), and 1 when the shading normal
+    /// varies per pixel (perturbsNormal(), render/lobe_channels.h; packMaterialRecord), else 0.
     glm::vec4 sheenWeightAnisotropy;
     glm::ivec4 terms;
     glm::ivec4 terms2;

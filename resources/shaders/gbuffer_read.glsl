@@ -22,7 +22,64 @@ struct ShadingPoint {
     float occlusion; // ambient occlusion (RT0 alpha): of image-based light's diffuse terms
     float specularOcclusion; // of its specular terms (RT2 alpha; gbuffer.frag)
     int materialId;  // index into the material table
+    // The surface's geometric normal where the material bends its shading normal per pixel
+    // (a normal map, a fabric's relief: GpuMaterial.sheenWeightAnisotropy.w), reconstructed from
+    // the depth (geometricNormalFromDepth); n elsewhere.
+    vec3 ng;
+    bool bentShading; // the material bends n: light below ng's horizon is kept out
 };
+
+// WITH_GEOMETRIC_HORIZON 0 (render/lighting_features.h): no drawn material bends its normal.
+#ifndef WITH_GEOMETRIC_HORIZON
+#define WITH_GEOMETRIC_HORIZON 1
+#endif
+
+vec3 viewPositionOfPixel(ivec2 q) {
+    q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
+    vec2 ndcXY = (vec2(q) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+    return viewPositionFromDepth(ndcXY, texelFetch(gDepthTex, q, 0).r);
+}
+
+// The geometric (face) normal at @p pixel, whose view-space position is @p posView, from the
+// depth of its four neighbours: on each axis the neighbour nearer in depth, so a silhouette's
+// background or another surface does not bend it (the "accurate normal reconstruction" of
+// Turanszki 2019 and Bavoil's HBAO+). World space, towards the viewer; @p fallback where the
+// neighbours give no plane.
+vec3 geometricNormalFromDepth(ivec2 pixel, vec3 posView, vec3 fallback) {
+    vec3 px = viewPositionOfPixel(pixel + ivec2(1, 0)), mx = viewPositionOfPixel(pixel - ivec2(1, 0));
+    vec3 py = viewPositionOfPixel(pixel + ivec2(0, 1)), my = viewPositionOfPixel(pixel - ivec2(0, 1));
+    // At the frame's edge the missing neighbour (clamped: the pixel itself) is never chosen.
+    bvec2 last = greaterThanEqual(pixel + 1, ivec2(frame.viewport.xy));
+    bvec2 first = lessThanEqual(pixel, ivec2(0));
+    vec3 dx = !last.x && (first.x || abs(px.z - posView.z) < abs(mx.z - posView.z))
+                  ? px - posView : posView - mx;
+    vec3 dy = !last.y && (first.y || abs(py.z - posView.z) < abs(my.z - posView.z))
+                  ? py - posView : posView - my;
+    vec3 c = cross(dx, dy);
+    if (dot(c, c) < 1e-24)
+        return fallback;
+    vec3 ngView = normalize(c);
+    vec3 toEye = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, 1.0) : -posView;
+    if (dot(ngView, toEye) < 0.0)
+        ngView = -ngView;
+    return normalize((frame.invViewMatrix * vec4(ngView, 0.0)).xyz);
+}
+
+// How much of a light in direction @p l (unit, towards it) is above the surface's geometric
+// horizon: a normal map bends the shading, not the surface, so light from below it never arrives
+// (the reference path tracer's test, reference/light_sampling.cpp). @p angularRadius: the light's
+// (radians; 0 for a point or a direction, a hard horizon): the share of its disc above it.
+// 1 for a material that does not bend its normal (there n.l <= 0 shades nothing anyway).
+float geometricHorizon(ShadingPoint p, vec3 l, float angularRadius) {
+#if WITH_GEOMETRIC_HORIZON
+    if (!p.bentShading)
+        return 1.0;
+    float e = dot(p.ng, l);
+    return angularRadius > 0.0 ? saturate(0.5 + e / (2.0 * angularRadius)) : (e > 0.0 ? 1.0 : 0.0);
+#else
+    return 1.0;
+#endif
+}
 
 // The material id of @p pixel alone (passes that keep only some materials test it first).
 int readMaterialId(ivec2 pixel) {
@@ -103,6 +160,13 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     p.n = octDecodeUnorm16(rt1);
     setIsotropicSingleNormal(p.s, p.n);
     readLobeChannels(pixel, m.terms2.w, int(m.clearcoat.w), p.n, p.s);
+#if WITH_GEOMETRIC_HORIZON
+    p.bentShading = m.sheenWeightAnisotropy.w > 0.5;
+    p.ng = p.bentShading ? geometricNormalFromDepth(pixel, p.posView, p.n) : p.n;
+#else
+    p.bentShading = false;
+    p.ng = p.n;
+#endif
     // Lobes no drawn material has are constants, so the code that shades them folds away.
 #if !WITH_SHEEN
     p.s.sheenColor = vec3(0.0);

@@ -134,6 +134,9 @@ vec3 shadeLocalLight(GpuLight L, ShadingPoint p, vec4 shadows, int view) {
         lSpecular = normalize(rectangleRepresentativePoint(toLight, ax, ay, hx, hy, r));
         widen = sqrt(4.0 * hx * hy / PI) / (2.0 * d); // the disc of the same area
     }
+    // Below the geometric horizon of a bent shading normal (gbuffer_read.glsl); an area light by
+    // the share of its disc above it (its angular radius about 2 widen).
+    illuminance *= geometricHorizon(p, l, 2.0 * widen);
     if (illuminance <= 0.0)
         return vec3(0.0);
     int shadowSlot = int(L.params.z) - 1;

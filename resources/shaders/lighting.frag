@@ -113,7 +113,7 @@ void main() {
         for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
             vec3 l = frame.lightDirection[i].xyz;
             lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb *
-                     directionalShadow(i, shadows);
+                     directionalShadow(i, shadows) * geometricHorizon(p, l, 0.0);
         }
         outColor = vec4(lobes, 0.0); // alpha 0: replaces the emission (see the header)
     }
@@ -146,9 +146,10 @@ void main() {
 
     // Direct light, shadowed by the lights' shadow maps (the shadow mask, shadow_mask.glsl).
     vec3 color = vec3(0.0);
+    // A bent shading normal takes no light from below the surface (geometricHorizon).
     for (int i = 0; i < frame.modes.x; ++i)
         color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb *
-                 directionalShadow(i, shadows);
+                 directionalShadow(i, shadows) * geometricHorizon(p, frame.lightDirection[i].xyz, 0.0);
 
     // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes, times the chosen
     // diffuse term's directional albedo (common_brdf.glsl: 1 for Lambert, tabulated for Burley);
@@ -164,6 +165,16 @@ void main() {
     vec3 prefiltered = usesAnisotropy(s) ? anisotropicSpecularRadiance(s, n, v, rough)
                                          : specularRadiance(r, rough);
     vec2 ab = environmentDfg(NdotV, rough);
+#if WITH_GEOMETRIC_HORIZON
+    // A bent normal's reflection may point below the surface, where no light comes from: faded
+    // out as it sinks (Russell 2016, "Horizon Occlusion for Normal Mapped Reflections"; Filament's
+    // specular horizon occlusion). Measured against the reference: BENCHMARKS.md, "Light from
+    // below the surface".
+    if (p.bentShading) {
+        float horizon = saturate(1.0 + dot(r, p.ng));
+        prefiltered *= horizon * horizon;
+    }
+#endif
     vec3 specDielectric = s.specularWeight * specularAlbedo(dielectricF0(s), ab);
     vec3 specMetal = specularAlbedo(s.baseColor, ab);
     // The diffuse and specular parts each under their own occlusion (gbuffer.frag: the

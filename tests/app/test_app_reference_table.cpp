@@ -38,7 +38,9 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // Re-recorded on 2026-12-03 after the anisotropic sweep, the sheen's irradiance about its mean
 // direction and the baked visibility lowered every row they touch; and again after the
 // reference honoured the material's occlusion as glTF defines it (the weaves' gaps), which
-// lowered most fabric rows and raised wool's and tweed's under the rig (BENCHMARKS.md).
+// lowered most fabric rows and raised wool's and tweed's under the rig (BENCHMARKS.md); and
+// again after the lighting kept light from below a bent normal's geometric horizon out, which
+// took wool and crushed velvet under the rig off the list.
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 8.88, 19.56},
     {"brushed_aluminium", kSphere, "three-point", 5.37, 12.46},
@@ -46,9 +48,8 @@ const Miss kMisses[] = {
     {"copper", kSphere, "environment", 4.38, 11.51},
     {"copper", kSphere, "three-point", 3.15, 8.80},
     {"cotton", kSphere, "environment", 3.09, 7.65},
-    {"crushed_velvet", kSphere, "environment", 2.93, 12.95},
-    {"crushed_velvet", kSphere, "three-point", 2.35, 10.58},
-    {"denim", kSphere, "three-point", 2.83, 6.72},
+    {"crushed_velvet", kSphere, "environment", 2.24, 8.44},
+    {"denim", kSphere, "three-point", 2.70, 6.37},
     {"gold", kSphere, "environment", 3.97, 10.56},
     {"gold", kSphere, "three-point", 2.99, 8.23},
     {"linen", kSphere, "environment", 2.28, 5.17},
@@ -56,8 +57,7 @@ const Miss kMisses[] = {
     {"terry", kSphere, "environment", 3.20, 7.56},
     {"tweed", kSphere, "environment", 3.01, 6.29},
     {"tweed", kSphere, "three-point", 3.01, 7.06},
-    {"wool", kSphere, "environment", 3.95, 9.11},
-    {"wool", kSphere, "three-point", 2.88, 8.44},
+    {"wool", kSphere, "environment", 3.90, 9.02},
     {"plastic", kBall, "environment", 2.78, 7.24},
     {"plastic", kBall, "three-point", 2.95, 8.52},
     {"gold", kBall, "environment", 8.50, 36.46},

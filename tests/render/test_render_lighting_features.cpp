@@ -108,6 +108,14 @@ private slots:
         QVERIFY(!f.anisotropy);
         QVERIFY(!f.directionalShadows && !f.occlusion);
         QCOMPARE(f.iblBaked, 1);
+        // No bent normal: the geometric horizon's reconstruction is compiled out.
+        QVERIFY(!f.geometricHorizon);
+        const std::vector<std::string> defines = f.defines();
+        QVERIFY(std::find(defines.begin(), defines.end(), "WITH_GEOMETRIC_HORIZON 0") !=
+                defines.end());
+        GpuMaterial bent = velvet;
+        bent.sheenWeightAnisotropy.w = 1.0f; // packMaterialRecord: a normal map or graph normal
+        QVERIFY(render::lightingFeaturesOf({&bent, 1}, false, false, true, true).geometricHorizon);
 
         // Two materials that disagree on a term leave it to run time; a coat on one compiles it in.
         Material beckmann = preset("car_paint");
@@ -148,6 +156,8 @@ private slots:
         QTest::newRow("velvet (sheen, GGX terms)") << "crimson_velvet" << false << off;
         QTest::newRow("car paint (clearcoat)") << "car_paint" << true << plain;
         QTest::newRow("brushed aluminium (anisotropy)") << "brushed_aluminium" << false << off;
+        QTest::newRow("wool (the knit bends the normal: the geometric horizon)")
+            << "wool" << false << off;
         QTest::newRow("other terms") << "other-terms" << true << plain;
         QTest::newRow("textured (slots, atlas, lobe channels), split")
             << "textured" << false << off;

@@ -164,6 +164,11 @@ private slots:
                  render::lobeBit(LobeValue::ClearcoatNormal));
         m.setScalar(ParamId::AnisotropyStrength, 0.5f);
         QVERIFY(render::varyingLobeValues(m, 0, {}) & render::lobeBit(LobeValue::Anisotropy));
+        // The shading normal is bent by a normal map or a graph's normal, by nothing else.
+        QVERIFY(render::perturbsNormal(slot(TextureSlot::Normal), {}));
+        QVERIFY(render::perturbsNormal(0, {"baseColor", "normal"}));
+        QVERIFY(!render::perturbsNormal(slot(TextureSlot::BaseColor) | slot(TextureSlot::Occlusion),
+                                        {"baseColor", "sheenColor"}));
     }
 
     // Each lobe slot per pixel: with a map whose halves hold two values, every sphere pixel away
