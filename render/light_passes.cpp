@@ -129,7 +129,8 @@ LightPasses::~LightPasses() {
 }
 
 void LightPasses::release() {
-    m_tiledProgram.release();
+    for (ComputeProgram& p : m_tiledProgram)
+        p.release();
     m_classifyProgram.release();
     if (m_lightSsbo)
         glDeleteBuffers(1, &m_lightSsbo);
@@ -158,9 +159,18 @@ bool LightPasses::buildPrograms(std::string* error) {
             errors += (errors.empty() ? "" : "\n") + message;
     };
     std::string e;
-    note(m_volumeProgram.build("light_volume.vert", "light_volume.frag", {}, generated, &e), e);
-    note(m_bruteProgram.build("fullscreen.vert", "light_brute.frag", {}, generated, &e), e);
-    note(m_tiledProgram.build("light_tiled.comp", {}, generated, &e), e);
+    for (int horizon = 0; horizon < 2; ++horizon) {
+        const std::vector<std::string> defines =
+            horizon ? std::vector<std::string>{}
+                    : std::vector<std::string>{"WITH_GEOMETRIC_HORIZON 0"};
+        note(m_volumeProgram[horizon].build("light_volume.vert", "light_volume.frag", defines,
+                                            generated, &e),
+             e);
+        note(m_bruteProgram[horizon].build("fullscreen.vert", "light_brute.frag", defines,
+                                           generated, &e),
+             e);
+        note(m_tiledProgram[horizon].build("light_tiled.comp", defines, generated, &e), e);
+    }
     note(m_classifyProgram.build("light_tile_classify.comp", {}, generated, &e), e);
     if (!errors.empty() && error)
         *error = errors;
@@ -257,7 +267,8 @@ void LightPasses::upload(const std::vector<Light>& lights, const std::vector<int
 }
 
 void LightPasses::draw(LightPath requested, int width, int height, unsigned gbufferFbo,
-                       unsigned hdrFbo, unsigned hdrTexture, unsigned emptyVao) {
+                       unsigned hdrFbo, unsigned hdrTexture, unsigned emptyVao,
+                       bool geometricHorizon) {
     if (m_count == 0)
         return;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightSsboBinding, m_lightSsbo);
@@ -287,8 +298,9 @@ void LightPasses::draw(LightPath requested, int width, int height, unsigned gbuf
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
         // 2. Per active tile: cull, then shade (light_tiled.comp).
-        glUseProgram(m_tiledProgram.id());
-        glProgramUniform1i(m_tiledProgram.id(), kLightCountLocation, m_count);
+        const GLuint tiled = m_tiledProgram[geometricHorizon ? 1 : 0].id();
+        glUseProgram(tiled);
+        glProgramUniform1i(tiled, kLightCountLocation, m_count);
         glBindImageTexture(kHdrImageUnit, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_tileSsbo);
         glDispatchComputeIndirect(0);
@@ -305,8 +317,9 @@ void LightPasses::draw(LightPath requested, int width, int height, unsigned gbuf
     if (path == LightPath::Brute) {
         glBindFramebuffer(GL_FRAMEBUFFER, hdrFbo);
         glBindVertexArray(emptyVao);
-        glUseProgram(m_bruteProgram.id());
-        glProgramUniform1i(m_bruteProgram.id(), kLightCountLocation, m_count);
+        const GLuint brute = m_bruteProgram[geometricHorizon ? 1 : 0].id();
+        glUseProgram(brute);
+        glProgramUniform1i(brute, kLightCountLocation, m_count);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     } else {
         // Volumes: the HDR colour with the G-buffer's depth (read-only) in one framebuffer.
@@ -329,7 +342,7 @@ void LightPasses::draw(LightPath requested, int width, int height, unsigned gbuf
         glDepthMask(GL_FALSE);
         glEnable(GL_DEPTH_CLAMP);
         glBindVertexArray(m_proxyVao);
-        const GLuint program = m_volumeProgram.id();
+        const GLuint program = m_volumeProgram[geometricHorizon ? 1 : 0].id();
         glUseProgram(program);
         if (m_coneFirst > 0) {
             glProgramUniform1i(program, kProxyConeLocation, 0);

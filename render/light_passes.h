@@ -54,15 +54,19 @@ public:
 
     /// Adds the lights to @p hdrTexture (RGBA16F, bound in @p hdrFbo). Expects the frame UBO,
     /// the material table and the G-buffer textures bound, and the G-buffer of @p gbufferFbo
-    /// filled. Leaves blending, culling and depth testing disabled.
+    /// filled. @p geometricHorizon: some drawn material bends its shading normal
+    /// (LightingFeatures::geometricHorizon); without, the programs built without the face
+    /// normal's reconstruction draw (llvmpipe would run it for every pixel and light).
+    /// Leaves blending, culling and depth testing disabled.
     void draw(LightPath path, int width, int height, unsigned gbufferFbo, unsigned hdrFbo,
-              unsigned hdrTexture, unsigned emptyVao);
+              unsigned hdrTexture, unsigned emptyVao, bool geometricHorizon = true);
 
 private:
     void release();
     bool buildPrograms(std::string* error);
-    ShaderProgram m_volumeProgram, m_bruteProgram;
-    ComputeProgram m_tiledProgram, m_classifyProgram;
+    /// Each shading path twice: [0] WITH_GEOMETRIC_HORIZON 0, [1] with it (gbuffer_read.glsl).
+    ShaderProgram m_volumeProgram[2], m_bruteProgram[2];
+    ComputeProgram m_tiledProgram[2], m_classifyProgram;
     unsigned m_lightSsbo = 0;
     unsigned m_tileSsbo = 0;    ///< indirect dispatch arguments, then the active tiles
     size_t m_tileSsboTiles = 0; ///< tiles m_tileSsbo has room for

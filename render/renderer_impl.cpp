@@ -115,9 +115,12 @@ void Renderer::Impl::uploadLights(Problems* problems) {
 }
 
 void Renderer::Impl::drawLocalLights(const FrameSettings& fs) {
-    if (isLightView(fs.view))
+    // Without a material that bends its normal, the programs without the face normal's
+    // reconstruction (the same image: gbuffer_read.glsl's geometricHorizon is 1 for them).
+    if (isLightView(fs.view) && lights.lightCount() > 0)
         lights.draw(fs.lightPath, fs.width, fs.height, targets.gbuffer().framebuffer(),
-                    targets.hdr().framebuffer(), targets.hdr().texture(), emptyVao);
+                    targets.hdr().framebuffer(), targets.hdr().texture(), emptyVao,
+                    frameFeatures(fs).geometricHorizon);
 }
 
 namespace {
