@@ -14,12 +14,6 @@ const int SLICES = 2;
 // more horizon samples and moved test_render_shadows' crease term only from 0.88 to 0.86).
 const int STEPS = 3;
 
-vec3 viewPositionAt(ivec2 fullPixel) {
-    float depth = texelFetch(gDepthTex, fullPixel, 0).r;
-    vec2 ndc = (vec2(fullPixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
-    return viewPositionFromDepth(ndc, depth);
-}
-
 void main() {
     ivec2 halfPixel = ivec2(gl_FragCoord.xy);
     ivec2 pixel = min(halfPixel * 2, ivec2(frame.viewport.xy) - 1);

@@ -34,7 +34,8 @@ struct ShadingPoint {
 #define WITH_GEOMETRIC_HORIZON 1
 #endif
 
-vec3 viewPositionOfPixel(ivec2 q) {
+// The view-space position of full-resolution pixel @p q (clamped to the frame) from its depth.
+vec3 viewPositionAt(ivec2 q) {
     q = clamp(q, ivec2(0), ivec2(frame.viewport.xy) - 1);
     vec2 ndcXY = (vec2(q) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
     return viewPositionFromDepth(ndcXY, texelFetch(gDepthTex, q, 0).r);
@@ -46,8 +47,8 @@ vec3 viewPositionOfPixel(ivec2 q) {
 // Turanszki 2019 and Bavoil's HBAO+). World space, towards the viewer; @p fallback where the
 // neighbours give no plane.
 vec3 geometricNormalFromDepth(ivec2 pixel, vec3 posView, vec3 fallback) {
-    vec3 px = viewPositionOfPixel(pixel + ivec2(1, 0)), mx = viewPositionOfPixel(pixel - ivec2(1, 0));
-    vec3 py = viewPositionOfPixel(pixel + ivec2(0, 1)), my = viewPositionOfPixel(pixel - ivec2(0, 1));
+    vec3 px = viewPositionAt(pixel + ivec2(1, 0)), mx = viewPositionAt(pixel - ivec2(1, 0));
+    vec3 py = viewPositionAt(pixel + ivec2(0, 1)), my = viewPositionAt(pixel - ivec2(0, 1));
     // At the frame's edge the missing neighbour (clamped: the pixel itself) is never chosen.
     bvec2 last = greaterThanEqual(pixel + 1, ivec2(frame.viewport.xy));
     bvec2 first = lessThanEqual(pixel, ivec2(0));
