@@ -25,6 +25,7 @@
 #include "common_environment.glsl"
 #include "light_lobes.glsl"
 #include "stage_shading.glsl"
+#include "common_occlusion.glsl"
 
 layout(location = 0) out vec4 outColor;
 
@@ -161,6 +162,13 @@ void main() {
     vec3 r = reflect(-v, n);
     float rough = max(s.roughness, MIN_ROUGHNESS);
     irradiance *= diffuseDirectionalAlbedo(s.terms.w, NdotV, rough);
+#if WITH_GEOMETRIC_HORIZON
+    // A bent normal's cosine lobe clipped by the geometric horizon: under uniform light the part
+    // above it gathers (1 + n.ng) / 2 of the whole lobe's light, as the path tracer, which takes
+    // none from below a hit's face, sees it (BENCHMARKS.md, "Interreflection in the occlusion").
+    if (p.bentShading)
+        irradiance *= 0.5 * (1.0 + dot(n, p.ng));
+#endif
     // An anisotropic base sweeps the lookup along its stretch (anisotropicSpecularRadiance).
     vec3 prefiltered = usesAnisotropy(s) ? anisotropicSpecularRadiance(s, n, v, rough)
                                          : specularRadiance(r, rough);
@@ -210,7 +218,15 @@ void main() {
         keepEmission = 1.0 - fc;
     }
 #endif
-    color += ambient * ssao;
+    // The screen-space occlusion with the light its cavity's walls bounce back (Jimenez et al.
+    // 2016's multiple-bounce fit, common_occlusion.glsl): the path tracer's interreflection, which
+    // a bare visibility leaves out (BENCHMARKS.md, "Interreflection in the occlusion").
+    // The fit reaches 1.0005 at full visibility: held to 1, so an open pixel keeps its light.
+#if WITH_OCCLUSION
+    color += ambient * min(multiBounceOcclusion(ssao, s.baseColor), vec3(1.0));
+#else
+    color += ambient;
+#endif
 #if defined(STAGE_GROUND_PLAIN)
     if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher
         color = mix(color, background(ndcXY) * catcherTransmission(p.posWorld, ssao, shadows),

@@ -1,7 +1,7 @@
 // The mesh's visibility from itself (render/mesh_visibility.h: per vertex a bent normal and the
 // open share of the hemisphere, ray traced once per mesh) turned into the occlusion of
 // image-based light's reflections.
-#include "common_math.glsl"
+#include "common_occlusion.glsl"
 
 // Oat & Sander 2007, "Ambient Aperture Lighting" (section 3.2): the solid angle shared by two
 // spherical caps of apertures acos(cosA1), acos(cosA2) whose axes are acos(cosD) apart, over
@@ -36,16 +36,4 @@ float specularVisibility(vec4 visibility, vec3 n, vec3 r, float alpha) {
     float open = sphericalCapsIntersection(cosOpen, cosLobe, dot(normalize(visibility.xyz), r));
     float aboveHorizon = sphericalCapsIntersection(0.0, cosLobe, dot(n, r));
     return saturate(open / max(aboveHorizon, 1e-6));
-}
-
-// Jimenez et al. 2016, "Practical Real-Time Strategies for Accurate Indirect Occlusion"
-// (section 5, eq. 10): the light that bounces between the occluding parts of the surface,
-// fitted against ray-traced multiple bounces, per albedo. They apply it to specular occlusion
-// with F0 as the albedo: what a reflection meets of the mesh reflects the environment too.
-vec3 multiBounceOcclusion(float visibility, vec3 albedo) {
-    vec3 a = 2.0404 * albedo - 0.3324;
-    vec3 b = -4.7951 * albedo + 0.6417;
-    vec3 c = 2.7552 * albedo + 0.6903;
-    float x = visibility;
-    return max(vec3(x), ((x * a + b) * x + c) * x);
 }

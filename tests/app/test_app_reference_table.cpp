@@ -40,28 +40,30 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // reference honoured the material's occlusion as glTF defines it (the weaves' gaps), which
 // lowered most fabric rows and raised wool's and tweed's under the rig (BENCHMARKS.md); and
 // again after the lighting kept light from below a bent normal's geometric horizon out, which
-// took wool and crushed velvet under the rig off the list.
+// took wool and crushed velvet under the rig off the list; and on 2026-12-04 after the
+// occlusion took back the light a crease bounces and the diffuse irradiance the share of a bent
+// normal's lobe above the face (BENCHMARKS.md, "Interreflection in the occlusion").
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 8.88, 19.56},
     {"brushed_aluminium", kSphere, "three-point", 5.37, 12.46},
     {"ceramic", kSphere, "environment", 2.41, 5.36},
     {"copper", kSphere, "environment", 4.38, 11.51},
     {"copper", kSphere, "three-point", 3.15, 8.80},
-    {"cotton", kSphere, "environment", 3.09, 7.65},
-    {"crushed_velvet", kSphere, "environment", 2.24, 8.44},
-    {"denim", kSphere, "three-point", 2.70, 6.37},
+    {"cotton", kSphere, "environment", 3.01, 7.57},
+    {"crushed_velvet", kSphere, "environment", 2.27, 8.16},
+    {"denim", kSphere, "three-point", 2.68, 6.48},
     {"gold", kSphere, "environment", 3.97, 10.56},
     {"gold", kSphere, "three-point", 2.99, 8.23},
-    {"linen", kSphere, "environment", 2.28, 5.17},
+    {"linen", kSphere, "environment", 2.04, 4.62},
     {"silk", kSphere, "environment", 2.34, 5.56},
-    {"terry", kSphere, "environment", 3.20, 7.56},
-    {"tweed", kSphere, "environment", 3.01, 6.29},
-    {"tweed", kSphere, "three-point", 3.01, 7.06},
-    {"wool", kSphere, "environment", 3.90, 9.02},
-    {"plastic", kBall, "environment", 2.78, 7.24},
-    {"plastic", kBall, "three-point", 2.95, 8.52},
-    {"gold", kBall, "environment", 8.50, 36.46},
-    {"gold", kBall, "three-point", 11.18, 57.25},
+    {"terry", kSphere, "environment", 3.15, 7.19},
+    {"tweed", kSphere, "environment", 2.94, 6.20},
+    {"tweed", kSphere, "three-point", 2.97, 6.91},
+    {"wool", kSphere, "environment", 2.94, 6.81},
+    {"plastic", kBall, "environment", 2.48, 6.51},
+    {"plastic", kBall, "three-point", 2.79, 8.40},
+    {"gold", kBall, "environment", 8.49, 35.21},
+    {"gold", kBall, "three-point", 11.13, 56.87},
 };
 
 const Miss* knownMiss(const ReferenceTableCase& c) {

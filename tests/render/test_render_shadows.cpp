@@ -1,6 +1,7 @@
 // The look-dev stage's known answers (docs/shadows.md): shadow maps against shadows computed on
 // the CPU (a ray from each ground point to the light, against the sphere), no self-shadowing of
-// a flat plane, and the screen-space occlusion term: 1 on an open plane, below 1 in a crease.
+// a flat plane, and the screen-space occlusion term: 1 on an open plane, below 1 in a crease, and
+// the light a bright crease bounces given back.
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render/stage_interface.h"
@@ -423,6 +424,73 @@ private slots:
         QVERIFY(crease >= 10 && open >= 100);
         QVERIFY(creaseSum / crease < 0.9);
         QVERIFY(openSum / open > 0.98);
+    }
+
+    // The occlusion darkens the environment's light by Jimenez et al. 2016's multiple-bounce fit
+    // of the visibility, not by the visibility itself: a bright crease gets back the light its
+    // walls reflect (the path tracer's interreflection), a black one does not.
+    void occlusionGivesBackTheLightACreaseBounces() {
+        for (const float albedo : {0.9f, 0.05f}) {
+            Scene scene = stageScene(PreviewMeshKind::Cube);
+            scene.camera.orthographic = false;
+            scene.camera.target = {0.0f, -0.8f, 0.0f};
+            scene.camera.distance = 5.0f;
+            scene.environment.color = glm::vec3(1.0f); // a uniform white environment, no lights
+            scene.environment.ground = GroundMode::Plain;
+            scene.environment.groundColor = glm::vec3(albedo);
+            scene.environment.ambientOcclusion = true;
+            scene.environment.occlusionRadius = 0.3f;
+            const int size = 128;
+            const Image visibility = renderLinear(scene, size, render::DebugView::Occlusion);
+            const Image pos = renderLinear(scene, size, render::DebugView::Position);
+            const Image occluded = renderLinear(scene, size);
+            scene.environment.ambientOcclusion = false;
+            const Image open = renderLinear(scene, size);
+            // The fit (common_occlusion.glsl), held to 1.
+            const auto bounced = [albedo](float v) {
+                const float a = 2.0404f * albedo - 0.3324f, b = -4.7951f * albedo + 0.6417f,
+                            c = 2.7552f * albedo + 0.6903f;
+                return std::min(std::max(v, ((v * a + b) * v + c) * v), 1.0f);
+            };
+            double ratioSum = 0.0, expectedSum = 0.0, visibilitySum = 0.0;
+            int crease = 0;
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x) {
+                    const glm::vec3 p = glm::vec3(pos.rgba(x, y));
+                    if (p.y > -0.8f || p.y < -0.81f) // the ground
+                        continue;
+                    const float dx = std::max(std::abs(p.x) - 0.8f, 0.0f);
+                    const float dz = std::max(std::abs(p.z) - 0.8f, 0.0f);
+                    const float d = std::sqrt(dx * dx + dz * dz);
+                    if (d < 0.01f || d > 0.06f)
+                        continue;
+                    const float v = visibility.rgba(x, y).r;
+                    const float ratio = luminance(occluded.rgba(x, y)) /
+                                        std::max(luminance(open.rgba(x, y)), 1e-6f);
+                    QVERIFY2(std::abs(ratio - bounced(v)) < 0.02f,
+                             qPrintable(QString("albedo %1, pixel (%2, %3): visibility %4, light "
+                                                "kept %5, expected %6")
+                                            .arg(albedo)
+                                            .arg(x)
+                                            .arg(y)
+                                            .arg(v)
+                                            .arg(ratio)
+                                            .arg(bounced(v))));
+                    ratioSum += ratio;
+                    expectedSum += bounced(v);
+                    visibilitySum += v;
+                    ++crease;
+                }
+            qInfo("albedo %.2f: %d crease pixels, visibility %.3f, light kept %.3f (fit %.3f)",
+                  double(albedo), crease, visibilitySum / std::max(crease, 1),
+                  ratioSum / std::max(crease, 1), expectedSum / std::max(crease, 1));
+            QVERIFY(crease >= 10);
+            QVERIFY(visibilitySum / crease < 0.9); // a crease indeed
+            if (albedo > 0.5f) // the bright crease keeps clearly more than its visibility
+                QVERIFY(ratioSum / crease > visibilitySum / crease + 0.03);
+            else // the dark one about its visibility
+                QVERIFY(std::abs(ratioSum - visibilitySum) / crease < 0.02);
+        }
     }
 };
 
