@@ -20,22 +20,22 @@ float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
 #endif
     if (stage.occlusion.x < 0.5)
         return 1.0;
-    ivec2 size = ivec2(stage.occlusion.zw);
+    vec2 size = stage.occlusion.zw;
     vec2 h = (vec2(pixel) + 0.5) * 0.5 - 0.5;
-    ivec2 b = ivec2(floor(h));
-    vec2 f = h - vec2(b);
-    float sum = 0.0, weights = 0.0;
-    for (int k = 0; k < 4; ++k) {
-        ivec2 o = ivec2(k & 1, k >> 1);
-        vec2 t = texelFetch(uOcclusion, clamp(b + o, ivec2(0), size - 1), 0).rg;
-        float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-        float d = abs(t.g - viewDepth) / (0.03 * viewDepth + 0.01);
-        float w = (bilinear + 1e-3) * exp(-d * d) + 1e-6 / (1.0 + d); // the nearest in depth wins
-                                                                       // where none is alike
-        sum += t.r * w;
-        weights += w;
-    }
-    return weights > 0.0 ? sum / weights : 1.0;
+    vec2 b = floor(h);
+    vec2 f = h - b;
+    // The 2x2 texels b .. b + 1 in two gathers, (0,1), (1,1), (1,0), (0,0) from b (clamped
+    // edges): four texelFetch cost llvmpipe more (BENCHMARKS.md, "The occlusion by gathers").
+    vec2 uv = (b + 1.0) / size;
+    vec4 vis = textureGather(uOcclusion, uv, 0);
+    vec4 depth = textureGather(uOcclusion, uv, 1);
+    vec4 bilinear =
+        vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+    vec4 d = abs(depth - viewDepth) / (0.03 * viewDepth + 0.01);
+    // The nearest in depth wins where none is alike.
+    vec4 w = (bilinear + 1e-3) * exp(-d * d) + 1e-6 / (1.0 + d);
+    float total = dot(w, vec4(1.0));
+    return total > 0.0 ? dot(vis, w) / total : 1.0;
 }
 
 #ifndef WITH_LOCAL_SHADOWS
