@@ -66,6 +66,29 @@ float luminance(glm::vec4 c) {
     return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
 }
 
+/// The crease the occlusion tests look into: the cube (half size 0.8) on a plain ground, seen from
+/// 5 m, with screen-space occlusion of radius 0.3.
+Scene creaseScene() {
+    Scene scene = stageScene(PreviewMeshKind::Cube);
+    scene.camera.orthographic = false;
+    scene.camera.target = {0.0f, -0.8f, 0.0f};
+    scene.camera.distance = 5.0f;
+    scene.environment.ground = GroundMode::Plain;
+    scene.environment.ambientOcclusion = true;
+    scene.environment.occlusionRadius = 0.3f;
+    return scene;
+}
+
+/// How far the world position @p p (the Position view) lies from the cube's footprint (|x|,
+/// |z| <= 0.8) on the ground; negative when @p p is not on the ground.
+float distanceFromCube(glm::vec3 p) {
+    if (p.y > -0.8f || p.y < -0.81f)
+        return -1.0f;
+    const float dx = std::max(std::abs(p.x) - 0.8f, 0.0f);
+    const float dz = std::max(std::abs(p.z) - 0.8f, 0.0f);
+    return std::sqrt(dx * dx + dz * dz);
+}
+
 /// Distance from the unit sphere's centre to the segment from @p p towards the light (direction
 /// @p toLight, length @p length; infinite for a directional light); infinity when the closest
 /// point is behind @p p.
@@ -388,13 +411,7 @@ private slots:
     }
 
     void occlusionIsBelowOneInACrease() {
-        Scene scene = stageScene(PreviewMeshKind::Cube); // half size 0.8, on the ground
-        scene.camera.orthographic = false;
-        scene.camera.target = {0.0f, -0.8f, 0.0f};
-        scene.camera.distance = 5.0f;
-        scene.environment.ground = GroundMode::Plain;
-        scene.environment.ambientOcclusion = true;
-        scene.environment.occlusionRadius = 0.3f;
+        const Scene scene = creaseScene();
         const int size = 128;
         const Image ao = renderLinear(scene, size, render::DebugView::Occlusion);
         const Image pos = renderLinear(scene, size, render::DebugView::Position);
@@ -402,13 +419,9 @@ private slots:
         int crease = 0, open = 0;
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
-                const glm::vec3 p = glm::vec3(pos.rgba(x, y));
-                if (p.y > -0.8f || p.y < -0.81f) // the ground
+                const float d = distanceFromCube(glm::vec3(pos.rgba(x, y)));
+                if (d < 0.0f)
                     continue;
-                // Distance from the cube's footprint (|x|, |z| <= 0.8).
-                const float dx = std::max(std::abs(p.x) - 0.8f, 0.0f);
-                const float dz = std::max(std::abs(p.z) - 0.8f, 0.0f);
-                const float d = std::sqrt(dx * dx + dz * dz);
                 const float a = ao.rgba(x, y).r;
                 if (d > 0.01f && d < 0.06f) {
                     creaseSum += a;
@@ -431,15 +444,9 @@ private slots:
     // walls reflect (the path tracer's interreflection), a black one does not.
     void occlusionGivesBackTheLightACreaseBounces() {
         for (const float albedo : {0.9f, 0.05f}) {
-            Scene scene = stageScene(PreviewMeshKind::Cube);
-            scene.camera.orthographic = false;
-            scene.camera.target = {0.0f, -0.8f, 0.0f};
-            scene.camera.distance = 5.0f;
+            Scene scene = creaseScene();
             scene.environment.color = glm::vec3(1.0f); // a uniform white environment, no lights
-            scene.environment.ground = GroundMode::Plain;
             scene.environment.groundColor = glm::vec3(albedo);
-            scene.environment.ambientOcclusion = true;
-            scene.environment.occlusionRadius = 0.3f;
             const int size = 128;
             const Image visibility = renderLinear(scene, size, render::DebugView::Occlusion);
             const Image pos = renderLinear(scene, size, render::DebugView::Position);
@@ -456,13 +463,8 @@ private slots:
             int crease = 0;
             for (int y = 0; y < size; ++y)
                 for (int x = 0; x < size; ++x) {
-                    const glm::vec3 p = glm::vec3(pos.rgba(x, y));
-                    if (p.y > -0.8f || p.y < -0.81f) // the ground
-                        continue;
-                    const float dx = std::max(std::abs(p.x) - 0.8f, 0.0f);
-                    const float dz = std::max(std::abs(p.z) - 0.8f, 0.0f);
-                    const float d = std::sqrt(dx * dx + dz * dz);
-                    if (d < 0.01f || d > 0.06f)
+                    const float d = distanceFromCube(glm::vec3(pos.rgba(x, y)));
+                    if (d < 0.01f || d > 0.06f) // the crease's ground only
                         continue;
                     const float v = visibility.rgba(x, y).r;
                     const float ratio = luminance(occluded.rgba(x, y)) /
