@@ -13,8 +13,9 @@ void main() {
     vec2 center = texelFetch(uRaw, p, 0).rg;
     float sum = 0.0, weights = 0.0;
     vec2 texel = 1.0 / vec2(size);
-    // The 4x4 window p - 2 .. p + 1 as four 2x2 gathers of each channel (clamped edges), cheaper
-    // on llvmpipe than sixteen texelFetch (BENCHMARKS.md, "The occlusion by gathers").
+    // The 4x4 window p - 2 .. p + 1 as four 2x2 gathers of each channel (clamped edges): on
+    // llvmpipe a little cheaper than sixteen texelFetch (BENCHMARKS.md, "The occlusion by
+    // gathers").
     for (int k = 0; k < 4; ++k) {
         vec2 corner = vec2(p + ivec2((k & 1) * 2 - 1, (k >> 1) * 2 - 1)) * texel;
         vec4 vis = textureGather(uRaw, corner, 0);

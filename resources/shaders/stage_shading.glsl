@@ -25,7 +25,7 @@ float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
     vec2 b = floor(h);
     vec2 f = h - b;
     // The 2x2 texels b .. b + 1 in two gathers, (0,1), (1,1), (1,0), (0,0) from b (clamped
-    // edges): four texelFetch cost llvmpipe more (BENCHMARKS.md, "The occlusion by gathers").
+    // edges), as the blur reads its window (BENCHMARKS.md, "The occlusion by gathers").
     vec2 uv = (b + 1.0) / size;
     vec4 vis = textureGather(uOcclusion, uv, 0);
     vec4 depth = textureGather(uOcclusion, uv, 1);
