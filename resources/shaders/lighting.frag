@@ -221,9 +221,8 @@ void main() {
     // The screen-space occlusion with the light its cavity's walls bounce back (Jimenez et al.
     // 2016's multiple-bounce fit, common_occlusion.glsl): the path tracer's interreflection, which
     // a bare visibility leaves out (BENCHMARKS.md, "Interreflection in the occlusion").
-    // The fit reaches 1.0005 at full visibility: held to 1, so an open pixel keeps its light.
 #if WITH_OCCLUSION
-    color += ambient * min(multiBounceOcclusion(ssao, s.baseColor), vec3(1.0));
+    color += ambient * multiBounceOcclusion(ssao, s.baseColor);
 #else
     color += ambient;
 #endif

@@ -21,6 +21,12 @@ layout(binding = BINDING_GROUND_SHADOW_MASK_TEX) uniform sampler2D uGroundShadow
 // (across a silhouette) drops out; where none is alike, the same material nearest in depth wins,
 // else the nearest in depth. Two gathers of the key and four fetches of the mask: call it once
 // per pixel and pass the result on.
+// The bilinear weights of the four texels textureGather returns, in its order (0,1), (1,1),
+// (1,0), (0,0) from the block's first texel, for the fraction @p f of the way to the last.
+vec4 gatherBilinearWeights(vec2 f) {
+    return vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+}
+
 vec4 shadowMaskAll(ivec2 pixel, float viewDepth, int materialId) {
     ivec2 last = textureSize(uShadowMask, 0) - 1;
     ivec2 b = pixel >> 1;
@@ -30,8 +36,7 @@ vec4 shadowMaskAll(ivec2 pixel, float viewDepth, int materialId) {
     vec2 cornerUv = (vec2(b) + 1.0) / vec2(last + 1);
     vec4 depths = textureGather(uShadowKey, cornerUv, 0);
     vec4 ids = textureGather(uShadowKey, cornerUv, 1);
-    vec4 bilinear =
-        vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+    vec4 bilinear = gatherBilinearWeights(f);
     vec4 d = abs(depths - viewDepth) / (0.03 * viewDepth + 0.01);
     vec4 same = vec4(equal(ids, vec4(float(materialId))));
     vec4 nearness = 1.0 / (1.0 + d);

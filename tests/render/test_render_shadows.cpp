@@ -453,7 +453,7 @@ private slots:
             const Image occluded = renderLinear(scene, size);
             scene.environment.ambientOcclusion = false;
             const Image open = renderLinear(scene, size);
-            // The fit (common_occlusion.glsl), held to 1.
+            // The fit (common_occlusion.glsl's multiBounceOcclusion, held to 1).
             const auto bounced = [albedo](float v) {
                 const float a = 2.0404f * albedo - 0.3324f, b = -4.7951f * albedo + 0.6417f,
                             c = 2.7552f * albedo + 0.6903f;
