@@ -4,13 +4,24 @@
 /// the geometry pass, then a depth-aware 4x4 blur (ao_blur.frag); the lighting pass reads the
 /// result at stage_binding::kOcclusionTex with a depth-aware upsample (stage_shading.glsl) and
 /// multiplies the environment's light by it and the material's occlusion map.
+/// Only the texels that can differ from 1 run: a point farther than the search radius from the
+/// mesh sees nothing but the flat ground, so both passes are scissored to the mesh's bounds grown
+/// by the radius (occlusionRect()) and the rest is cleared to 1.
 
+#include "core/mesh.h"
 #include "render/gbuffer.h"
 #include "render/shader_program.h"
+#include "render/shadow_mask.h"
 
 #include <string>
 
 namespace velvet::render {
+
+/// The pixels of a @p width x @p height frame seen through @p viewProj whose occlusion can differ
+/// from 1: the screen rectangle of @p bounds grown by @p radius on every side (the whole frame
+/// when they reach behind the camera, none without a mesh). Pure: test_render_shadows checks it.
+PixelRect occlusionRect(const MeshBounds& bounds, float radius, const glm::mat4& viewProj,
+                        int width, int height);
 
 class OcclusionPass {
 public:
@@ -18,9 +29,15 @@ public:
     int compileCount() const { return m_compileCount; }
     /// The half-resolution size for a @p width x @p height frame.
     static int halfSize(int fullSize) { return (fullSize + 1) / 2; }
-    /// Runs both passes for a @p width x @p height frame; expects the frame and stage blocks and
-    /// the G-buffer's textures bound. Leaves the viewport at the half size.
-    bool run(int width, int height, unsigned emptyVao, std::string* error);
+    /// The blurred texels the upsample of @p frameRect's pixels (occlusionRect()) reads in a
+    /// @p width x @p height frame: those run() draws, every other one is exactly 1.
+    static PixelRect texelRect(const PixelRect& frameRect, int width, int height) {
+        return maskRect(frameRect, halfSize(width), halfSize(height));
+    }
+    /// Runs both passes for a @p width x @p height frame over @p texels (texelRect()); expects
+    /// the frame and stage blocks and the G-buffer's textures bound. Leaves the viewport at the
+    /// half size and the scissor test off.
+    bool run(int width, int height, const PixelRect& texels, unsigned emptyVao, std::string* error);
     /// The blurred occlusion at stage_binding::kOcclusionTex.
     void bind() const;
 

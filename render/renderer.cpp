@@ -340,7 +340,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
     // Screen-space occlusion of the G-buffer, at half resolution (off: nothing runs).
     d.targets.gbuffer().bindTextures();
-    if (!d.stage.drawOcclusion(d.scene.environment, fs.width, fs.height, d.emptyVao, error))
+    if (!d.stage.drawOcclusion(d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
+                               d.emptyVao, error))
         return false;
     // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
     // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).

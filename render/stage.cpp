@@ -150,14 +150,17 @@ void Stage::drawGround(const Environment& environment) {
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
-bool Stage::drawOcclusion(const Environment& environment, int width, int height, unsigned emptyVao,
-                          std::string* error) {
+bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewProj, int width,
+                          int height, unsigned emptyVao, std::string* error) {
     m_occlusionOn = environment.ambientOcclusion;
     m_occlusionTimed = false;
     if (!m_occlusionOn)
         return true;
     glQueryCounter(m_queries[2], GL_TIMESTAMP);
-    if (!m_occlusion.run(width, height, emptyVao, error))
+    const PixelRect near = occlusionRect(m_bounds, std::max(environment.occlusionRadius, 0.0f),
+                                         viewProj, width, height);
+    if (!m_occlusion.run(width, height, OcclusionPass::texelRect(near, width, height), emptyVao,
+                         error))
         return false;
     glQueryCounter(m_queries[3], GL_TIMESTAMP);
     m_occlusionTimed = true;

@@ -59,10 +59,11 @@ public:
     void beginFrame(const Scene& scene, int width, int height);
     /// After the geometry pass, into its (still bound) framebuffer: the ground, if any.
     void drawGround(const Environment& environment);
-    /// After the ground: the occlusion term, if on; expects the G-buffer textures bound. Leaves
-    /// the viewport for the caller to reset.
-    bool drawOcclusion(const Environment& environment, int width, int height, unsigned emptyVao,
-                       std::string* error);
+    /// After the ground: the occlusion term, if on, over the pixels near the mesh seen through
+    /// @p viewProj, the frame's camera (occlusionRect()); expects the G-buffer textures bound.
+    /// Leaves the viewport for the caller to reset.
+    bool drawOcclusion(const Environment& environment, const glm::mat4& viewProj, int width,
+                       int height, unsigned emptyVao, std::string* error);
     /// Whether a point, spot or area light has a shadow slot (the catcher's slot loop).
     bool shadowsLocalLight(const std::vector<Light>& lights) const;
     /// Whether a light casts a shadow this frame (the frame then needs a shadow mask).

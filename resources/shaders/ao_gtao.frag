@@ -30,7 +30,12 @@ void main() {
     // The radius in full-resolution pixels: the projection's y scale over the depth.
     float pixelsPerMetre = 0.5 * frame.viewport.y * frame.projMatrix[1][1] / (ortho ? 1.0 : -P.z);
     float radiusPixels = radius * pixelsPerMetre;
-    int slices = background || radiusPixels < 1.0 ? 0 : SLICES;
+    // Farther than the radius from the mesh's bounding sphere a point sees nothing but the flat
+    // ground: open (the pass is scissored to the mesh's grown bounds, render/ao_pass.h; this
+    // trims the rectangle's corners).
+    vec3 meshCentre = (frame.viewMatrix * vec4(stage.meshSphere.xyz, 1.0)).xyz;
+    bool nearMesh = distance(P, meshCentre) <= stage.meshSphere.w + radius;
+    int slices = background || !nearMesh || radiusPixels < 1.0 ? 0 : SLICES;
     radiusPixels = min(radiusPixels, 0.25 * frame.viewport.y);
     // A 4x4 pattern of slice rotations and step offsets, which the blur averages away.
     int cell = (halfPixel.x & 3) + 4 * (halfPixel.y & 3);

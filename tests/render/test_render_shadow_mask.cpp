@@ -1,7 +1,9 @@
 // The screen-space shadow mask's scissor (render/shadow_mask.h): the part of the frame where a
 // shadow slot's visibility can differ from 1, for known geometry seen straight down, on the CPU,
-// and the half-resolution mask's texels those pixels read.
+// and the half-resolution mask's texels those pixels read; the occlusion's scissor
+// (render/ao_pass.h) the same way.
 // (The mask's image against the lookup it replaced: test_render_shadow_golden.)
+#include "render/ao_pass.h"
 #include "render/shadow_mask.h"
 
 #include <QtTest>
@@ -147,6 +149,22 @@ private slots:
         QCOMPARE(render::maskRect({0, 0, frameW, frameH}, maskW, maskH),
                  (render::PixelRect{0, 0, maskW, maskH}));
         QCOMPARE(render::maskRect({40, 40, 0, 0}, maskW, maskH).width, 0);
+    }
+
+    // The occlusion can differ from 1 only within its radius of the mesh: seen straight down, the
+    // unit box grown by 0.5 m is x, z in [-1.5, 1.5], pixels 12.5..87.5 and one of margin; no
+    // mesh, no pixel; a camera inside the reach, the whole frame.
+    void occlusionReachesItsRadiusAroundTheMesh() {
+        QVERIFY(close(render::occlusionRect(unitSphere(), 0.5f, topDown(), kSize, kSize),
+                      {11, 11, 78, 78}));
+        QVERIFY(close(render::occlusionRect(unitSphere(), 0.0f, topDown(), kSize, kSize),
+                      {24, 24, 52, 52}));
+        QCOMPARE(render::occlusionRect(MeshBounds{}, 0.5f, topDown(), kSize, kSize).width, 0);
+        const glm::mat4 inside =
+            glm::perspective(1.0f, 1.0f, 0.01f, 100.0f) *
+            glm::lookAt(glm::vec3(0.0f, 1.2f, 0.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+        QCOMPARE(render::occlusionRect(unitSphere(), 0.5f, inside, kSize, kSize),
+                 (render::PixelRect{0, 0, kSize, kSize}));
     }
 };
 

@@ -1,7 +1,7 @@
 // The look-dev stage's known answers (docs/shadows.md): shadow maps against shadows computed on
 // the CPU (a ray from each ground point to the light, against the sphere), no self-shadowing of
-// a flat plane, and the screen-space occlusion term: 1 on an open plane, below 1 in a crease, and
-// the light a bright crease bounces given back.
+// a flat plane, and the screen-space occlusion term: 1 on an open plane, below 1 in a crease,
+// exactly 1 beyond its radius from the mesh, and the light a bright crease bounces given back.
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render/stage_interface.h"
@@ -12,6 +12,7 @@
 #include <functional>
 #include <glm/geometric.hpp>
 #include <memory>
+#include <vector>
 
 using namespace velvet;
 
@@ -437,6 +438,45 @@ private slots:
         QVERIFY(crease >= 10 && open >= 100);
         QVERIFY(creaseSum / crease < 0.9);
         QVERIFY(openSum / open > 0.98);
+    }
+
+    // Beyond its radius from the mesh the ground sees only itself, flat: the occlusion passes skip
+    // it (render/ao_pass.h) and the term is exactly 1 there, where the search over the open
+    // ground gave values a little off 1.
+    void occlusionIsExactlyOneBeyondItsRadiusFromTheMesh() {
+        const Scene scene = creaseScene();
+        const int size = 128;
+        const Image ao = renderLinear(scene, size, render::DebugView::Occlusion);
+        const Image pos = renderLinear(scene, size, render::DebugView::Position);
+        // The cube's bounding sphere (radius 0.8 sqrt 3 about its centre) grown by the radius,
+        // and pixels whose 13x13 neighbourhood is all such ground: the upsample and the blur read
+        // about 5 pixels around, and by a silhouette the cube's texels weigh a little.
+        const float reach = 0.8f * std::sqrt(3.0f) + scene.environment.occlusionRadius;
+        std::vector<char> beyond(size_t(size * size), 0);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const glm::vec3 p = glm::vec3(pos.rgba(x, y));
+                beyond[size_t(y * size + x)] =
+                    distanceFromCube(p) >= 0.0f && glm::length(p) > reach;
+            }
+        const auto alone = [&](int x, int y) {
+            for (int j = std::max(y - 6, 0); j <= std::min(y + 6, size - 1); ++j)
+                for (int i = std::max(x - 6, 0); i <= std::min(x + 6, size - 1); ++i)
+                    if (!beyond[size_t(j * size + i)])
+                        return false;
+            return true;
+        };
+        int far = 0;
+        float least = 1.0f;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x)
+                if (alone(x, y)) {
+                    ++far;
+                    least = std::min(least, ao.rgba(x, y).r);
+                }
+        qInfo("%d ground pixels beyond the reach, least occlusion term %.6f", far, double(least));
+        QVERIFY(far > 1000);
+        QVERIFY2(least > 0.9999f, qPrintable(QString("open ground occluded: %1").arg(least)));
     }
 
     // The occlusion darkens the environment's light by Jimenez et al. 2016's multiple-bounce fit
