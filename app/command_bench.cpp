@@ -171,6 +171,8 @@ bool stageFigures(int width, int height, int frames,
     figures.emplace_back("stage_frame_off_ms", stage.frameOffMs);
     figures.emplace_back("stage_frame_shadow_ms", stage.frameShadowMs);
     figures.emplace_back("stage_frame_shadow_ao_ms", stage.frameStageMs);
+    figures.emplace_back("stage_frame_shadow_ao_value_edit_ms", stage.frameStageValueEditMs);
+    figures.emplace_back("stage_occlusion_kept_frames", double(stage.occlusionKeptFrames));
     figures.emplace_back("stage_shadow_overhead", stage.shadowOverhead);
     figures.emplace_back("stage_shadow_ao_overhead", stage.stageOverhead);
     figures.emplace_back("shadow_map_pass_ms", stage.shadowMapMs);

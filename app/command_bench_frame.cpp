@@ -6,7 +6,7 @@
 // `velvet bench`'s frame_nolights_wall_ms; the passes are GPU timer queries. The frame is drawn
 // as the editor's viewport draws it: display only (FrameSettings::displayOnly: the tone map
 // inside the lighting pass), after a material value edit (a slider dragged: each frame changes
-// the roughness, so the background's pixels are kept, render/background_reuse.h). Beside it, in
+// the roughness, so the background's pixels are kept, render/frame_reuse.h). Beside it, in
 // turn, the same frame while the camera orbits (orbit_: half a degree a frame, every pixel
 // drawn), through the scene-linear target with the tone map a pass of its own (hdr_), and with
 // the generic lighting program (every term and lobe at run time, generic_), so each gain is

@@ -57,11 +57,17 @@ bool OcclusionPass::build(std::string* error) {
     return true;
 }
 
-bool OcclusionPass::run(int width, int height, const PixelRect& texels, unsigned emptyVao,
-                        std::string* error) {
+bool OcclusionPass::run(int width, int height, const PixelRect& texels, FrameKey key,
+                        unsigned emptyVao, bool* kept, std::string* error) {
     const int w = halfSize(width), h = halfSize(height);
-    if (!m_raw.resize(w, h, GL_RG16F, error) || !m_blurred.resize(w, h, GL_RG16F, error))
+    key.add(w).add(h).add(texels);
+    *kept = m_reuse.reuse(std::move(key)) && m_blurred.width() == w && m_blurred.height() == h;
+    if (*kept)
+        return true;
+    if (!m_raw.resize(w, h, GL_RG16F, error) || !m_blurred.resize(w, h, GL_RG16F, error)) {
+        m_reuse.invalidate();
         return false;
+    }
     // The blurred texels, and the raw ones their 4x4 windows (p - 2 .. p + 1) read.
     const PixelRect& blurRect = texels;
     const PixelRect gtaoRect = grown(blurRect, 2, w, h);

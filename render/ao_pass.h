@@ -6,9 +6,13 @@
 /// multiplies the environment's light by it and the material's occlusion map.
 /// Only the texels that can differ from 1 run: a point farther than the search radius from the
 /// mesh sees nothing but the flat ground, so both passes are scissored to the mesh's bounds grown
-/// by the radius (occlusionRect()) and the rest is cleared to 1.
+/// by the radius (occlusionRect()) and the rest is cleared to 1. And only in frames whose result
+/// can differ from the last one's: the passes read the G-buffer's depth and normals and the
+/// camera, which a material's colour or a light does not change, so a frame whose key
+/// (render/frame_reuse.h) matches the last one's keeps the targets as they are.
 
 #include "core/mesh.h"
+#include "render/frame_reuse.h"
 #include "render/gbuffer.h"
 #include "render/shader_program.h"
 #include "render/shadow_mask.h"
@@ -19,7 +23,8 @@ namespace velvet::render {
 
 /// The pixels of a @p width x @p height frame seen through @p viewProj whose occlusion can differ
 /// from 1: the screen rectangle of @p bounds grown by @p radius on every side (the whole frame
-/// when they reach behind the camera, none without a mesh). Pure: test_render_shadows checks it.
+/// when they reach behind the camera, none without a mesh). Pure: test_render_shadow_mask checks
+/// it.
 PixelRect occlusionRect(const MeshBounds& bounds, float radius, const glm::mat4& viewProj,
                         int width, int height);
 
@@ -34,16 +39,24 @@ public:
     static PixelRect texelRect(const PixelRect& frameRect, int width, int height) {
         return maskRect(frameRect, halfSize(width), halfSize(height));
     }
-    /// Runs both passes for a @p width x @p height frame over @p texels (texelRect()); expects
-    /// the frame and stage blocks and the G-buffer's textures bound. Leaves the viewport at the
-    /// half size and the scissor test off.
-    bool run(int width, int height, const PixelRect& texels, unsigned emptyVao, std::string* error);
+    /// Runs both passes for a @p width x @p height frame over @p texels (texelRect()), unless
+    /// @p key (every byte the result depends on that can change without invalidate()) is the last
+    /// run's: then the targets already hold the result and @p kept is set. Expects the frame and
+    /// stage blocks and the G-buffer's textures bound. Leaves the viewport at the half size and
+    /// the scissor test off.
+    bool run(int width, int height, const PixelRect& texels, FrameKey key, unsigned emptyVao,
+             bool* kept, std::string* error);
+    /// Something the key cannot see changed (the mesh, a texture, the shaders): the next run draws.
+    void invalidate() { m_reuse.invalidate(); }
+    /// Frames that kept the last result since construction.
+    int keptFrames() const { return m_reuse.reusedFrames(); }
     /// The blurred occlusion at stage_binding::kOcclusionTex.
     void bind() const;
 
 private:
     ShaderProgram m_gtao, m_blur;
     ColorTarget m_raw, m_blurred;
+    FrameReuse m_reuse;
     int m_compileCount = 0;
 };
 

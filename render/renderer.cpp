@@ -58,6 +58,7 @@ bool Renderer::reloadShaders(std::string* error) {
     if (!d.initialized)
         return fail(error, "Renderer::reloadShaders called before initialize()");
     d.backgroundReuse.invalidate();
+    d.stage.invalidateOcclusion();
     // Every program from disk; each failure keeps its last good program and adds its message.
     std::string errors;
     auto collect = [&](bool ok, const std::string& message) {
@@ -79,6 +80,7 @@ bool Renderer::reloadShaders(std::string* error) {
 void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
     Impl& d = *m_impl;
     d.backgroundReuse.invalidate();
+    d.stage.invalidateOcclusion(); // the textures are taken again
     d.colorManagement = std::move(colorManagement);
     d.display.setColorManagement(d.colorManagement);
     // Input colour space names are looked up in the new config too (without one, in the
@@ -101,9 +103,14 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     copyParts(d.scene, scene, parts);
     d.haveScene = true;
     // A value edit leaves the background and the coverage as they were; anything else may not
-    // (a texture slot's cut-out, the mesh, the environment: render/background_reuse.h).
+    // (a texture slot's cut-out, the mesh, the environment: render/frame_reuse.h).
     if (touches(parts, ~ScenePart::MaterialValues))
         d.backgroundReuse.invalidate();
+    // The occlusion reads the depth and the normals: the mesh, the textures and the graph move
+    // them without its key seeing it (the camera, the ground and the material's values it sees).
+    if (touches(parts, ScenePart::Mesh | ScenePart::MaterialStructure | ScenePart::Graph |
+                           ScenePart::Atlases))
+        d.stage.invalidateOcclusion();
     if (!d.initialized)
         return; // uploaded by initialize()
     if (touches(parts, ScenePart::Mesh))
@@ -341,7 +348,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // Screen-space occlusion of the G-buffer, at half resolution (off: nothing runs).
     d.targets.gbuffer().bindTextures();
     if (!d.stage.drawOcclusion(d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                               d.emptyVao, error))
+                               d.occlusionKey(fs, block), d.emptyVao, error))
         return false;
     // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
     // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).
@@ -371,7 +378,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glBindVertexArray(d.emptyVao);
     if (inlined) { // the background and the surfaces cover every pixel: no clear
-        // After a value edit the background's pixels are already right (background_reuse.h).
+        // After a value edit the background's pixels are already right (frame_reuse.h).
         const bool keep = d.keepsBackground(fs, block, iblBlock, inlineDisplay, targetFbo);
         d.drawInlineDisplay(inlineDisplay, keep);
         d.passes.fullScreen += keep ? 1 : 2;
@@ -513,6 +520,7 @@ FrameTimings Renderer::lastTimings() const {
         d.stage.lastShadowMaskTexels(&d.timings.shadowMaskTexels, &d.timings.shadowMaskFiltered);
     }
     d.timings.shadowMaskPasses = d.stage.lastShadowMaskPasses();
+    d.timings.occlusionKept = d.stage.lastOcclusionKept();
     return d.timings;
 }
 

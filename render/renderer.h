@@ -180,7 +180,7 @@ struct FramePasses {
     /// The display step ran inside the lighting pass (FrameSettings::displayOnly).
     bool inlineDisplay = false;
     /// The inline frame kept the last frame's background pixels: nothing they depend on
-    /// changed, as after a material value edit (render/background_reuse.h).
+    /// changed, as after a material value edit (render/frame_reuse.h).
     bool backgroundKept = false;
     /// How many times smaller each way the inline frame drew its background before upsampling
     /// it (render/background_downsample.h); 1: full size (or kept, or not inline).
@@ -201,6 +201,9 @@ struct FrameTimings {
     /// The look-dev stage (docs/shadows.md): the shadow maps, drawn only in frames after the
     /// lights or the mesh changed (0 otherwise), and the screen-space occlusion (0 when off).
     double shadowMapsMs = 0, occlusionMs = 0;
+    /// The frame kept the last frame's occlusion (render/ao_pass.h: the camera, the depth and the
+    /// normals as they were; occlusionMs is then 0). Counted, not timed: always set.
+    bool occlusionKept = false;
     /// The screen-space shadow mask's passes (render/shadow_mask.h; 0 without a shadowed light).
     double shadowMaskMs = 0;
     /// How many shadow-mask passes the frame drew: one per shadowed light with receivers on

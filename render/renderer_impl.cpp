@@ -233,10 +233,25 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
     return !failed;
 }
 
+FrameKey Renderer::Impl::occlusionKey(const FrameSettings& fs, const FrameBlock& b) {
+    const std::uint64_t uploaded = textures.uploadStats().bytes;
+    const bool steady = !fs.splitMaterial && textures.progress().loading == 0 &&
+                        uploaded == occlusionUploadedBytes && !structureAdoptedThisFrame;
+    occlusionUploadedBytes = uploaded;
+    if (!steady)
+        stage.invalidateOcclusion();
+    FrameKey key;
+    key.add(b.viewMatrix).add(b.projMatrix).add(fs.width).add(fs.height);
+    // sheenWeightAnisotropy.w: the shading normal varies per pixel (a normal map, a graph's).
+    if (packedA.sheenWeightAnisotropy.w > 0.5f)
+        key.add(packedA);
+    return key;
+}
+
 bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& b,
                                      const IblBlock& ibl, const InlineDisplay& d,
                                      unsigned targetFbo) {
-    // What the key cannot see (background_reuse.h): a split frame's B, textures arriving (a
+    // What the key cannot see (frame_reuse.h): a split frame's B, textures arriving (a
     // cut-out changes the coverage), the bake's slices, a graph structure adopted this frame.
     const std::uint64_t uploaded = textures.uploadStats().bytes;
     const bool steady = !fs.splitMaterial && textures.progress().loading == 0 &&
@@ -250,7 +265,7 @@ bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& 
                            (d.chain && postChainReadsTime(scene.post)); // grain, static
     if (!readsTime)
         keyed.background.y = 0.0f;
-    BackgroundKey key;
+    FrameKey key;
     key.add(b).add(keyed).add(d.framebuffer).add(targetFbo).add(fs.width).add(fs.height);
     key.add(fs.exposureEv).add(d.background->id()).add(d.chain).add(d.source.key);
     key.add(d.smallBackground ? d.smallBackground->id() : 0u);

@@ -9,9 +9,9 @@
 #include "core/post_effects.h"
 #include "core/texture_cache.h"
 #include "render/background_downsample.h"
-#include "render/background_reuse.h"
 #include "render/display_output.h"
 #include "render/environment_map.h"
+#include "render/frame_reuse.h"
 #include "render/frame_targets.h"
 #include "render/frame_uniforms.h"
 #include "render/geometry_pass.h"
@@ -97,10 +97,13 @@ struct Renderer::Impl {
     }
     bool geometryDeferred = false; ///< the last frame's G-buffer wanted an unbuilt specialisation
     /// Inline frames keep the last frame's background pixels after a value edit
-    /// (render/background_reuse.h); uploadedBytes is the texture bytes uploaded as of that frame.
-    BackgroundReuse backgroundReuse;
+    /// (render/frame_reuse.h); uploadedBytes is the texture bytes uploaded as of that frame.
+    FrameReuse backgroundReuse;
     BackgroundDownsample backgroundDownsample; ///< the inline background at a quarter size
     std::uint64_t uploadedBytes = 0;
+    /// The texture bytes uploaded as of the last frame that drew the occlusion (a normal map
+    /// arriving changes the normals it reads).
+    std::uint64_t occlusionUploadedBytes = 0;
     /// Specialised builds that failed, lighting and G-buffer, already warned about.
     int reportedLightingFailures = 0, reportedGeometryFailures = 0;
     /// A specialised program that failed to build is a warning (once each): the generic one
@@ -317,7 +320,11 @@ struct Renderer::Impl {
     bool chooseInlineDisplay(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
                              const DisplayChoice& choice, bool emission, InlineDisplay& out,
                              bool& failed, std::string* error);
-    /// Whether this inline frame may keep the last one's background pixels (background_reuse.h).
+    /// Whether this inline frame may keep the last one's background pixels (frame_reuse.h).
+    /// The frame's part of the occlusion's key (render/ao_pass.h): the camera and, where the
+    /// material bends its normals, its record (a value edit may then move them); what it cannot
+    /// see (a split frame, textures arriving, a graph adopted) invalidates the kept occlusion.
+    FrameKey occlusionKey(const FrameSettings& fs, const FrameBlock& b);
     bool keepsBackground(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
                          const InlineDisplay& d, unsigned targetFbo);
     /// Draws the background (unless @p keepBackground) and the surfaces with the inline

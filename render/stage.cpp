@@ -151,19 +151,23 @@ void Stage::drawGround(const Environment& environment) {
 }
 
 bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewProj, int width,
-                          int height, unsigned emptyVao, std::string* error) {
+                          int height, FrameKey frameKey, unsigned emptyVao, std::string* error) {
     m_occlusionOn = environment.ambientOcclusion;
-    m_occlusionTimed = false;
-    if (!m_occlusionOn)
+    m_occlusionTimed = m_occlusionKept = false;
+    if (!m_occlusionOn) {
+        m_occlusion.invalidate(); // its targets are not kept up to date meanwhile
         return true;
-    glQueryCounter(m_queries[2], GL_TIMESTAMP);
+    }
     const PixelRect near = occlusionRect(m_bounds, std::max(environment.occlusionRadius, 0.0f),
                                          viewProj, width, height);
-    if (!m_occlusion.run(width, height, OcclusionPass::texelRect(near, width, height), emptyVao,
-                         error))
+    // The stage's part of the key: what the ground's depth and the search depend on.
+    frameKey.add(environment.ground).add(environment.occlusionRadius).add(m_bounds);
+    glQueryCounter(m_queries[2], GL_TIMESTAMP);
+    if (!m_occlusion.run(width, height, OcclusionPass::texelRect(near, width, height),
+                         std::move(frameKey), emptyVao, &m_occlusionKept, error))
         return false;
     glQueryCounter(m_queries[3], GL_TIMESTAMP);
-    m_occlusionTimed = true;
+    m_occlusionTimed = !m_occlusionKept;
     return true;
 }
 

@@ -60,10 +60,18 @@ public:
     /// After the geometry pass, into its (still bound) framebuffer: the ground, if any.
     void drawGround(const Environment& environment);
     /// After the ground: the occlusion term, if on, over the pixels near the mesh seen through
-    /// @p viewProj, the frame's camera (occlusionRect()); expects the G-buffer textures bound.
-    /// Leaves the viewport for the caller to reset.
+    /// @p viewProj, the frame's camera (occlusionRect()), or the last frame's kept when
+    /// @p frameKey (the camera, the material's normals where it bends them) and the stage's own
+    /// inputs are as they were (render/ao_pass.h); expects the G-buffer textures bound. Leaves
+    /// the viewport for the caller to reset.
     bool drawOcclusion(const Environment& environment, const glm::mat4& viewProj, int width,
-                       int height, unsigned emptyVao, std::string* error);
+                       int height, FrameKey frameKey, unsigned emptyVao, std::string* error);
+    /// The depth or the normals changed in a way no key sees (the mesh, a texture, a graph, the
+    /// shaders, a split frame): the next frame's occlusion is drawn again.
+    void invalidateOcclusion() { m_occlusion.invalidate(); }
+    /// Whether the last frame kept the frame before's occlusion, and how many frames have.
+    bool lastOcclusionKept() const { return m_occlusionKept; }
+    int occlusionKeptFrames() const { return m_occlusion.keptFrames(); }
     /// Whether a point, spot or area light has a shadow slot (the catcher's slot loop).
     bool shadowsLocalLight(const std::vector<Light>& lights) const;
     /// Whether a light casts a shadow this frame (the frame then needs a shadow mask).
@@ -114,6 +122,7 @@ private:
     unsigned m_groundMaskTexture = 0; ///< the ground's mask, read by the shadow catcher
     int m_maskPasses = 0;
     bool m_occlusionOn = false;
+    bool m_occlusionKept = false;
 };
 
 } // namespace velvet::render

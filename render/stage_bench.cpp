@@ -46,8 +46,13 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     FrameSettings fs;
     fs.width = width;
     fs.height = height;
+    // Every frame a step of an orbit (the camera's yaw), so none keeps the last frame's
+    // occlusion (render/ao_pass.h) but the value edits', which keep the camera where it was.
+    Camera camera = lit.camera;
     const auto frame = [&](const Scene& scene, ScenePart parts, double* wallMs,
                            double* cpuMs = nullptr) {
+        camera.yawDeg += 0.5f;
+        fs.camera = camera;
         renderer.update(scene, parts);
         glFinish();
         const auto start = std::chrono::steady_clock::now();
@@ -70,8 +75,9 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
         return false;
     // Interleaved, so the three see the same machine state; each variant's first frame after a
     // switch redraws the shadow map, so the second is timed (an orbit's frame).
-    std::vector<double> offMs, shadowMs, fullMs, mapMs, maskMs, occlusionMs, offCpu, shadowCpu,
-        fullCpu, unsettledCpu, texels, filteredShare;
+    report.occlusionKeptFrames = 0;
+    std::vector<double> offMs, shadowMs, fullMs, valueEditMs, mapMs, maskMs, occlusionMs, offCpu,
+        shadowCpu, fullCpu, unsettledCpu, texels, filteredShare;
     for (int i = 0; i < frames; ++i) {
         double ms = 0.0, cpu = 0.0;
         if (!frame(off, ScenePart::Lights | ScenePart::Environment, nullptr) ||
@@ -104,10 +110,19 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
         fullMs.push_back(ms);
         fullCpu.push_back(cpu);
         occlusionMs.push_back(renderer.lastTimings().occlusionMs);
+        // A value edit: the base colour, the camera where the last frame left it.
+        Scene edited = full;
+        edited.material.setColor(ParamId::BaseColor, glm::vec3(0.2f + 0.05f * float(i % 2)));
+        camera.yawDeg -= 0.5f; // frame() steps it: the same view as the frame before
+        if (!frame(edited, ScenePart::MaterialValues, &ms))
+            return false;
+        valueEditMs.push_back(ms);
+        report.occlusionKeptFrames += renderer.lastTimings().occlusionKept ? 1 : 0;
     }
     report.frameOffMs = median(offMs);
     report.frameShadowMs = median(shadowMs);
     report.frameStageMs = median(fullMs);
+    report.frameStageValueEditMs = median(valueEditMs);
     report.shadowOverhead = report.frameShadowMs / std::max(report.frameOffMs, 1e-6) - 1.0;
     report.stageOverhead = report.frameStageMs / std::max(report.frameOffMs, 1e-6) - 1.0;
     report.shadowMapMs = median(mapMs);

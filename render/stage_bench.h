@@ -9,9 +9,13 @@
 namespace velvet::render {
 
 struct StageBenchReport {
-    double frameOffMs = 0;     ///< wall clock: no shadow, no occlusion (the ground drawn)
-    double frameShadowMs = 0;  ///< one shadowed directional light (maps cached, as an orbit)
-    double frameStageMs = 0;   ///< shadows and ambient occlusion
+    double frameOffMs = 0;    ///< wall clock: no shadow, no occlusion (the ground drawn)
+    double frameShadowMs = 0; ///< one shadowed directional light (maps cached, as an orbit)
+    double frameStageMs = 0;  ///< shadows and ambient occlusion (every timed frame an orbit step)
+    /// Shadows and occlusion in a frame after a material value edit (the base colour), which
+    /// keeps the last frame's occlusion (render/ao_pass.h); and the frames that kept it.
+    double frameStageValueEditMs = 0;
+    int occlusionKeptFrames = 0;
     double shadowOverhead = 0; ///< frameShadowMs / frameOffMs - 1
     double stageOverhead = 0;  ///< frameStageMs / frameOffMs - 1
     double shadowMapMs = 0;    ///< GPU time of drawing the shadow map (a light or mesh edit)

@@ -1,5 +1,5 @@
 // The inline frame keeps the last frame's background pixels when nothing they depend on changed
-// (render/background_reuse.h, issue 16): after a material value edit the background pass does not
+// (render/frame_reuse.h, issue 16): after a material value edit the background pass does not
 // run and the image is the one a frame drawing every pixel gives, to the bit; a camera move, an
 // environment rotation, an exposure, a texture slot, a time that film grain reads, a size or a
 // frame off the inline path each draw the background again.
@@ -29,7 +29,7 @@ int maxDifference(const Image& a, const Image& b) {
 
 } // namespace
 
-class TestRenderBackgroundReuse : public QObject {
+class TestRenderFrameReuse : public QObject {
     Q_OBJECT
     std::unique_ptr<render::Renderer> m_renderer;
     std::unique_ptr<render::OffscreenTarget> m_target;
@@ -167,5 +167,5 @@ private slots:
     }
 };
 
-QTEST_GUILESS_MAIN(TestRenderBackgroundReuse)
+QTEST_GUILESS_MAIN(TestRenderFrameReuse)
 #include "test_render_background_reuse.moc"

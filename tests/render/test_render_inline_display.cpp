@@ -74,7 +74,7 @@ class TestRenderInlineDisplay : public QObject {
         const render::FramePasses after = m_renderer->lastFramePasses();
         // Before: background, surfaces, the display step (the chain's fused pass or the
         // display pass), the linear image kept. Inline: background and surfaces, one copy; the
-        // same frame again keeps the background's pixels (render/background_reuse.h), so the
+        // same frame again keeps the background's pixels (render/frame_reuse.h), so the
         // comparison below also checks the kept pixels.
         if (!before.linear || before.inlineDisplay || before.fullScreen != 3 || before.copies != 0)
             QTest::qFail("the linear path's passes", __FILE__, __LINE__);

@@ -1,5 +1,10 @@
 #pragma once
-// Whether a display-only frame may keep the last frame's background pixels (issue 16).
+// Whether a frame may keep what a pass drew last frame, by a key of the bytes that result depends
+// on (FrameKey) and the last frame's key (FrameReuse). Two passes use it: the inline display
+// path's background (below, issue 16) and the screen-space occlusion (render/ao_pass.h), kept
+// while the depth and normals it reads and the camera are as they were.
+//
+// The background: whether a display-only frame may keep the last frame's background pixels.
 //
 // The inline display path (FrameSettings::displayOnly) draws the background and the surfaces
 // straight into one display framebuffer that persists between frames. The surfaces' pass is
@@ -23,39 +28,39 @@
 
 namespace velvet::render {
 
-/// The bytes the background pixels of an inline frame depend on (see the header).
-class BackgroundKey {
+/// The bytes a kept result depends on (see the header).
+class FrameKey {
 public:
     // Room for the frame and IBL blocks and the rest at once (and no false -Wstringop-overflow
     // from GCC 12 on inserting into an empty vector).
-    BackgroundKey() { m_bytes.reserve(2048); }
+    FrameKey() { m_bytes.reserve(2048); }
     template <typename T>
-    BackgroundKey& add(const T& value) {
+    FrameKey& add(const T& value) {
         static_assert(std::is_trivially_copyable_v<T>);
         const auto* p = reinterpret_cast<const std::byte*>(&value);
         m_bytes.insert(m_bytes.end(), p, p + sizeof(T));
         return *this;
     }
-    BackgroundKey& add(const std::string& text);
-    bool operator==(const BackgroundKey&) const = default;
+    FrameKey& add(const std::string& text);
+    bool operator==(const FrameKey&) const = default;
 
 private:
     std::vector<std::byte> m_bytes;
 };
 
-/// The last inline frame's key, and whether its background pixels may be kept.
-class BackgroundReuse {
+/// The last frame's key, and whether its result may be kept.
+class FrameReuse {
 public:
-    /// Something the key cannot see changed (the next inline frame draws the background).
+    /// Something the key cannot see changed (the next frame draws the result again).
     void invalidate() { m_valid = false; }
-    /// Whether this frame, with @p key, may keep the background the last frame drew; remembers
+    /// Whether this frame, with @p key, may keep the result the last frame drew; remembers
     /// @p key for the next frame either way.
-    bool reuse(BackgroundKey key);
-    /// Frames that kept the background since the renderer started (tests, bench).
+    bool reuse(FrameKey key);
+    /// Frames that kept the result since the renderer started (tests, bench).
     int reusedFrames() const { return m_reused; }
 
 private:
-    BackgroundKey m_key;
+    FrameKey m_key;
     bool m_valid = false;
     int m_reused = 0;
 };

@@ -1,0 +1,131 @@
+// The screen-space occlusion kept across frames (render/ao_pass.h): a frame whose camera, depth
+// and normals are the last frame's keeps the last occlusion instead of drawing it again, and its
+// image is the one a frame drawing the occlusion gives, to the bit; a moved camera, another mesh,
+// or a value edit of a material that bends its normals (a fabric's weave) draws it again.
+#include "core/document_io.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
+#include "render_test_util.h"
+
+#include <QtTest>
+#include <cstring>
+
+using namespace velvet;
+
+namespace {
+
+constexpr int kSize = 96;
+
+/// The shader ball on a plain ground with occlusion, no lights but the studio environment.
+Scene stage() {
+    Scene scene;
+    scene.mesh.kind = PreviewMeshKind::ShaderBall;
+    scene.environment.ground = GroundMode::Plain;
+    scene.environment.ambientOcclusion = true;
+    scene.lights.clear();
+    return scene;
+}
+
+bool sameBits(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && a.pixels.size() == b.pixels.size() &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
+}
+
+} // namespace
+
+class TestRenderOcclusionReuse : public QObject {
+    Q_OBJECT
+    test::OffscreenRenderer* m_rig = nullptr;
+    render::FrameSettings m_fs;
+
+    /// Draws the next frame of the renderer's scene; whether it kept the occlusion.
+    bool draw(Image* image = nullptr, render::DebugView view = render::DebugView::Final) {
+        std::string error;
+        m_fs.view = view;
+        if (!m_rig->renderer->render(m_fs, m_rig->target->framebuffer(), &error))
+            qFatal("render failed: %s", error.c_str());
+        if (image)
+            *image = m_rig->renderer->readLinear();
+        return m_rig->renderer->lastTimings().occlusionKept;
+    }
+
+private slots:
+    void initTestCase() {
+        std::string error;
+        QVERIFY2(test::headlessContext(&error), error.c_str());
+        m_rig = test::processRenderer(kSize);
+        QVERIFY2(m_rig->target->resize(kSize, kSize, &error), error.c_str());
+        m_fs.width = m_fs.height = kSize;
+    }
+
+    void cleanupTestCase() {
+        test::stopProcessRenderer(); // while the context is current
+    }
+
+    void init() {
+        m_fs.camera.reset();
+        m_rig->renderer->setScene(stage());
+        m_rig->renderer->finishEnvironment();
+    }
+
+    // A colour edit leaves the depth and the normals: the occlusion is kept, and the frame is
+    // the one drawn with the occlusion drawn again (the mesh re-selected invalidates it).
+    void keptAcrossAColourEditAndTheSameImage() {
+        QVERIFY(!draw());
+        Scene edited = stage();
+        edited.material.setColor(ParamId::BaseColor, glm::vec3(0.7f, 0.2f, 0.1f));
+        m_rig->renderer->update(edited, ScenePart::MaterialValues);
+        Image kept, keptOcclusion, drawn, drawnOcclusion;
+        QVERIFY(draw(&kept));
+        QVERIFY(draw(&keptOcclusion, render::DebugView::Occlusion));
+        m_rig->renderer->update(edited, ScenePart::Mesh);
+        QVERIFY(!draw(&drawn));
+        m_rig->renderer->update(edited, ScenePart::Mesh);
+        QVERIFY(!draw(&drawnOcclusion, render::DebugView::Occlusion));
+        QVERIFY(sameBits(kept, drawn));
+        QVERIFY(sameBits(keptOcclusion, drawnOcclusion));
+        // The occlusion is there at all: some pixel of the ball's crevices is below 0.9.
+        float least = 1.0f;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                least = std::min(least, keptOcclusion.rgba(x, y).r);
+        QVERIFY2(least < 0.9f, qPrintable(QString::number(least)));
+    }
+
+    // A light or the environment's intensity leaves them too; the camera does not.
+    void drawnAgainWhenTheCameraMoves() {
+        QVERIFY(!draw());
+        Scene lit = stage();
+        lit.environment.intensity = 0.5f;
+        m_rig->renderer->update(lit, ScenePart::Environment);
+        QVERIFY(draw());
+        Camera turned = lit.camera;
+        turned.yawDeg += 10.0f;
+        m_fs.camera = turned;
+        QVERIFY(!draw());
+        QVERIFY(draw()); // still again
+        m_rig->renderer->update(lit, ScenePart::Mesh);
+        QVERIFY(!draw());
+    }
+
+    // A fabric bends its normals by its weave, which its values (the weave's scale among them)
+    // drive: a value edit draws the occlusion again.
+    void drawnAgainAfterAValueEditOfABentNormal() {
+        Problems problems;
+        const std::optional<Material> denim = loadMaterialFile(
+            std::string(VELVET_SOURCE_DIR) + "/resources/presets/denim.json", problems);
+        QVERIFY2(denim, problems.items.empty() ? "" : problems.items[0].toString().c_str());
+        Scene fabric = stage();
+        fabric.material = *denim;
+        m_rig->renderer->update(fabric, ScenePart::Material);
+        m_rig->renderer->finishGraph();
+        QVERIFY(!draw());
+        QVERIFY(draw()); // nothing changed
+        fabric.material.setScalar(ParamId::Roughness, 0.3f);
+        m_rig->renderer->update(fabric, ScenePart::MaterialValues);
+        QVERIFY(!draw());
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRenderOcclusionReuse)
+#include "test_render_occlusion_reuse.moc"
