@@ -19,14 +19,78 @@ namespace velvet::reference::detail {
 
 inline constexpr float kPi = std::numbers::pi_v<float>;
 
-/// PCG32 (O'Neill 2014), one stream per (pixel, sample): the image does not depend on which
-/// thread drew which pixel.
+inline std::uint64_t mix64(std::uint64_t x) { // splitmix64's finaliser
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+/// The first two dimensions of the Sobol sequence (Sobol 1967): the base-2 radical inverse of
+/// @p i (dimension 0) and the dimension whose direction numbers are v_1 = 1/2,
+/// v_k = v_(k-1) xor v_(k-1)/2 (dimension 1), as 32-bit fractions. Together a (0, 2)-sequence:
+/// every aligned block of 2^m points puts one point in each of the 2^m elementary intervals.
+inline std::uint32_t sobol2d(std::uint32_t i, int dimension) {
+    std::uint32_t result = 0;
+    if (dimension == 0) {
+        for (std::uint32_t v = 1u << 31; i; i >>= 1, v >>= 1)
+            result ^= (i & 1u) ? v : 0u;
+    } else {
+        for (std::uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
+            result ^= (i & 1u) ? v : 0u;
+    }
+    return result;
+}
+
+/// Owen's nested uniform scramble of the base-2 digits of @p x, keyed by @p seed, by hashing
+/// (Burley 2020, "Practical Hash-based Owen Scrambling", after Laine & Karras 2011): each digit
+/// is flipped or not by a hash of the digits above it. A permutation that keeps a (0, m, 2)-net a
+/// net; on a sample index, it keeps each aligned block of 2^m indices a block.
+inline std::uint32_t reverseBits(std::uint32_t x) {
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+    return (x >> 16) | (x << 16);
+}
+inline std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {
+    x = reverseBits(x);
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return reverseBits(x);
+}
+
+/// One path's random numbers: PCG32 (O'Neill 2014), one stream per (pixel, sample), so the image
+/// does not depend on which thread drew which pixel. With stratify(), the first
+/// kStratifiedDimensions numbers come instead from the pixel's scrambled Sobol points (a
+/// quasi-Monte Carlo sampler: the camera ray's position in the pixel, the first vertex's
+/// environment sample and BRDF sample, which carry most of a preview's variance), in pairs:
+/// numbers 2p and 2p + 1 are sample @p index of a 2D (0, 2)-sequence whose index is shuffled
+/// and whose coordinates are scrambled by Owen scrambling with random keys per pair and per
+/// dimension (Burley 2020's shuffled scrambled Sobol; the shuffle is what keeps pairs from
+/// correlating, as Kollig & Keller 2002's padding does), so each pair is uniformly distributed
+/// and independent of the others (unbiased) while any 2^m consecutive samples of a pixel stay
+/// stratified. Beyond them, and without stratify(), plain PCG32.
 struct Rng {
+    static constexpr int kStratifiedDimensions = 12;
     std::uint64_t state, inc;
+    std::uint32_t sampleIndex = 0;
+    std::uint64_t scramble = 0;
+    int dimension = kStratifiedDimensions; // no stratified numbers until stratify()
     Rng(std::uint64_t seed, std::uint64_t stream) : state(0), inc((stream << 1u) | 1u) {
         next();
         state += seed;
         next();
+    }
+    /// Sample @p index of the pixel whose scrambling keys come from @p pixelKey.
+    void stratify(std::uint32_t index, std::uint64_t pixelKey) {
+        sampleIndex = index;
+        scramble = pixelKey;
+        dimension = 0;
     }
     std::uint32_t next() {
         const std::uint64_t old = state;
@@ -35,16 +99,24 @@ struct Rng {
         const auto rot = std::uint32_t(old >> 59u);
         return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
     }
-    float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }
+    float uniform() {
+        std::uint32_t bits;
+        if (dimension < kStratifiedDimensions) {
+            // The pair's index shuffle, and its two coordinates' scrambles from a second hash.
+            const std::uint64_t pairKey =
+                mix64(scramble + 0x9e3779b97f4a7c15ULL * std::uint64_t(dimension / 2 + 1));
+            const std::uint64_t keys = mix64(pairKey);
+            const int coordinate = dimension & 1;
+            const std::uint32_t index = owenScramble(sampleIndex, std::uint32_t(pairKey));
+            bits =
+                owenScramble(sobol2d(index, coordinate), std::uint32_t(keys >> (32 * coordinate)));
+            ++dimension;
+        } else {
+            bits = next();
+        }
+        return float(bits >> 8) * (1.0f / 16777216.0f);
+    }
 };
-
-inline std::uint64_t mix64(std::uint64_t x) { // splitmix64's finaliser
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ULL;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
 
 inline float luminance(glm::vec3 c) {
     return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;

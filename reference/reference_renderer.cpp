@@ -290,6 +290,8 @@ bool render(const Scene& scene, const Options& options, Result& out, std::string
                         for (int x = 0; x < w; ++x) {
                             const size_t index = size_t(y) * w + x;
                             Rng rng(mix64(options.seed ^ mix64(index + 1)), std::uint64_t(pass));
+                            rng.stratify(std::uint32_t(pass),
+                                         mix64(options.seed * 0x2545f4914f6cdd1dULL ^ index));
                             const float nx = (float(x) + rng.uniform()) / float(w) * 2.0f - 1.0f;
                             const float ny = 1.0f - (float(y) + rng.uniform()) / float(h) * 2.0f;
                             glm::vec3 o, d;

@@ -42,28 +42,27 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // again after the lighting kept light from below a bent normal's geometric horizon out, which
 // took wool and crushed velvet under the rig off the list; and on 2026-12-04 after the
 // occlusion took back the light a crease bounces and the diffuse irradiance the share of a bent
-// normal's lobe above the face (BENCHMARKS.md, "Interreflection in the occlusion").
+// normal's lobe above the face (BENCHMARKS.md, "Interreflection in the occlusion"); and again
+// after the reference stratified its first vertex (path_sampling.h): less of its own noise
+// counts as ΔE, which took ceramic, linen and silk under the HDRI off the list.
 const Miss kMisses[] = {
-    {"brushed_aluminium", kSphere, "environment", 8.88, 19.56},
-    {"brushed_aluminium", kSphere, "three-point", 5.37, 12.46},
-    {"ceramic", kSphere, "environment", 2.41, 5.36},
-    {"copper", kSphere, "environment", 4.38, 11.51},
-    {"copper", kSphere, "three-point", 3.15, 8.80},
-    {"cotton", kSphere, "environment", 3.01, 7.57},
-    {"crushed_velvet", kSphere, "environment", 2.27, 8.16},
-    {"denim", kSphere, "three-point", 2.68, 6.48},
-    {"gold", kSphere, "environment", 3.97, 10.56},
-    {"gold", kSphere, "three-point", 2.99, 8.23},
-    {"linen", kSphere, "environment", 2.04, 4.62},
-    {"silk", kSphere, "environment", 2.34, 5.56},
-    {"terry", kSphere, "environment", 3.15, 7.19},
-    {"tweed", kSphere, "environment", 2.94, 6.20},
-    {"tweed", kSphere, "three-point", 2.97, 6.91},
-    {"wool", kSphere, "environment", 2.94, 6.81},
-    {"plastic", kBall, "environment", 2.48, 6.51},
-    {"plastic", kBall, "three-point", 2.79, 8.40},
-    {"gold", kBall, "environment", 8.49, 35.21},
-    {"gold", kBall, "three-point", 11.13, 56.87},
+    {"brushed_aluminium", kSphere, "environment", 8.79, 19.35},
+    {"brushed_aluminium", kSphere, "three-point", 5.30, 12.31},
+    {"copper", kSphere, "environment", 4.38, 11.73},
+    {"copper", kSphere, "three-point", 3.15, 9.21},
+    {"cotton", kSphere, "environment", 2.57, 5.79},
+    {"crushed_velvet", kSphere, "environment", 2.08, 7.52},
+    {"denim", kSphere, "three-point", 2.51, 6.00},
+    {"gold", kSphere, "environment", 4.04, 11.70},
+    {"gold", kSphere, "three-point", 3.05, 8.61},
+    {"terry", kSphere, "environment", 2.76, 6.08},
+    {"tweed", kSphere, "environment", 2.64, 5.77},
+    {"tweed", kSphere, "three-point", 2.81, 6.78},
+    {"wool", kSphere, "environment", 2.61, 7.36},
+    {"plastic", kBall, "environment", 2.34, 6.24},
+    {"plastic", kBall, "three-point", 2.74, 8.72},
+    {"gold", kBall, "environment", 9.05, 38.08},
+    {"gold", kBall, "three-point", 11.52, 56.19},
 };
 
 const Miss* knownMiss(const ReferenceTableCase& c) {
