@@ -45,9 +45,9 @@ float brdfPdf(const brdf::Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
 }
 glm::vec3 sampleBrdf(const brdf::Surface& s, glm::vec3 n, glm::vec3 v, Rng& rng) {
     const LobeWeights w = lobeWeights(s);
-    // The direction's pair first: with a stratified Rng it is one 2D point (path_sampling.h).
+    // The direction is one 2D sample of a stratified Rng; the lobe a decision (path_sampling.h).
     const glm::vec2 xi(rng.uniform(), rng.uniform());
-    const float pick = rng.uniform();
+    const float pick = rng.decision();
     glm::vec3 t, b;
     basis(n, t, b);
     if (pick < w.diffuse) { // cosine-weighted

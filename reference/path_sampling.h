@@ -67,8 +67,9 @@ inline std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {
 /// One path's random numbers: PCG32 (O'Neill 2014), one stream per (pixel, sample), so the image
 /// does not depend on which thread drew which pixel. With stratify(), the first
 /// kStratifiedDimensions numbers come instead from the pixel's scrambled Sobol points (a
-/// quasi-Monte Carlo sampler: the camera ray's position in the pixel, the first vertex's
-/// environment sample and BRDF sample, which carry most of a preview's variance), in pairs:
+/// quasi-Monte Carlo sampler: the camera ray's position in the pixel, then each vertex's light,
+/// environment and BRDF samples while they last, which carry most of a preview's variance; the
+/// one-dimensional choices take decision()), in pairs:
 /// numbers 2p and 2p + 1 are sample @p index of a 2D (0, 2)-sequence whose index is shuffled
 /// and whose coordinates are scrambled by Owen scrambling with random keys per pair and per
 /// dimension (Burley 2020's shuffled scrambled Sobol; the shuffle is what keeps pairs from
@@ -99,6 +100,10 @@ struct Rng {
         const auto rot = std::uint32_t(old >> 59u);
         return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
     }
+    /// A number for a one-dimensional choice (a lobe, Russian roulette): always PCG32, so the
+    /// stratified numbers stay in pairs, one 2D sample each.
+    float decision() { return float(next() >> 8) * (1.0f / 16777216.0f); }
+    /// The next number of the path; consecutive calls in twos are one 2D sample.
     float uniform() {
         std::uint32_t bits;
         if (dimension < kStratifiedDimensions) {

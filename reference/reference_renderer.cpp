@@ -89,7 +89,7 @@ glm::vec3 trace(const Context& ctx, glm::vec3 o, glm::vec3 d, Rng& rng, bool& on
         }
         if (bounce >= 2) { // Russian roulette
             const float q = std::min(maxComponent(throughput), 0.95f);
-            if (rng.uniform() >= q)
+            if (rng.decision() >= q)
                 break;
             throughput /= q;
         }
