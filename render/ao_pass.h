@@ -48,8 +48,6 @@ public:
              bool* kept, std::string* error);
     /// Something the key cannot see changed (the mesh, a texture, the shaders): the next run draws.
     void invalidate() { m_reuse.invalidate(); }
-    /// Frames that kept the last result since construction.
-    int keptFrames() const { return m_reuse.reusedFrames(); }
     /// The blurred occlusion at stage_binding::kOcclusionTex.
     void bind() const;
 

@@ -233,12 +233,16 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
     return !failed;
 }
 
-FrameKey Renderer::Impl::occlusionKey(const FrameSettings& fs, const FrameBlock& b) {
+bool Renderer::Impl::steadySince(const FrameSettings& fs, std::uint64_t& uploadedAsOf) {
     const std::uint64_t uploaded = textures.uploadStats().bytes;
     const bool steady = !fs.splitMaterial && textures.progress().loading == 0 &&
-                        uploaded == occlusionUploadedBytes && !structureAdoptedThisFrame;
-    occlusionUploadedBytes = uploaded;
-    if (!steady)
+                        uploaded == uploadedAsOf && !structureAdoptedThisFrame;
+    uploadedAsOf = uploaded;
+    return steady;
+}
+
+FrameKey Renderer::Impl::occlusionKey(const FrameSettings& fs, const FrameBlock& b) {
+    if (!steadySince(fs, occlusionUploadedBytes))
         stage.invalidateOcclusion();
     FrameKey key;
     key.add(b.viewMatrix).add(b.projMatrix).add(fs.width).add(fs.height);
@@ -253,11 +257,7 @@ bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& 
                                      unsigned targetFbo) {
     // What the key cannot see (frame_reuse.h): a split frame's B, textures arriving (a
     // cut-out changes the coverage), the bake's slices, a graph structure adopted this frame.
-    const std::uint64_t uploaded = textures.uploadStats().bytes;
-    const bool steady = !fs.splitMaterial && textures.progress().loading == 0 &&
-                        uploaded == uploadedBytes && ibl.state.x > 0.5f &&
-                        !structureAdoptedThisFrame;
-    uploadedBytes = uploaded;
+    const bool steady = steadySince(fs, uploadedBytes) && ibl.state.x > 0.5f;
     if (!steady)
         backgroundReuse.invalidate();
     IblBlock keyed = ibl;

@@ -320,11 +320,15 @@ struct Renderer::Impl {
     bool chooseInlineDisplay(const FrameSettings& fs, const FrameBlock& b, unsigned targetFbo,
                              const DisplayChoice& choice, bool emission, InlineDisplay& out,
                              bool& failed, std::string* error);
-    /// Whether this inline frame may keep the last one's background pixels (frame_reuse.h).
+    /// Whether nothing a reuse key cannot see changed since the frame that set @p uploadedAsOf
+    /// (the texture bytes uploaded then, updated): not a split frame, no texture arriving or
+    /// loading, no graph structure adopted this frame.
+    bool steadySince(const FrameSettings& fs, std::uint64_t& uploadedAsOf);
     /// The frame's part of the occlusion's key (render/ao_pass.h): the camera and, where the
     /// material bends its normals, its record (a value edit may then move them); what it cannot
-    /// see (a split frame, textures arriving, a graph adopted) invalidates the kept occlusion.
+    /// see (steadySince()) invalidates the kept occlusion.
     FrameKey occlusionKey(const FrameSettings& fs, const FrameBlock& b);
+    /// Whether this inline frame may keep the last one's background pixels (frame_reuse.h).
     bool keepsBackground(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
                          const InlineDisplay& d, unsigned targetFbo);
     /// Draws the background (unless @p keepBackground) and the surfaces with the inline

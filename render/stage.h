@@ -69,9 +69,8 @@ public:
     /// The depth or the normals changed in a way no key sees (the mesh, a texture, a graph, the
     /// shaders, a split frame): the next frame's occlusion is drawn again.
     void invalidateOcclusion() { m_occlusion.invalidate(); }
-    /// Whether the last frame kept the frame before's occlusion, and how many frames have.
+    /// Whether the last frame kept the frame before's occlusion.
     bool lastOcclusionKept() const { return m_occlusionKept; }
-    int occlusionKeptFrames() const { return m_occlusion.keptFrames(); }
     /// Whether a point, spot or area light has a shadow slot (the catcher's slot loop).
     bool shadowsLocalLight(const std::vector<Light>& lights) const;
     /// Whether a light casts a shadow this frame (the frame then needs a shadow mask).
