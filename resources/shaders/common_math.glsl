@@ -4,6 +4,13 @@
 float saturate(float x) { return clamp(x, 0.0, 1.0); }
 float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
+// The bilinear weights of the four texels textureGather returns, in its order (0,1), (1,1),
+// (1,0), (0,0) from the block's first texel, for the fraction @p f of the way to the last
+// (the shadow mask's and the occlusion's depth-aware upsamples).
+vec4 gatherBilinearWeights(vec2 f) {
+    return vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+}
+
 // IEC 61966-2-1 sRGB transfer functions (the OETF and its inverse).
 vec3 srgbEncode(vec3 c) {
     c = max(c, vec3(0.0));

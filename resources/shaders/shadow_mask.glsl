@@ -8,6 +8,7 @@
 // half resolution (BENCHMARKS.md). Channel s is slot s's light: kMaxShadowLights (4) fit one texel.
 #include "stage_interface.glsl"
 #include "common_frame.glsl"
+#include "common_math.glsl"
 
 layout(binding = BINDING_SHADOW_MASK_TEX) uniform sampler2D uShadowMask;
 layout(binding = BINDING_SHADOW_KEY_TEX) uniform sampler2D uShadowKey;
@@ -21,12 +22,6 @@ layout(binding = BINDING_GROUND_SHADOW_MASK_TEX) uniform sampler2D uGroundShadow
 // (across a silhouette) drops out; where none is alike, the same material nearest in depth wins,
 // else the nearest in depth. Two gathers of the key and four fetches of the mask: call it once
 // per pixel and pass the result on.
-// The bilinear weights of the four texels textureGather returns, in its order (0,1), (1,1),
-// (1,0), (0,0) from the block's first texel, for the fraction @p f of the way to the last.
-vec4 gatherBilinearWeights(vec2 f) {
-    return vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
-}
-
 vec4 shadowMaskAll(ivec2 pixel, float viewDepth, int materialId) {
     ivec2 last = textureSize(uShadowMask, 0) - 1;
     ivec2 b = pixel >> 1;

@@ -29,7 +29,7 @@ float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
     vec2 uv = (b + 1.0) / size;
     vec4 vis = textureGather(uOcclusion, uv, 0);
     vec4 depth = textureGather(uOcclusion, uv, 1);
-    vec4 bilinear = gatherBilinearWeights(f); // shadow_mask.glsl
+    vec4 bilinear = gatherBilinearWeights(f); // common_math.glsl
     vec4 d = abs(depth - viewDepth) / (0.03 * viewDepth + 0.01);
     // The nearest in depth wins where none is alike.
     vec4 w = (bilinear + 1e-3) * exp(-d * d) + 1e-6 / (1.0 + d);

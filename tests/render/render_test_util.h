@@ -102,6 +102,11 @@ inline Scene shippedDefaultScene() {
     return scene;
 }
 
+/// Whether two images are the same size and the same pixels, bit for bit.
+inline bool samePixels(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
+}
+
 /// The known-answer tests' scene: an orthographic front view of the default unit sphere (each
 /// pixel's normal and view direction known in closed form) under a black environment, no lights.
 inline Scene blackOrthographicScene() {

@@ -34,10 +34,6 @@ glm::vec3 centre(const Image& img) {
     return sum / 36.0f;
 }
 
-bool samePixels(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
-}
-
 /// constant.color (colour @p c) -> output.material baseColor; ids 1 and 2.
 Graph constantIntoBaseColor(glm::vec3 c) {
     Graph g;
@@ -119,7 +115,7 @@ private slots:
         qInfo("albedo %.4f %.4f %.4f", a.x, a.y, a.z);
         for (int k = 0; k < 3; ++k)
             QVERIFY2(std::abs(a[k] - c[k]) < 0.01f, qPrintable(QString::number(a[k])));
-        QVERIFY(samePixels(got, expected));
+        QVERIFY(test::samePixels(got, expected));
     }
 
     // A value edit (ChangeKind::Value) uploads the value block: the pixels change to the new
@@ -133,10 +129,10 @@ private slots:
         scene.material.graph = SharedGraph(g);
         const Image after = render(&scene);
         QCOMPARE(m_fixture.renderer->shaderCompileCount(), compiles);
-        QVERIFY(!samePixels(before, after));
+        QVERIFY(!test::samePixels(before, after));
         Scene reference;
         reference.material.setColor(ParamId::BaseColor, glm::vec3(0.9f, 0.1f, 0.3f));
-        QVERIFY(samePixels(after, render(&reference)));
+        QVERIFY(test::samePixels(after, render(&reference)));
     }
 
     // A structural edit (a new link) is built from the next render(), once; the first frame

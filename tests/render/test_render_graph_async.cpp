@@ -37,10 +37,6 @@ float centreRed(const Image& img) {
     return img.rgba(kSize / 2, kSize / 2).r;
 }
 
-bool samePixels(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
-}
-
 /// constant.float @p v -> output.material roughness (ids 1 and 2).
 Graph roughnessFrom(float v) {
     Graph g;
@@ -118,7 +114,7 @@ class TestRenderGraphAsync : public QObject {
         Wait w;
         Image img = frame(&w.startMs);
         while (m_renderer->graphPending() && w.pendingFrames < kMaxFrames) {
-            if (!samePixels(img, old))
+            if (!test::samePixels(img, old))
                 qFatal("a frame while the build was pending is not the old image");
             double ms = 0;
             img = frame(&ms);
@@ -222,7 +218,7 @@ private slots:
         const Image afterStart = frame();
         const int afterFirst = m_renderer->shaderCompileCount();
         QVERIFY(afterFirst == compiles || afterFirst == compiles + 1);
-        QVERIFY(afterFirst == compiles + 1 || samePixels(afterStart, old));
+        QVERIFY(afterFirst == compiles + 1 || test::samePixels(afterStart, old));
         m_renderer->setScene(withGraph(roughnessThroughMultiplies(0.125f, 6)));
         const Wait w = renderUntilAdopted(afterStart);
         QCOMPARE(m_renderer->shaderCompileCount(), afterFirst + 1);
@@ -249,7 +245,7 @@ private slots:
         const Wait w = renderUntilAdopted(old);
         writeText(file, good);
         QVERIFY(!m_renderer->graphPending());
-        QVERIFY(samePixels(w.adopted, old));
+        QVERIFY(test::samePixels(w.adopted, old));
         const std::string& message = m_renderer->graphError();
         qInfo("%s", message.c_str());
         QVERIFY2(message.find("gbuffer.frag:" + std::to_string(line)) != std::string::npos,

@@ -8,7 +8,6 @@
 #include "render_test_util.h"
 
 #include <QtTest>
-#include <cstring>
 
 using namespace velvet;
 
@@ -24,11 +23,6 @@ Scene stage() {
     scene.environment.ambientOcclusion = true;
     scene.lights.clear();
     return scene;
-}
-
-bool sameBits(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
 }
 
 } // namespace
@@ -82,8 +76,8 @@ private slots:
         QVERIFY(!draw(&drawn));
         m_rig->renderer->update(edited, ScenePart::Mesh);
         QVERIFY(!draw(&drawnOcclusion, render::DebugView::Occlusion));
-        QVERIFY(sameBits(kept, drawn));
-        QVERIFY(sameBits(keptOcclusion, drawnOcclusion));
+        QVERIFY(test::samePixels(kept, drawn));
+        QVERIFY(test::samePixels(keptOcclusion, drawnOcclusion));
         // The occlusion is there at all: some pixel of the ball's crevices is below 0.9.
         float least = 1.0f;
         for (int y = 0; y < kSize; ++y)

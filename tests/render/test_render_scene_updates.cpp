@@ -18,10 +18,6 @@ namespace {
 
 constexpr int kSize = 64;
 
-bool samePixels(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
-}
-
 /// The uploads between two counts, field by field.
 UploadStats delta(const UploadStats& after, const UploadStats& before) {
     UploadStats d;
@@ -130,7 +126,7 @@ private slots:
         const UploadStats d = delta(m_renderer->uploadStats(), before);
         qInfo("five orbit frames + a camera update: %s", qPrintable(describe(d)));
         QCOMPARE(total(d), 0);
-        QVERIFY(!samePixels(moved, still));
+        QVERIFY(!test::samePixels(moved, still));
         m_renderer->update(m_scene, ScenePart::Camera); // back to the saved view
     }
 
@@ -145,8 +141,8 @@ private slots:
         const Image fromScene = frame();
         m_renderer->update(m_scene, ScenePart::Camera);
         const Image original = frame();
-        QVERIFY(samePixels(fromSettings, fromScene));
-        QVERIFY(!samePixels(fromScene, original));
+        QVERIFY(test::samePixels(fromSettings, fromScene));
+        QVERIFY(!test::samePixels(fromScene, original));
     }
 
     // A roughness edit is a value edit: one material record, no texture, mesh, light, graph or
@@ -163,7 +159,7 @@ private slots:
         qInfo("roughness edit: %s", qPrintable(describe(d)));
         QCOMPARE(d.materialUploads, 1);
         QCOMPARE(total(d), 1);
-        QVERIFY(!samePixels(after, before));
+        QVERIFY(!test::samePixels(after, before));
         m_renderer->update(m_scene, ScenePart::MaterialValues);
     }
 
@@ -179,7 +175,7 @@ private slots:
         qInfo("light edit: %s", qPrintable(describe(d)));
         QCOMPARE(d.lightUploads, 1);
         QCOMPARE(total(d), 1);
-        QVERIFY(!samePixels(after, before));
+        QVERIFY(!test::samePixels(after, before));
         m_renderer->update(m_scene, ScenePart::Lights);
     }
 
@@ -190,7 +186,7 @@ private slots:
         edited.lights[0].intensity *= 3.0f;
         edited.camera = orbited(m_scene.camera);
         m_renderer->update(edited, ScenePart::MaterialValues);
-        QVERIFY(samePixels(frame(), before));
+        QVERIFY(test::samePixels(frame(), before));
     }
 };
 
