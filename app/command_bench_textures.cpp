@@ -143,66 +143,79 @@ int runTextureBench(bool json, bool quick) {
             figures[size_t(2)].second / std::max(1e-6, figures[size_t(4)].second));
 
         // 2. The editor's way: a renderer with asynchronous textures drawing frames while the
-        // map loads (cache cold), then the peak memory of the whole load and upload.
-        render::Renderer renderer;
-        render::OffscreenTarget target;
-        if (!renderer.initialize(&error) || !target.resize(320, 180, &error)) {
-            std::cerr << "velvet bench: " << error << "\n";
+        // map loads (cache cold), then the peak memory of the whole load and upload; level 0
+        // streamed from the cache entry (the default) and, beside it, held whole in memory
+        // until uploaded (VELVET_TEXTURE_STREAMING=0, prefix async_whole_).
+        const auto measureAsync = [&](const std::string& prefix) -> bool {
+            render::Renderer renderer;
+            render::OffscreenTarget target;
+            if (!renderer.initialize(&error) || !target.resize(320, 180, &error)) {
+                std::cerr << "velvet bench: " << error << "\n";
+                return false;
+            }
+            renderer.setAsyncTextures(true);
+            Scene scene;
+            renderer.setScene(scene);
+            renderer.finishEnvironment();
+            render::FrameSettings fs;
+            fs.width = 320, fs.height = 180;
+            std::vector<double> plain;
+            for (int i = 0; i < 5; ++i) {
+                const auto t = std::chrono::steady_clock::now();
+                renderer.render(fs, target.framebuffer(), &error);
+                renderer.lastTimings();
+                plain.push_back(msSince(t));
+            }
+            std::sort(plain.begin(), plain.end());
+            std::filesystem::remove_all(cacheDir); // cold again, for each variant
+            std::filesystem::remove_all(dir / "xdg");
+            setenv("XDG_CACHE_HOME", (dir / "xdg").c_str(), 1);
+            TextureRef ref;
+            ref.file = png.string();
+            scene.material.setTexture(TextureSlot::BaseColor, ref);
+            scene.material.setTexture(TextureSlot::SheenColor, ref); // one file, two slots
+            const double before = statusMb("VmRSS:");
+            resetPeak();
+            const auto loadStart = std::chrono::steady_clock::now();
+            renderer.setScene(scene);
+            int frames = 0;
+            double worstFrame = 0;
+            int worstIndex = -1;
+            double worstUploadBefore = 0;
+            while (renderer.textureProgress().loading > 0 && frames < 100000) {
+                const auto t = std::chrono::steady_clock::now();
+                const double uploadedBefore = double(renderer.textureUploadStats().bytes);
+                renderer.render(fs, target.framebuffer(), &error);
+                renderer.lastTimings();
+                if (msSince(t) > worstFrame)
+                    worstFrame = msSince(t), worstIndex = frames,
+                    worstUploadBefore =
+                        double(renderer.textureUploadStats().bytes) - uploadedBefore;
+                ++frames;
+            }
+            const double peak = statusMb("VmHWM:") - before;
+            const double total = msSince(loadStart);
+            const render::TextureUploadStats& up = renderer.textureUploadStats();
+            put(prefix + "worst_frame_index", worstIndex);
+            put(prefix + "worst_frame_uploaded_mb", worstUploadBefore / (1 << 20));
+            put(prefix + "load_total_ms", total);
+            put(prefix + "frames_drawn_while_loading", frames);
+            put(prefix + "frames_with_coarse_proxy", up.proxyFrames);
+            put(prefix + "frame_median_without_texture_ms", plain[plain.size() / 2]);
+            put(prefix + "worst_frame_while_loading_ms", worstFrame);
+            put(prefix + "worst_frame_upload_ms", up.worstFrameMs);
+            put(prefix + "worst_frame_upload_mb", double(up.worstFrameBytes) / (1 << 20));
+            put(prefix + "streamed_from_cache_mb", double(up.streamedBytes) / (1 << 20));
+            put(prefix + "peak_mb", peak);
+            put(prefix + "peak_vs_gpu_size", peak / (gpuBytes / (1 << 20)));
+            put(prefix + "decodes_for_two_slots", double(renderer.textureDecodes()));
+            return true;
+        };
+        setenv("VELVET_TEXTURE_STREAMING", "0", 1);
+        const bool whole = measureAsync("async_whole_");
+        unsetenv("VELVET_TEXTURE_STREAMING");
+        if (!whole || !measureAsync("async_"))
             return RenderFailure;
-        }
-        renderer.setAsyncTextures(true);
-        Scene scene;
-        renderer.setScene(scene);
-        renderer.finishEnvironment();
-        render::FrameSettings fs;
-        fs.width = 320, fs.height = 180;
-        std::vector<double> plain;
-        for (int i = 0; i < 5; ++i) {
-            const auto t = std::chrono::steady_clock::now();
-            renderer.render(fs, target.framebuffer(), &error);
-            renderer.lastTimings();
-            plain.push_back(msSince(t));
-        }
-        std::sort(plain.begin(), plain.end());
-        std::filesystem::remove_all(cacheDir); // cold again
-        setenv("XDG_CACHE_HOME", (dir / "xdg").c_str(), 1);
-        TextureRef ref;
-        ref.file = png.string();
-        scene.material.setTexture(TextureSlot::BaseColor, ref);
-        scene.material.setTexture(TextureSlot::SheenColor, ref); // one file, two slots
-        const double before = statusMb("VmRSS:");
-        resetPeak();
-        const auto loadStart = std::chrono::steady_clock::now();
-        renderer.setScene(scene);
-        int frames = 0, proxyFrames = 0;
-        double worstFrame = 0;
-        int worstIndex = -1;
-        double worstUploadBefore = 0;
-        while (renderer.textureProgress().loading > 0 && frames < 100000) {
-            const auto t = std::chrono::steady_clock::now();
-            const double uploadedBefore = double(renderer.textureUploadStats().bytes);
-            renderer.render(fs, target.framebuffer(), &error);
-            renderer.lastTimings();
-            if (msSince(t) > worstFrame)
-                worstFrame = msSince(t), worstIndex = frames,
-                worstUploadBefore = double(renderer.textureUploadStats().bytes) - uploadedBefore;
-            ++frames;
-        }
-        put("async_worst_frame_index", worstIndex);
-        put("async_worst_frame_uploaded_mb", worstUploadBefore / (1 << 20));
-        const double total = msSince(loadStart);
-        const render::TextureUploadStats& up = renderer.textureUploadStats();
-        proxyFrames = up.proxyFrames;
-        put("async_load_total_ms", total);
-        put("async_frames_drawn_while_loading", frames);
-        put("async_frames_with_coarse_proxy", proxyFrames);
-        put("async_frame_median_without_texture_ms", plain[plain.size() / 2]);
-        put("async_worst_frame_while_loading_ms", worstFrame);
-        put("async_worst_frame_upload_ms", up.worstFrameMs);
-        put("async_worst_frame_upload_mb", double(up.worstFrameBytes) / (1 << 20));
-        put("async_peak_mb", statusMb("VmHWM:") - before);
-        put("async_peak_vs_gpu_size", (statusMb("VmHWM:") - before) / (gpuBytes / (1 << 20)));
-        put("async_decodes_for_two_slots", double(renderer.textureDecodes()));
     }
     std::filesystem::remove_all(dir);
 

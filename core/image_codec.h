@@ -30,7 +30,7 @@
 namespace velvet::codec {
 
 /// Bumped whenever ImageCodec or a type it passes changes.
-inline constexpr int kImageCodecAbi = 1;
+inline constexpr int kImageCodecAbi = 2;
 
 struct ImageCodec {
     int abi = kImageCodecAbi;
@@ -58,9 +58,16 @@ struct ImageCodec {
     bool (*writeMipFile)(const std::filesystem::path& path, const std::string& description,
                          bool half, bool srgb, const std::vector<MipLevel>& levels, std::string*);
     /// Reads such a file: its ImageDescription, whether level 0 holds half samples (else
-    /// 8-bit; anything else fails), and every MIP level as RGBA in that type. False + why.
+    /// 8-bit; anything else fails), and every MIP level as RGBA in that type; the levels finer
+    /// than @p firstLevel get their size but no bytes (read later with readMipRows). False + why.
     bool (*readMipFile)(const std::filesystem::path& path, std::string& description, bool& half,
-                        std::vector<MipLevel>& levels, std::string*);
+                        std::vector<MipLevel>& levels, int firstLevel, std::string*);
+    /// Rows @p y0 .. @p y0 + @p rows of MIP level @p level of such a file into @p out (tightly
+    /// packed RGBA, half samples when @p half, else 8-bit; @p width * @p rows pixels). @p y0
+    /// is a multiple of the tile height (64) and the band ends on one or at the level's last
+    /// row; a level of another width or type fails. False + why.
+    bool (*readMipRows)(const std::filesystem::path& path, int level, int width, int y0, int rows,
+                        bool half, std::uint8_t* out, std::string*);
 };
 
 /// The codec, loaded on first use (thread-safe); null + a message naming the places searched

@@ -49,7 +49,7 @@ std::filesystem::path mipCacheEntry(const std::filesystem::path& dir, const std:
 }
 
 bool readMipCache(const std::filesystem::path& entry, const std::string& key, MipTexture& out,
-                  std::string* why) {
+                  std::string* why, int firstLevel) {
     std::error_code ec;
     if (!std::filesystem::exists(entry, ec)) {
         if (why)
@@ -68,7 +68,7 @@ bool readMipCache(const std::filesystem::path& entry, const std::string& key, Mi
     std::string description;
     bool half = false;
     std::vector<MipLevel> levels;
-    if (!imageCodec->readMipFile(entry, description, half, levels, why))
+    if (!imageCodec->readMipFile(entry, description, half, levels, firstLevel, why))
         return false;
     std::istringstream lines(description);
     std::string magic, keyLine, formatLine, meanLine;
@@ -111,6 +111,25 @@ bool readMipCache(const std::filesystem::path& entry, const std::string& key, Mi
     return true;
 }
 
+bool readMipCacheRows(const std::filesystem::path& entry, const MipTexture& texture, int level,
+                      int y0, int rows, std::uint8_t* out, std::string* why) {
+    std::string codecError;
+    const codec::ImageCodec* imageCodec = codec::imageCodec(&codecError);
+    if (!imageCodec) {
+        if (why)
+            *why = codecError;
+        return false;
+    }
+    if (level < 0 || level >= int(texture.levels.size()) || y0 % kMipCacheTileSide != 0) {
+        if (why)
+            *why = "no band of rows " + std::to_string(y0) + "+" + std::to_string(rows) +
+                   " in mip level " + std::to_string(level);
+        return false;
+    }
+    return imageCodec->readMipRows(entry, level, texture.levels[size_t(level)].width, y0, rows,
+                                   texture.format == MipFormat::Rgba16F, out, why);
+}
+
 bool writeMipCache(const std::filesystem::path& entry, const std::string& key,
                    const MipTexture& texture, std::string* error) {
     auto fail = [&](const std::string& what) {
@@ -142,7 +161,7 @@ bool writeMipCache(const std::filesystem::path& entry, const std::string& key,
 
     std::string why;
     if (!imageCodec->writeMipFile(tmp, describe(key, texture), texture.format == MipFormat::Rgba16F,
-                             texture.format == MipFormat::Srgb8Alpha8, texture.levels, &why)) {
+                                  texture.format == MipFormat::Srgb8Alpha8, texture.levels, &why)) {
         cleanup();
         return fail("cannot write the cache entry: " + why);
     }

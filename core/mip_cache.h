@@ -23,8 +23,21 @@ std::filesystem::path mipCacheEntry(const std::filesystem::path& dir, const std:
 
 /// Reads the entry at @p entry into @p out. False when it does not exist (@p why empty) or
 /// cannot be used (@p why says why: unreadable, truncated, another key, inconsistent levels).
+/// Levels finer than @p firstLevel get their size but no bytes: they stay in the file, for
+/// readMipCacheRows().
 bool readMipCache(const std::filesystem::path& entry, const std::string& key, MipTexture& out,
-                  std::string* why);
+                  std::string* why, int firstLevel = 0);
+
+/// The rows of the entry's levels are stored in tiles of this height: a band read by
+/// readMipCacheRows() starts on a multiple of it.
+inline constexpr int kMipCacheTileSide = 64;
+
+/// Rows @p y0 .. @p y0 + @p rows of level @p level of @p texture (its levels' sizes and format,
+/// as readMipCache() or a build gave them) from the entry at @p entry into @p out (tightly
+/// packed, mipBytesPerPixel each). @p y0 is a multiple of kMipCacheTileSide; the band ends on
+/// one or at the level's last row. False + why (the entry gone, truncated, or another image).
+bool readMipCacheRows(const std::filesystem::path& entry, const MipTexture& texture, int level,
+                      int y0, int rows, std::uint8_t* out, std::string* why);
 /// Writes @p texture as the entry at @p entry (creating its folder). False + message naming
 /// the file on failure; no partial entry is ever left under the entry's name.
 bool writeMipCache(const std::filesystem::path& entry, const std::string& key,

@@ -228,6 +228,20 @@ std::string withoutFilePrefix(std::string message, const std::filesystem::path& 
     return message;
 }
 
+/// Only a level 0 of more than 4 MiB (a 1024² RGBA8 map) is left in the cache entry: a smaller
+/// one costs less than reopening the file, and atlas means read the levels up to 256 px.
+bool leavesFinestInCache(const MipTexture& t) {
+    return std::uint64_t(t.width()) * std::uint64_t(t.height()) *
+               std::uint64_t(mipBytesPerPixel(t.format)) >
+           (std::uint64_t(4) << 20);
+}
+
+bool readFinestFromCache(const std::filesystem::path& entry, MipTexture& t, std::string* why) {
+    MipLevel& l = t.levels[0];
+    l.bytes.resize(size_t(l.width) * size_t(l.height) * size_t(mipBytesPerPixel(t.format)));
+    return readMipCacheRows(entry, t, 0, 0, l.height, l.bytes.data(), why);
+}
+
 } // namespace
 
 int mipBytesPerPixel(MipFormat format) {
@@ -237,14 +251,15 @@ int mipBytesPerPixel(MipFormat format) {
 std::uint64_t MipTexture::byteSize() const {
     std::uint64_t bytes = 0;
     for (const MipLevel& l : levels)
-        bytes += l.bytes.size();
+        bytes += std::uint64_t(l.width) * std::uint64_t(l.height) *
+                 std::uint64_t(mipBytesPerPixel(format));
     return bytes;
 }
 
 Image MipTexture::linearLevel(int maxSide) const {
     const MipLevel* pick = nullptr;
     for (const MipLevel& l : levels)
-        if (l.width <= maxSide && l.height <= maxSide) {
+        if (l.width <= maxSide && l.height <= maxSide && !l.bytes.empty()) {
             pick = &l;
             break;
         }
@@ -314,7 +329,14 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
             result.cacheKey = key;
             auto cached = std::make_shared<MipTexture>();
             std::string why;
-            const bool hit = readMipCache(result.cacheEntry, key, *cached, &why);
+            bool hit = readMipCache(result.cacheEntry, key, *cached, &why,
+                                    options.leaveFinestInCache ? 1 : 0);
+            if (hit && options.leaveFinestInCache) {
+                if (leavesFinestInCache(*cached))
+                    cached->finestInCache = result.cacheEntry;
+                else
+                    hit = readFinestFromCache(result.cacheEntry, *cached, &why);
+            }
             result.cacheReadMs = lap();
             if (hit) {
                 result.texture = std::move(cached);
@@ -368,14 +390,18 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
         result.texture = buildHalf(std::move(image), options.threads);
     }
     result.filterMs = lap();
-    if (options.writeCache && !key.empty())
-        storeMipTexture(result);
+    if ((options.writeCache || options.leaveFinestInCache) && !key.empty() &&
+        storeMipTexture(result) && options.leaveFinestInCache &&
+        leavesFinestInCache(*result.texture)) {
+        std::vector<std::uint8_t>().swap(result.texture->levels[0].bytes);
+        result.texture->finestInCache = result.cacheEntry;
+    }
     return finish();
 }
 
-void storeMipTexture(MipLoadResult& result) {
+bool storeMipTexture(MipLoadResult& result) {
     if (!result.texture || result.cacheKey.empty() || result.fromCache)
-        return;
+        return false;
     std::string error;
     const auto start = std::chrono::steady_clock::now();
     const bool written = writeMipCache(result.cacheEntry, result.cacheKey, *result.texture, &error);
@@ -384,6 +410,7 @@ void storeMipTexture(MipLoadResult& result) {
     if (!written)
         result.problems.push_back({Problem::Severity::Warning, std::string(), std::string(),
                                    "texture not cached: " + error});
+    return written;
 }
 
 } // namespace velvet

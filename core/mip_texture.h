@@ -42,11 +42,14 @@ struct MipTexture {
     /// Scene-linear mean RGBA of level 0 (the material table's value for slots the G-buffer
     /// cannot carry per pixel).
     glm::vec4 mean{1.0f};
+    /// Non-empty: level 0's bytes were left in this cache entry (MipLoadOptions::
+    /// leaveFinestInCache) and levels[0].bytes is empty; read it in bands (readMipCacheRows).
+    std::filesystem::path finestInCache;
     int width() const { return levels.empty() ? 0 : levels[0].width; }
     int height() const { return levels.empty() ? 0 : levels[0].height; }
-    std::uint64_t byteSize() const; ///< all levels
-    /// The largest level whose sides are both at most @p maxSide, decoded to scene-linear float
-    /// RGBA (means over an atlas region without touching level 0).
+    std::uint64_t byteSize() const; ///< all levels at their full size (held or not)
+    /// The largest level held in memory whose sides are both at most @p maxSide, decoded to
+    /// scene-linear float RGBA (means over an atlas region without touching level 0).
     Image linearLevel(int maxSide) const;
 };
 
@@ -62,6 +65,11 @@ struct MipLoadOptions {
     /// Write a fresh build to the cache before returning; false: the caller calls
     /// storeMipTexture() when it suits it (core/texture_loader.h: after the GPU has the levels).
     bool writeCache = true;
+    /// Leave level 0 in the cache entry instead of memory (MipTexture::finestInCache) where
+    /// there is one: a hit reads only the coarser levels, a fresh build is written first and
+    /// then lets level 0 go. The editor's uploads stream it in bands, so the CPU never holds the
+    /// whole chain while the GPU's storage for it exists (issue 16: a 4K map's peak <= 2x).
+    bool leaveFinestInCache = false;
 };
 
 /// What loadMipTexture() did and found.
@@ -95,7 +103,7 @@ MipLoadResult loadMipTexture(const std::filesystem::path& file, const std::strin
                              const MipLoadOptions& options = {});
 
 /// Writes a fresh build of @p result to its cache entry (nothing for a cache hit or without a
-/// cache); a failure becomes a warning in result.problems.
-void storeMipTexture(MipLoadResult& result);
+/// cache); a failure becomes a warning in result.problems. True when the entry was written.
+bool storeMipTexture(MipLoadResult& result);
 
 } // namespace velvet

@@ -26,8 +26,9 @@ TextureLoader::~TextureLoader() {
 
 std::shared_ptr<TextureJob> TextureLoader::request(const std::filesystem::path& file,
                                                    const std::string& colorSpace,
-                                                   TextureUsage usage) {
-    auto job = std::make_shared<TextureJob>(file, colorSpace, usage);
+                                                   TextureUsage usage, bool leaveFinestInCache) {
+    auto job = std::make_shared<TextureJob>(file, colorSpace, usage,
+                                            leaveFinestInCache && m_options.leaveFinestInCache);
     if (!m_async) {
         run(*job, /*deferCacheWrite=*/false);
         return job;
@@ -52,7 +53,9 @@ std::vector<Problem> TextureLoader::takeLateProblems() {
 
 void TextureLoader::run(TextureJob& job, bool deferCacheWrite) {
     MipLoadOptions options = m_options;
-    options.writeCache = !deferCacheWrite;
+    // Level 0 left in the cache needs the entry written before the levels are published.
+    options.leaveFinestInCache = job.m_leaveFinestInCache;
+    options.writeCache = !deferCacheWrite || options.leaveFinestInCache;
     MipLoadResult result =
         loadMipTexture(job.m_file, job.m_colorSpace, job.m_usage, m_colorManagement, options);
     if (result.decoded)
@@ -61,7 +64,7 @@ void TextureLoader::run(TextureJob& job, bool deferCacheWrite) {
         ++m_cacheHits;
     // What the cache write needs outlives the published result only as long as the write.
     MipLoadResult forCache;
-    if (deferCacheWrite && result.texture && !result.fromCache && !result.cacheKey.empty()) {
+    if (!options.writeCache && result.texture && !result.fromCache && !result.cacheKey.empty()) {
         forCache.texture = result.texture;
         forCache.cacheEntry = result.cacheEntry;
         forCache.cacheKey = result.cacheKey;

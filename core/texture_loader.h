@@ -3,8 +3,9 @@
 /// Loads GPU textures (core/mip_texture.h) off the drawing thread: a request returns at once
 /// with a job the caller polls (TextureJob::ready) at each frame, and a worker thread reads the
 /// on-disk cache or decodes and filters the file meanwhile. A fresh build is written to the
-/// cache after the job is published, so the writing never delays the picture. Synchronous
-/// loaders (headless rendering, tests) run each request on the caller's thread instead.
+/// cache after the job is published, so the writing never delays the picture, except when level
+/// 0 is to stay in the entry (MipLoadOptions::leaveFinestInCache): then the entry comes first.
+/// Synchronous loaders (headless rendering, tests) run each request on the caller's thread instead.
 /// No GL here: render/texture_set.h uploads what the jobs hand over.
 
 #include "core/mip_texture.h"
@@ -21,8 +22,10 @@ namespace velvet {
 /// One request: immutable inputs, and the result once ready() says so.
 class TextureJob {
 public:
-    TextureJob(std::filesystem::path file, std::string colorSpace, TextureUsage usage)
-        : m_file(std::move(file)), m_colorSpace(std::move(colorSpace)), m_usage(usage) {}
+    TextureJob(std::filesystem::path file, std::string colorSpace, TextureUsage usage,
+               bool leaveFinestInCache)
+        : m_file(std::move(file)), m_colorSpace(std::move(colorSpace)), m_usage(usage),
+          m_leaveFinestInCache(leaveFinestInCache) {}
     const std::filesystem::path& file() const { return m_file; }
     const std::string& colorSpace() const { return m_colorSpace; }
     TextureUsage usage() const { return m_usage; }
@@ -36,6 +39,7 @@ private:
     std::filesystem::path m_file;
     std::string m_colorSpace;
     TextureUsage m_usage;
+    bool m_leaveFinestInCache;
     std::atomic<bool> m_ready{false};
     MipLoadResult m_result;
 };
@@ -51,9 +55,12 @@ public:
     TextureLoader& operator=(const TextureLoader&) = delete;
 
     /// Queues @p file (in the resolved @p colorSpace). A job whose every holder has let go
-    /// before the worker reaches it is skipped.
+    /// before the worker reaches it is skipped. @p leaveFinestInCache false overrides the
+    /// options' MipLoadOptions::leaveFinestInCache for this job (a retry after a band of the
+    /// entry could not be read).
     std::shared_ptr<TextureJob> request(const std::filesystem::path& file,
-                                        const std::string& colorSpace, TextureUsage usage);
+                                        const std::string& colorSpace, TextureUsage usage,
+                                        bool leaveFinestInCache = true);
     /// Blocks until @p job is ready (headless rendering waits for every texture).
     void wait(const TextureJob& job);
     bool async() const { return m_async; }

@@ -1,5 +1,6 @@
 #include "render/graph_texture.h"
 
+#include "core/image_ops.h"
 #include "core/texture_ref.h"
 #include "render/shader_program.h"
 #include "render/texture_set.h"
@@ -9,6 +10,44 @@
 #include <vector>
 
 namespace velvet::render {
+namespace {
+
+/// Uploads @p image (1 to 4 channels, RRR for grey, alpha 1 when absent) into every level of
+/// @p texture, an RGBA16F 2D texture with the full mip chain allocated
+/// (mipLevelCount(width, height) levels): the levels of core::mipChain, filtered on the CPU
+/// through OpenImageIO (Blackman-Harris, the same filter for every platform and driver) rather
+/// than glGenerateTextureMipmap's unspecified box filter. Row 0 goes to t = 0. Needs a current
+/// context. (Material slots take core/mip_texture.h's cached levels: render/texture_set.cpp.)
+void uploadMipChain(unsigned texture, const Image& image) {
+    std::string error;
+    std::vector<Image> levels = mipChain(image, &error);
+    const int count = mipLevelCount(image.width, image.height);
+    if (int(levels.size()) != count) {
+        // mipChain refuses only empty or inconsistent images, which the cache never hands out;
+        // keep the texture complete regardless: level 0 and GPU-built levels.
+        levels.assign(1, image);
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    std::vector<float> rgba;
+    for (size_t level = 0; level < levels.size(); ++level) {
+        const Image& l = levels[level];
+        rgba.resize(size_t(l.width) * l.height * 4);
+        for (int y = 0; y < l.height; ++y)
+            for (int x = 0; x < l.width; ++x) {
+                const glm::vec4 c = l.rgba(x, y);
+                float* o = rgba.data() + (size_t(y) * l.width + x) * 4;
+                o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
+            }
+        glTextureSubImage2D(texture, GLint(level), 0, 0, l.width, l.height, GL_RGBA, GL_FLOAT,
+                            rgba.data());
+    }
+    if (int(levels.size()) != count)
+        glGenerateTextureMipmap(texture);
+}
+
+} // namespace
 
 graph::CompileOptions graphCompileOptions() {
     graph::CompileOptions options;

@@ -21,6 +21,9 @@ struct TextureUploadStats {
     std::uint64_t worstFrameBytes = 0; ///< the most one poll uploaded
     double worstFrameMs = 0;           ///< the longest one poll spent uploading (wall clock)
     int proxyFrames = 0;               ///< polls after which a texture showed only coarse levels
+    /// Of `bytes`, those read from the on-disk cache entry band by band as they were uploaded
+    /// (a large level 0 in asynchronous mode: core/mip_texture.h, leaveFinestInCache).
+    std::uint64_t streamedBytes = 0;
 };
 
 } // namespace velvet::render

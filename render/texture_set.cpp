@@ -1,7 +1,7 @@
 #include "render/texture_set.h"
 
 #include "core/color_management.h"
-#include "core/image_ops.h"
+#include "core/mip_cache.h"
 #include "core/mip_texture.h"
 #include "core/texture_cache.h"
 #include "core/texture_loader.h"
@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <epoxy/gl.h>
 #include <glm/common.hpp>
 #include <glm/trigonometric.hpp>
@@ -37,6 +38,8 @@ struct TextureSet::Entry {
     TextureFileStamp stamp;
     std::shared_ptr<TextureJob> job;  ///< the load in flight
     std::shared_ptr<MipTexture> data; ///< levels still to upload (each freed once uploaded)
+    std::vector<std::uint8_t> band;   ///< rows of level 0 read from the cache entry (streamed)
+    int bandRow = 0, bandRows = 0;    ///< which rows band holds
     int uploadLevel = -1;             ///< level being uploaded (coarsest first), -1 none
     int uploadRow = 0;                ///< rows of it done
     GLuint texture = 0;
@@ -49,35 +52,6 @@ struct TextureSet::Entry {
     std::vector<Problem> problems; ///< of the last load
     std::uint64_t bytesTotal = 0, bytesDone = 0;
 };
-
-void uploadMipChain(unsigned texture, const Image& image) {
-    std::string error;
-    std::vector<Image> levels = mipChain(image, &error);
-    const int count = mipLevelCount(image.width, image.height);
-    if (int(levels.size()) != count) {
-        // mipChain refuses only empty or inconsistent images, which the cache never hands out;
-        // keep the texture complete regardless: level 0 and GPU-built levels.
-        levels.assign(1, image);
-    }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-    std::vector<float> rgba;
-    for (size_t level = 0; level < levels.size(); ++level) {
-        const Image& l = levels[level];
-        rgba.resize(size_t(l.width) * l.height * 4);
-        for (int y = 0; y < l.height; ++y)
-            for (int x = 0; x < l.width; ++x) {
-                const glm::vec4 c = l.rgba(x, y);
-                float* o = rgba.data() + (size_t(y) * l.width + x) * 4;
-                o[0] = c.r, o[1] = c.g, o[2] = c.b, o[3] = c.a;
-            }
-        glTextureSubImage2D(texture, GLint(level), 0, 0, l.width, l.height, GL_RGBA, GL_FLOAT,
-                            rgba.data());
-    }
-    if (int(levels.size()) != count)
-        glGenerateTextureMipmap(texture);
-}
 
 namespace {
 
@@ -181,13 +155,18 @@ TextureLoader& TextureSet::loader() {
         MipLoadOptions options;
         options.maxTextureSide = m_maxSide;
         options.cacheDir = m_cacheDir;
+        // The editor streams a large level 0 from the cache entry in bands (upload());
+        // VELVET_TEXTURE_STREAMING=0 holds it in memory instead (`velvet bench --textures`
+        // measures both).
+        const char* streaming = std::getenv("VELVET_TEXTURE_STREAMING");
+        options.leaveFinestInCache = m_async && !(streaming && std::string(streaming) == "0");
         m_loader = std::make_unique<TextureLoader>(cm, options, m_async);
     }
     return *m_loader;
 }
 
-void TextureSet::startLoad(Entry& e) {
-    e.job = loader().request(e.file, e.colorSpace, e.usage);
+void TextureSet::startLoad(Entry& e, bool leaveFinestInCache) {
+    e.job = loader().request(e.file, e.colorSpace, e.usage, leaveFinestInCache);
 }
 
 void TextureSet::setMaterial(const Material& material, Problems* problems) {
@@ -300,12 +279,48 @@ bool TextureSet::takeFinished(Entry& e, Problems* problems) {
     e.data = r.texture;
     e.uploadLevel = int(t.levels.size()) - 1;
     e.uploadRow = 0;
+    e.bandRows = 0;
     e.bytesTotal = t.byteSize();
     e.bytesDone = 0;
     e.mean = t.mean;
     e.meanLevel = t.linearLevel(256);
     e.generation = m_generation;
     e.job.reset(); // the result's levels live on in e.data until uploaded
+    return true;
+}
+
+bool TextureSet::readBand(Entry& e, const MipLevel& l, std::uint64_t rowBytes, std::uint64_t fit) {
+    if (e.bandRows > 0 && e.uploadRow >= e.bandRow && e.uploadRow < e.bandRow + e.bandRows)
+        return true; // the rows are in the band read before
+    // Level 0 left in the cache entry (core/mip_texture.h) comes in bands of whole tiles, as many
+    // as the budget's rows (at most 8 MiB, even when the budget is unbounded: finish()), and
+    // is uploaded from the band over as many frames as the budget takes.
+    const std::uint64_t tile = kMipCacheTileSide;
+    const std::uint64_t cap = std::max<std::uint64_t>((std::uint64_t(8) << 20) / rowBytes, tile);
+    const int rows =
+        int(std::min<std::uint64_t>(std::clamp(fit / tile * tile, tile, cap / tile * tile),
+                                    std::uint64_t(l.height - e.uploadRow)));
+    e.band.resize(size_t(rowBytes) * size_t(rows));
+    std::string why;
+    if (!readMipCacheRows(e.data->finestInCache, *e.data, 0, e.uploadRow, rows, e.band.data(),
+                          &why)) {
+        // The entry went (a cache cleaned meanwhile) or broke: load the file again, this time
+        // with level 0 in memory; the coarse levels keep drawing meanwhile.
+        Problem p{Problem::Severity::Warning, e.file.string(), std::string(),
+                  "texture cache entry " + e.data->finestInCache.string() + " could not be read (" +
+                      why + "); loading the file again"};
+        e.problems.push_back(p);
+        m_problems.items.push_back(std::move(p));
+        e.data.reset();
+        e.uploadLevel = -1;
+        e.bandRows = 0;
+        std::vector<std::uint8_t>().swap(e.band);
+        startLoad(e, /*leaveFinestInCache=*/false);
+        return false;
+    }
+    e.bandRow = e.uploadRow;
+    e.bandRows = rows;
+    m_stats.streamedBytes += rowBytes * std::uint64_t(rows);
     return true;
 }
 
@@ -324,11 +339,17 @@ std::uint64_t TextureSet::upload(Entry& e, std::uint64_t budget, bool& becameVis
         std::uint64_t fit = (budget - spent) / rowBytes;
         if (fit == 0 && spent > 0)
             break;
-        const int rows =
-            int(std::clamp<std::uint64_t>(fit, 1, std::uint64_t(l.height - e.uploadRow)));
+        int rows = int(std::clamp<std::uint64_t>(fit, 1, std::uint64_t(l.height - e.uploadRow)));
+        const std::uint8_t* pixels = l.bytes.data() + std::uint64_t(e.uploadRow) * rowBytes;
+        if (l.bytes.empty() && !e.data->finestInCache.empty()) {
+            if (!readBand(e, l, rowBytes, fit))
+                break;
+            rows = std::min(rows, e.bandRow + e.bandRows - e.uploadRow);
+            pixels = e.band.data() + std::uint64_t(e.uploadRow - e.bandRow) * rowBytes;
+        }
         // Row 0 (the image's top) goes to t = 0, matching glTF's UV space (v = 0 at the top).
         glTextureSubImage2D(e.texture, e.uploadLevel, 0, e.uploadRow, l.width, rows, GL_RGBA, type,
-                            l.bytes.data() + std::uint64_t(e.uploadRow) * rowBytes);
+                            pixels);
         spent += rowBytes * std::uint64_t(rows);
         e.bytesDone += rowBytes * std::uint64_t(rows);
         e.uploadRow += rows;
@@ -347,8 +368,11 @@ std::uint64_t TextureSet::upload(Entry& e, std::uint64_t budget, bool& becameVis
         --e.uploadLevel;
         e.uploadRow = 0;
     }
-    if (e.uploadLevel < 0)
+    if (e.uploadLevel < 0) {
         e.data.reset(); // every level is on the GPU: the CPU copy goes
+        e.bandRows = 0;
+        std::vector<std::uint8_t>().swap(e.band);
+    }
     return spent;
 }
 

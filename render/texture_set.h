@@ -32,6 +32,7 @@
 
 namespace velvet {
 class ColorManagement;
+struct MipLevel;
 class TextureCache;
 class TextureLoader;
 } // namespace velvet
@@ -40,14 +41,6 @@ namespace velvet::render {
 
 struct GpuMaterial;
 struct LobeChannelMap;
-
-/// Uploads @p image (1 to 4 channels, RRR for grey, alpha 1 when absent) into every level of
-/// @p texture, an RGBA16F 2D texture with the full mip chain allocated
-/// (mipLevelCount(width, height) levels): the levels of core::mipChain, filtered on the CPU
-/// through OpenImageIO (Blackman-Harris, the same filter for every platform and driver) rather
-/// than glGenerateTextureMipmap's unspecified box filter. Row 0 goes to t = 0. Material slot and
-/// graph textures use it; needs a current context.
-void uploadMipChain(unsigned texture, const Image& image);
 
 /// A slot's UV transform (core/texture_ref.h) as the shader applies it: uv' = mat2(linear.xy,
 /// linear.zw) * uv + offset (columns), uniforms uTexUvLinear and uTexUvOffset of
@@ -136,9 +129,10 @@ private:
     TextureCache& cache();
     TextureLoader& loader();
     const ColorManagement& colorManagement();
-    void startLoad(Entry& entry);
+    void startLoad(Entry& entry, bool leaveFinestInCache = true);
     bool takeFinished(Entry& entry, Problems* problems);
     std::uint64_t upload(Entry& entry, std::uint64_t budget, bool& becameVisible);
+    bool readBand(Entry& entry, const MipLevel& level, std::uint64_t rowBytes, std::uint64_t fit);
     bool updateSlots(Problems* problems);
     void reportProblems(const Entry& entry, Problems& into) const;
     void dropEntries();

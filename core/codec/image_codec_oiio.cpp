@@ -3,6 +3,7 @@
 // nothing of velvet_core (a module cannot take the executable's symbols), so what it needs of
 // core's types is in their headers.
 #include "core/image_codec.h"
+#include "core/mip_cache.h"
 
 #include <algorithm>
 #include <cctype>
@@ -384,7 +385,7 @@ bool writeMipFile(const std::filesystem::path& path, const std::string& descript
         const MipLevel& level = levels[m];
         OIIO::ImageSpec spec(level.width, level.height, 4, type);
         // maketx's layout: 64x64 tiles, every level a MIP level of subimage 0.
-        spec.tile_width = spec.tile_height = 64;
+        spec.tile_width = spec.tile_height = kMipCacheTileSide;
         spec.tile_depth = 1;
         spec.channelnames = {"R", "G", "B", "A"};
         spec.alpha_channel = 3;
@@ -413,7 +414,7 @@ bool writeMipFile(const std::filesystem::path& path, const std::string& descript
 }
 
 bool readMipFile(const std::filesystem::path& path, std::string& description, bool& half,
-                 std::vector<MipLevel>& levels, std::string* why) {
+                 std::vector<MipLevel>& levels, int firstLevel, std::string* why) {
     auto failed = [&](const std::string& what) {
         if (why)
             *why = what;
@@ -437,6 +438,10 @@ bool readMipFile(const std::filesystem::path& path, std::string& description, bo
         MipLevel level;
         level.width = s.width;
         level.height = s.height;
+        if (m < firstLevel) { // its size only: the caller reads it in bands (readMipRows)
+            levels.push_back(std::move(level));
+            continue;
+        }
         level.bytes.resize(size_t(s.width) * size_t(s.height) * (half ? 8u : 4u));
         if (!in->read_image(0, m, 0, 4, top.format, level.bytes.data()) || in->has_error())
             return failed("mip level " + std::to_string(m) +
@@ -447,11 +452,41 @@ bool readMipFile(const std::filesystem::path& path, std::string& description, bo
     return true;
 }
 
+bool readMipRows(const std::filesystem::path& path, int level, int width, int y0, int rows,
+                 bool half, std::uint8_t* out, std::string* why) {
+    auto failed = [&](const std::string& what) {
+        if (why)
+            *why = what;
+        return false;
+    };
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path.string(), &config);
+    if (!in)
+        return failed("not a readable texture file (" + oiioMessage({}) + ")");
+    const OIIO::TypeDesc type = half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8;
+    if (in->spec().format != type)
+        return failed("level 0 is not of the expected sample type");
+    if (!in->seek_subimage(0, level))
+        return failed("has no mip level " + std::to_string(level));
+    const OIIO::ImageSpec& s = in->spec();
+    if (s.nchannels != 4 || s.width != width || y0 < 0 || rows < 1 || y0 + rows > s.height)
+        return failed("mip level " + std::to_string(level) + " is not the " +
+                      std::to_string(width) + "-pixel-wide RGBA level it was");
+    // Whole tiles: read_tiles takes tile-aligned bounds (or the image's edge).
+    if (!in->read_tiles(0, level, 0, s.width, y0, y0 + rows, 0, 1, 0, 4, type, out) ||
+        in->has_error())
+        return failed("mip level " + std::to_string(level) + " rows " + std::to_string(y0) + "-" +
+                      std::to_string(y0 + rows - 1) + " are truncated or corrupt (OpenImageIO: " +
+                      oiioMessage(in->geterror()) + ")");
+    return true;
+}
+
 } // namespace
 
-const ImageCodec kOiioCodec = {kImageCodecAbi, libraryVersion,  readInfo,   read,
-                               read8,          encodesToMemory, encode,     writeFile,
-                               resize,         writeMipFile,    readMipFile};
+const ImageCodec kOiioCodec = {kImageCodecAbi, libraryVersion,  readInfo,    read,
+                               read8,          encodesToMemory, encode,      writeFile,
+                               resize,         writeMipFile,    readMipFile, readMipRows};
 
 } // namespace velvet::codec
 

@@ -1,8 +1,9 @@
 // core/mip_texture, mip_cache, texture_loader (issue 16, "Textures at the sizes artists use"):
 // 8-bit files stay 8-bit (RGBA8 / SRGB8_ALPHA8), sRGB levels are filtered in scene-linear, the
 // chain is cached on disk keyed by the file's content as a tiled MIP-mapped TIFF (maketx's
-// layout), a damaged entry is rebuilt with a message naming it, the loader works off the
-// calling thread, and a 2048² map's load peaks under twice its GPU size.
+// layout), a damaged entry is rebuilt with a message naming it, a large level 0 can stay in the
+// entry and be read back in bands, the loader works off the calling thread, and a 2048² map's
+// load peaks under twice its GPU size.
 #include "core/color_management.h"
 #include "core/image.h"
 #include "core/image_ops.h"
@@ -258,6 +259,64 @@ private slots:
         const auto again = loader.request(file, srgb(), TextureUsage::Color);
         loader.wait(*again);
         QCOMPARE(loader.cacheHits(), std::uint64_t(1));
+    }
+
+    // MipLoadOptions::leaveFinestInCache: a map whose level 0 is over 4 MiB comes back without
+    // level 0's bytes, which the entry gives band by band (whole 64-row tiles), equal to a full
+    // load's; on a first build (the entry written first) and on a hit alike. A smaller map, or no
+    // cache, keeps level 0 in memory; a band outside the level or off the tiles is refused.
+    void largeLevelZeroStaysInTheEntry() {
+        const fs::path file = path("stream.png");
+        std::string error;
+        QVERIFY(writeImage(file, pattern(1280, 1000), PixelFormat::UInt8, &error));
+        const MipLoadResult full =
+            loadMipTexture(file, srgb(), TextureUsage::Color, m_cm, options("c9"));
+        QVERIFY(full.texture && full.texture->finestInCache.empty());
+        const std::vector<std::uint8_t>& expected = full.texture->levels[0].bytes;
+        QCOMPARE(expected.size(), size_t(1280 * 1000 * 4));
+        for (const char* cache : {"c9", "c10"}) { // c9: a hit; c10: a first build
+            MipLoadOptions o = options(cache);
+            o.leaveFinestInCache = true;
+            o.writeCache = false; // the entry is written all the same: level 0 lives there
+            const MipLoadResult r = loadMipTexture(file, srgb(), TextureUsage::Color, m_cm, o);
+            QVERIFY(r.texture);
+            QCOMPARE(r.fromCache, std::string(cache) == "c9");
+            const MipTexture& t = *r.texture;
+            QCOMPARE(t.finestInCache, r.cacheEntry);
+            QVERIFY(t.levels[0].bytes.empty());
+            QCOMPARE(t.width(), 1280);
+            QCOMPARE(t.byteSize(), full.texture->byteSize());
+            QVERIFY(t.levels[1].bytes == full.texture->levels[1].bytes);
+            QVERIFY(t.linearLevel(256).width == 160); // the level of 160x125, not level 0
+            std::vector<std::uint8_t> rows;
+            for (int y0 = 0; y0 < 1000; y0 += 192) { // three tiles a band; the last one short
+                const int n = std::min(192, 1000 - y0);
+                std::vector<std::uint8_t> band(size_t(1280) * size_t(n) * 4);
+                QVERIFY2(readMipCacheRows(t.finestInCache, t, 0, y0, n, band.data(), &error),
+                         error.c_str());
+                rows.insert(rows.end(), band.begin(), band.end());
+            }
+            QVERIFY(rows == expected);
+            std::vector<std::uint8_t> band(size_t(1280) * 64 * 4);
+            QVERIFY(!readMipCacheRows(t.finestInCache, t, 0, 32, 64, band.data(), &error));
+            QVERIFY(!readMipCacheRows(t.finestInCache, t, 0, 960, 64, band.data(), &error));
+            QVERIFY2(error.find("level 0") != std::string::npos, error.c_str());
+        }
+        // 1024² RGBA8 is 4 MiB: kept in memory, from a hit too.
+        const fs::path small = path("small.png");
+        QVERIFY(writeImage(small, pattern(1024, 1024), PixelFormat::UInt8, &error));
+        MipLoadOptions o = options("c9");
+        o.leaveFinestInCache = true;
+        for (int pass = 0; pass < 2; ++pass) {
+            const MipLoadResult r = loadMipTexture(small, srgb(), TextureUsage::Color, m_cm, o);
+            QCOMPARE(r.fromCache, pass == 1);
+            QVERIFY(r.texture->finestInCache.empty());
+            QCOMPARE(r.texture->levels[0].bytes.size(), size_t(1024 * 1024 * 4));
+        }
+        o.useCache = false;
+        const MipLoadResult uncached = loadMipTexture(file, srgb(), TextureUsage::Color, m_cm, o);
+        QVERIFY(uncached.texture->finestInCache.empty());
+        QVERIFY(uncached.texture->levels[0].bytes == expected);
     }
 
     // Peak memory of a first load of a 2048² RGBA8 map (no float copy): under twice its GPU

@@ -2,7 +2,8 @@
 // on a worker thread while frames keep coming; each frame uploads at most the budget (a count
 // of bytes, not a time), coarsest level first, so a coarse proxy draws before the full map; the
 // completed image equals the synchronous one and a headless render's; one file in two slots is
-// decoded once.
+// decoded once; its level 0 streams from the mip cache's entry (loaded from the file again when
+// the entry goes mid-stream).
 #include "core/image.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
@@ -42,6 +43,7 @@ class TestRenderTextureLoading : public QObject {
     Q_OBJECT
     QTemporaryDir m_dir;
     fs::path m_map;
+    Image m_synchronous; ///< the map's frame, rendered synchronously
 
     Scene scene() const {
         Scene s;
@@ -126,6 +128,8 @@ private slots:
               frames, parameterFrames, up.proxyFrames,
               static_cast<unsigned long long>(up.worstFrameBytes), up.worstFrameMs);
         QCOMPARE(up.bytes, bytes);
+        // Level 0 (16 MiB) came from the cache entry band by band, never whole in memory.
+        QCOMPARE(up.streamedBytes, std::uint64_t(2048) * 2048 * 4);
         QVERIFY(up.worstFrameBytes <= kBudget);
         QVERIFY(std::uint64_t(up.frames) >= bytes / kBudget);
         QVERIFY(up.proxyFrames > 0);
@@ -143,6 +147,47 @@ private slots:
         QVERIFY2(render::renderSceneOffscreen(scene(), fs, &headless, nullptr, &error),
                  error.c_str());
         QVERIFY(maxDifference(headless, synchronous) < 1e-4f);
+        m_synchronous = synchronous;
+    }
+
+    // The cache entry level 0 streams from goes mid-stream (a cache cleaned by hand): a warning
+    // names the entry, the file is loaded again with level 0 in memory, the coarse levels draw
+    // meanwhile, and the finished image is the synchronous one.
+    void anEntryGoneMidStreamLoadsTheFileAgain() {
+        QVERIFY(!m_synchronous.pixels.empty());
+        std::string error;
+        render::OffscreenTarget target;
+        QVERIFY(target.resize(kSize, kSize, &error));
+        render::FrameSettings fs;
+        fs.width = fs.height = kSize;
+        render::Renderer renderer;
+        QVERIFY2(renderer.initialize(&error), error.c_str());
+        renderer.setAsyncTextures(true);
+        renderer.setTextureUploadBudget(kBudget);
+        renderer.setScene(scene());
+        renderer.finishEnvironment();
+        int frames = 0;
+        while (renderer.textureUploadStats().streamedBytes == 0 && frames++ < 20000)
+            QVERIFY(renderer.render(fs, target.framebuffer(), &error));
+        QVERIFY(renderer.textureProgress().loading > 0);
+        const fs::path cache = fs::path(m_dir.path().toStdString()) / "cache";
+        QVERIFY(fs::remove_all(cache) > 0);
+        Problems warnings;
+        while (renderer.textureProgress().loading > 0 && frames++ < 40000) {
+            QVERIFY(renderer.render(fs, target.framebuffer(), &error));
+            for (Problem& p : renderer.takeWarnings().items)
+                warnings.items.push_back(std::move(p));
+        }
+        QVERIFY(!warnings.items.empty());
+        const std::string text = warnings.items[0].toString();
+        qInfo("%s", text.c_str());
+        QVERIFY2(text.find("could not be read") != std::string::npos, text.c_str());
+        QVERIFY2(text.find("red.png") != std::string::npos, text.c_str());
+        QCOMPARE(renderer.textureDecodes(), std::uint64_t(1)); // the hit, then the file again
+        QCOMPARE(renderer.textureCacheHits(), std::uint64_t(1));
+        QVERIFY(renderer.render(fs, target.framebuffer(), &error));
+        const float diff = maxDifference(renderer.readLinear(), m_synchronous);
+        QVERIFY2(diff < 1e-4f, qPrintable(QString::number(diff)));
     }
 
     // A missing file in asynchronous mode: the problem comes through takeWarnings(), naming
