@@ -292,4 +292,18 @@ Image extractRegion(const Image& atlas, const AtlasRegion& region) {
     return out;
 }
 
+glm::vec4 regionMean(const Image& level, const AtlasRegion& r, int width, int height) {
+    const Image& m = level;
+    const double sx = double(m.width) / width, sy = double(m.height) / height;
+    const int x0 = std::clamp(int(std::floor(r.x * sx)), 0, m.width - 1);
+    const int y0 = std::clamp(int(std::floor(r.y * sy)), 0, m.height - 1);
+    const int x1 = std::clamp(int(std::ceil((r.x + r.width) * sx)), x0 + 1, m.width);
+    const int y1 = std::clamp(int(std::ceil((r.y + r.height) * sy)), y0 + 1, m.height);
+    glm::dvec4 sum(0.0);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            sum += glm::dvec4(m.rgba(x, y));
+    return glm::vec4(sum / double((x1 - x0) * (y1 - y0)));
+}
+
 } // namespace velvet

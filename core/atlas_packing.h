@@ -57,4 +57,9 @@ bool packAtlas(std::span<const Image> images, const AtlasOptions& options, Image
 /// The texels of @p region of @p atlas as an image of their own (e.g. to unpack an atlas).
 Image extractRegion(const Image& atlas, const AtlasRegion& region);
 
+/// The mean RGBA of @p region (texels of a @p width x @p height atlas) read from @p level, a
+/// smaller version of that atlas (exact when it is the atlas itself; otherwise the mean of the
+/// level's texels under the region's footprint).
+glm::vec4 regionMean(const Image& level, const AtlasRegion& region, int width, int height);
+
 } // namespace velvet

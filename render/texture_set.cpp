@@ -1,5 +1,6 @@
 #include "render/texture_set.h"
 
+#include "core/atlas_packing.h"
 #include "core/color_management.h"
 #include "core/mip_cache.h"
 #include "core/mip_texture.h"
@@ -420,17 +421,7 @@ bool TextureSet::updateSlots(Problems* problems) {
         }
         // The region's mean from a level of at most 256 px (exact for maps that small; for a
         // larger atlas, the mean of the filtered level over the region's footprint in it).
-        const Image& m = e->meanLevel;
-        const double sx = double(m.width) / w, sy = double(m.height) / h;
-        const int x0 = std::clamp(int(std::floor(r.x * sx)), 0, m.width - 1);
-        const int y0 = std::clamp(int(std::floor(r.y * sy)), 0, m.height - 1);
-        const int x1 = std::clamp(int(std::ceil((r.x + r.width) * sx)), x0 + 1, m.width);
-        const int y1 = std::clamp(int(std::ceil((r.y + r.height) * sy)), y0 + 1, m.height);
-        glm::dvec4 sum(0.0);
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x)
-                sum += glm::dvec4(m.rgba(x, y));
-        s.mean = glm::vec4(sum / double((x1 - x0) * (y1 - y0)));
+        s.mean = regionMean(e->meanLevel, r, w, h);
     }
     return changed;
 }

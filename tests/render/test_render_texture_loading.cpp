@@ -13,6 +13,7 @@
 #include <QtTest>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 using namespace velvet;
 namespace fs = std::filesystem;
@@ -43,7 +44,14 @@ class TestRenderTextureLoading : public QObject {
     Q_OBJECT
     QTemporaryDir m_dir;
     fs::path m_map;
-    Image m_synchronous; ///< the map's frame, rendered synchronously
+    Image m_synchronous;                               ///< the map's frame, rendered synchronously
+    std::unique_ptr<render::OffscreenTarget> m_target; ///< kSize², every case draws into it
+
+    static render::FrameSettings frameSettings() {
+        render::FrameSettings fs;
+        fs.width = fs.height = kSize;
+        return fs;
+    }
 
     Scene scene() const {
         Scene s;
@@ -63,6 +71,8 @@ private slots:
     void initTestCase() {
         std::string error;
         QVERIFY2(test::headlessContext(&error), error.c_str());
+        m_target = std::make_unique<render::OffscreenTarget>();
+        QVERIFY(m_target->resize(kSize, kSize, &error));
         qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
         // A red map with a fine checker in green: level 0 differs from its coarse levels.
         Image map(2048, 2048, 3);
@@ -75,12 +85,12 @@ private slots:
         QVERIFY2(writeImage(m_map, map, PixelFormat::UInt8, &error), error.c_str());
     }
 
+    void cleanupTestCase() { m_target.reset(); }
+
     void framesKeepComingWhileAMapLoads() {
         std::string error;
-        render::OffscreenTarget target;
-        QVERIFY(target.resize(kSize, kSize, &error));
-        render::FrameSettings fs;
-        fs.width = fs.height = kSize;
+        render::OffscreenTarget& target = *m_target;
+        const render::FrameSettings fs = frameSettings();
 
         // The synchronous image first (the default: update() returns with the map uploaded).
         Image synchronous;
@@ -156,10 +166,8 @@ private slots:
     void anEntryGoneMidStreamLoadsTheFileAgain() {
         QVERIFY(!m_synchronous.pixels.empty());
         std::string error;
-        render::OffscreenTarget target;
-        QVERIFY(target.resize(kSize, kSize, &error));
-        render::FrameSettings fs;
-        fs.width = fs.height = kSize;
+        render::OffscreenTarget& target = *m_target;
+        const render::FrameSettings fs = frameSettings();
         render::Renderer renderer;
         QVERIFY2(renderer.initialize(&error), error.c_str());
         renderer.setAsyncTextures(true);
@@ -194,10 +202,8 @@ private slots:
     // the file and the slot, and the parameter value stays.
     void missingFileIsReportedLater() {
         std::string error;
-        render::OffscreenTarget target;
-        QVERIFY(target.resize(kSize, kSize, &error));
-        render::FrameSettings fs;
-        fs.width = fs.height = kSize;
+        render::OffscreenTarget& target = *m_target;
+        const render::FrameSettings fs = frameSettings();
         render::Renderer renderer;
         QVERIFY2(renderer.initialize(&error), error.c_str());
         renderer.setAsyncTextures(true);
