@@ -44,25 +44,29 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // occlusion took back the light a crease bounces and the diffuse irradiance the share of a bent
 // normal's lobe above the face (BENCHMARKS.md, "Interreflection in the occlusion"); and again
 // after the reference stratified its first vertex (path_sampling.h): less of its own noise
-// counts as ΔE, which took ceramic, linen and silk under the HDRI off the list.
+// counts as ΔE, which took ceramic, linen and silk under the HDRI off the list; and on 2026-12-05
+// after image-based light narrowed the reflected lobe at grazing angles (reflectedRadiance in
+// common_environment.glsl): the metals' rows fell by a fifth to a half, and ceramic under the HDRI,
+// 1.94 before, now sits on the goal's line (2.00 here, 1.89 at 48x48 and 512 samples).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 8.79, 19.35},
     {"brushed_aluminium", kSphere, "three-point", 5.30, 12.31},
-    {"copper", kSphere, "environment", 4.38, 11.73},
-    {"copper", kSphere, "three-point", 3.15, 9.21},
+    {"copper", kSphere, "environment", 2.63, 8.12},
+    {"copper", kSphere, "three-point", 1.76, 5.78},
+    {"ceramic", kSphere, "environment", 2.00, 4.30},
     {"cotton", kSphere, "environment", 2.56, 5.85},
-    {"crushed_velvet", kSphere, "environment", 2.08, 7.44},
+    {"crushed_velvet", kSphere, "environment", 2.08, 6.04},
     {"denim", kSphere, "three-point", 2.51, 5.99},
-    {"gold", kSphere, "environment", 4.04, 11.70},
-    {"gold", kSphere, "three-point", 3.05, 8.61},
+    {"gold", kSphere, "environment", 3.20, 9.37},
+    {"gold", kSphere, "three-point", 2.35, 7.14},
     {"terry", kSphere, "environment", 2.76, 6.08},
     {"tweed", kSphere, "environment", 2.64, 5.77},
     {"tweed", kSphere, "three-point", 2.80, 6.65},
     {"wool", kSphere, "environment", 2.61, 7.36},
-    {"plastic", kBall, "environment", 2.36, 6.71},
-    {"plastic", kBall, "three-point", 2.71, 8.36},
-    {"gold", kBall, "environment", 8.84, 36.60},
-    {"gold", kBall, "three-point", 11.13, 56.61},
+    {"plastic", kBall, "environment", 2.31, 6.76},
+    {"plastic", kBall, "three-point", 2.71, 8.32},
+    {"gold", kBall, "environment", 8.36, 35.00},
+    {"gold", kBall, "three-point", 10.74, 56.88},
 };
 
 const Miss* knownMiss(const ReferenceTableCase& c) {
