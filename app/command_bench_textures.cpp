@@ -11,6 +11,7 @@
 #include "render/headless_context.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
+#include "render/texture_storage_thread.h"
 
 #include <algorithm>
 #include <chrono>
@@ -146,7 +147,7 @@ int runTextureBench(bool json, bool quick) {
         // map loads (cache cold), then the peak memory of the whole load and upload; level 0
         // streamed from the cache entry (the default) and, beside it, held whole in memory
         // until uploaded (VELVET_TEXTURE_STREAMING=0, prefix async_whole_).
-        const auto measureAsync = [&](const std::string& prefix) -> bool {
+        const auto measureAsync = [&](const std::string& prefix, bool storageThread) -> bool {
             render::Renderer renderer;
             render::OffscreenTarget target;
             if (!renderer.initialize(&error) || !target.resize(320, 180, &error)) {
@@ -154,6 +155,14 @@ int runTextureBench(bool json, bool quick) {
                 return false;
             }
             renderer.setAsyncTextures(true);
+            if (storageThread) { // as the editor: storage made on a thread of its own
+                auto worker = render::HeadlessContext::workerSharingCurrent(&error);
+                if (!worker) {
+                    std::cerr << "velvet bench: " << error << "\n";
+                    return false;
+                }
+                renderer.setTextureStorageContext(std::move(worker));
+            }
             Scene scene;
             renderer.setScene(scene);
             renderer.finishEnvironment();
@@ -209,12 +218,15 @@ int runTextureBench(bool json, bool quick) {
             put(prefix + "peak_mb", peak);
             put(prefix + "peak_vs_gpu_size", peak / (gpuBytes / (1 << 20)));
             put(prefix + "decodes_for_two_slots", double(renderer.textureDecodes()));
+            put(prefix + "storage_made_off_thread", up.storageOffThread);
             return true;
         };
         setenv("VELVET_TEXTURE_STREAMING", "0", 1);
-        const bool whole = measureAsync("async_whole_");
+        const bool whole = measureAsync("async_whole_", false);
         unsetenv("VELVET_TEXTURE_STREAMING");
-        if (!whole || !measureAsync("async_"))
+        // The storage allocated on the drawing thread (async_same_thread_) and, as the editor
+        // does, on a thread of its own (async_).
+        if (!whole || !measureAsync("async_same_thread_", false) || !measureAsync("async_", true))
             return RenderFailure;
     }
     std::filesystem::remove_all(dir);

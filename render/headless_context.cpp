@@ -1,5 +1,7 @@
 #include "render/headless_context.h"
 
+#include "render/texture_storage_thread.h"
+
 #include <cstring>
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -191,6 +193,81 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(std::string* error) {
     if (epoxy_gl_version() < 45)
         return fail("OpenGL 4.5 is needed, the context is " + d.version + " (" + d.renderer + ")");
     return ctx;
+}
+
+namespace {
+
+// A worker's context on the drawing context's display, counted among the display's users so
+// that the drawing context's end does not terminate it under the worker.
+class EglWorkerContext final : public WorkerGlContext {
+public:
+    EglWorkerContext(EGLDisplay display, EGLContext context)
+        : m_display(display), m_context(context) {
+        const std::lock_guard<std::mutex> lock(displayMutex());
+        ++displayUsers()[m_display];
+    }
+    ~EglWorkerContext() override {
+        if (eglGetCurrentContext() == m_context)
+            eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(m_display, m_context);
+        const std::lock_guard<std::mutex> lock(displayMutex());
+        if (--displayUsers()[m_display] <= 0) {
+            displayUsers().erase(m_display);
+            eglTerminate(m_display);
+        }
+    }
+    bool makeCurrent(std::string* error) override {
+        // The bound API is per thread (EGL 1.5, 3.7).
+        if (eglBindAPI(EGL_OPENGL_API) &&
+            eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, m_context))
+            return true;
+        if (error)
+            *error = "eglMakeCurrent failed for the worker context (" +
+                     eglErrorName(eglGetError()) + ")";
+        return false;
+    }
+
+private:
+    EGLDisplay m_display;
+    EGLContext m_context;
+};
+
+} // namespace
+
+std::unique_ptr<WorkerGlContext> HeadlessContext::workerSharingCurrent(std::string* error) {
+    const EGLDisplay display = eglGetCurrentDisplay();
+    const EGLContext shared = eglGetCurrentContext();
+    if (display == EGL_NO_DISPLAY || shared == EGL_NO_CONTEXT) {
+        if (error)
+            *error = "headless OpenGL: no EGL context is current to share with";
+        return nullptr;
+    }
+    // The same config as the shared context's (EGL 1.5, 3.7.1: a share group needs compatible
+    // contexts); none when it was made without one (EGL_KHR_no_config_context).
+    EGLint configId = 0;
+    eglQueryContext(display, shared, EGL_CONFIG_ID, &configId);
+    EGLConfig config = nullptr;
+    if (configId > 0) {
+        const EGLint attribs[] = {EGL_CONFIG_ID, configId, EGL_NONE};
+        EGLint count = 0;
+        if (!eglChooseConfig(display, attribs, &config, 1, &count) || count < 1)
+            config = nullptr;
+    }
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_NONE};
+    const EGLContext context = eglCreateContext(display, config, shared, contextAttribs);
+    if (context == EGL_NO_CONTEXT) {
+        if (error)
+            *error = "headless OpenGL: cannot create a worker context sharing the current one (" +
+                     eglErrorName(eglGetError()) + ")";
+        return nullptr;
+    }
+    return std::make_unique<EglWorkerContext>(display, context);
 }
 
 bool HeadlessContext::makeCurrent() {

@@ -8,6 +8,8 @@
 
 namespace velvet::render {
 
+class WorkerGlContext;
+
 class HeadlessContext {
 public:
     /// Creates and makes current a GL 4.5 core context; nullptr + message when none can be made.
@@ -16,6 +18,10 @@ public:
     bool makeCurrent();
     /// Whether any EGL context is current on this thread (renderSceneOffscreen reuses it).
     static bool isAnyContextCurrent();
+    /// A context in the share group of the EGL context current on this thread, for a worker
+    /// thread to make current (TextureStorageThread); nullptr + message when none is current or
+    /// none can be made.
+    static std::unique_ptr<WorkerGlContext> workerSharingCurrent(std::string* error);
 
     /// GL_VENDOR, GL_RENDERER, GL_VERSION of the context, and the EGL platform used.
     std::string vendor() const;

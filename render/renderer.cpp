@@ -2,6 +2,7 @@
 
 #include "render/gbuffer_layout.h"
 #include "render/renderer_impl.h"
+#include "render/texture_storage_thread.h"
 
 #include <epoxy/gl.h>
 
@@ -194,6 +195,16 @@ void Renderer::setAsyncTextures(bool async) {
     if (async == d.textures.async())
         return;
     d.textures.setAsync(async);
+    d.dropSplitTextures();
+    if (d.initialized) {
+        d.refreshTextureSlots(nullptr);
+        d.uploadMaterial();
+    }
+}
+
+void Renderer::setTextureStorageContext(std::unique_ptr<WorkerGlContext> context) {
+    Impl& d = *m_impl;
+    d.textures.setStorageContext(std::move(context));
     d.dropSplitTextures();
     if (d.initialized) {
         d.refreshTextureSlots(nullptr);

@@ -25,6 +25,7 @@ class TextureCache;
 namespace velvet::render {
 
 class PostChainRenderer;
+class WorkerGlContext;
 
 /// Directional lights the lighting pass draws (MAX_LIGHTS in the generated render_interface.glsl);
 /// update() with ScenePart::Lights reports each one past this as a warning naming its JSON path
@@ -345,6 +346,10 @@ public:
     /// textureProgress().loading > 0; load problems come through takeWarnings().
     /// @{
     void setAsyncTextures(bool async);
+    /// A context in this renderer's share group for a thread that makes large textures'
+    /// storage, so that no frame waits while the driver allocates it (TextureSet::
+    /// setStorageContext; HeadlessContext::workerSharingCurrent, or the editor's own).
+    void setTextureStorageContext(std::unique_ptr<WorkerGlContext> context);
     /// @}
 
     /// @name The mesh's visibility from itself (render/mesh_visibility.h)

@@ -24,6 +24,8 @@ struct TextureUploadStats {
     /// Of `bytes`, those read from the on-disk cache entry band by band as they were uploaded
     /// (a large level 0 in asynchronous mode: core/mip_texture.h, leaveFinestInCache).
     std::uint64_t streamedBytes = 0;
+    /// Textures whose storage was made on the storage thread (TextureSet::setStorageContext).
+    int storageOffThread = 0;
 };
 
 } // namespace velvet::render

@@ -39,6 +39,9 @@ class TextureLoader;
 
 namespace velvet::render {
 
+class TextureStorageThread;
+class WorkerGlContext;
+
 struct GpuMaterial;
 struct LobeChannelMap;
 
@@ -74,6 +77,11 @@ public:
     /// in 8 frames; a 16 MiB copy measured 3-20 ms on llvmpipe, idle).
     void setUploadBudget(std::uint64_t bytes) { m_budget = bytes; }
     std::uint64_t uploadBudget() const { return m_budget; }
+    /// A context sharing objects with the drawing one, for a thread that makes large textures'
+    /// storage in asynchronous mode (render/texture_storage_thread.h), so that no frame waits
+    /// for llvmpipe to zero-fill it. Without one (the default) the drawing thread allocates.
+    /// Drops the textures.
+    void setStorageContext(std::unique_ptr<WorkerGlContext> context);
     /// The on-disk mip cache's folder (empty: core::defaultMipCacheDir()). Drops the textures.
     void setCacheDir(std::filesystem::path dir);
 
@@ -131,6 +139,10 @@ private:
     const ColorManagement& colorManagement();
     void startLoad(Entry& entry, bool leaveFinestInCache = true);
     bool takeFinished(Entry& entry, Problems* problems);
+    /// The storage thread's texture for @p entry once it is made (true), or false while it is not
+    /// (@p wait: until it is).
+    bool takeStorage(Entry& entry, bool wait);
+    void releaseTexture(Entry& entry);
     std::uint64_t upload(Entry& entry, std::uint64_t budget, bool& becameVisible);
     bool readBand(Entry& entry, const MipLevel& level, std::uint64_t rowBytes, std::uint64_t fit);
     bool updateSlots(Problems* problems);
@@ -140,6 +152,10 @@ private:
     std::shared_ptr<const ColorManagement> m_colorManagement;
     std::unique_ptr<TextureCache> m_cache;
     std::unique_ptr<TextureLoader> m_loader;
+    /// Storage of at least this many bytes (with mips) is made off the drawing thread: a 1024²
+    /// RGBA8 chain and larger.
+    static constexpr std::uint64_t kOffThreadStorageBytes = std::uint64_t(4) << 20;
+    std::unique_ptr<TextureStorageThread> m_storageThread;
     std::unique_ptr<std::array<Slot, kTextureSlotCount>> m_slots;
     std::unique_ptr<std::map<std::string, Entry>> m_entries;
     Problems m_problems;

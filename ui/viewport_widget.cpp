@@ -5,6 +5,7 @@
 #include "render/camera.h"
 #include "render/offscreen.h"
 #include "ui/texture_file_watcher.h"
+#include "ui/worker_gl_context.h"
 
 #include <QCoreApplication>
 #include <QDropEvent>
@@ -340,6 +341,10 @@ void ViewportWidget::initializeGL() {
     // Texture files load on a worker thread and upload a bounded slice a frame: the window
     // keeps drawing (parameter value, then a coarse proxy) while a 4K map loads (issue 16).
     renderer->setAsyncTextures(true);
+    // ... and a large texture's storage is made on a thread of its own, in this context's share
+    // group, so that no frame waits while the driver zero-fills it
+    // (render/texture_storage_thread.h).
+    renderer->setTextureStorageContext(std::make_unique<WorkerGlContext>(context));
     renderer->setAsyncMeshBake(true);
     m_renderer = std::move(renderer);
     m_pendingParts = ScenePart::All; // a new renderer has none of the scene

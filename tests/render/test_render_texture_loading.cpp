@@ -3,10 +3,13 @@
 // of bytes, not a time), coarsest level first, so a coarse proxy draws before the full map; the
 // completed image equals the synchronous one and a headless render's; one file in two slots is
 // decoded once; its level 0 streams from the mip cache's entry (loaded from the file again when
-// the entry goes mid-stream).
+// the entry goes mid-stream); and a large texture's storage is made on a thread of its own, in a
+// context sharing the drawing one's objects (render/texture_storage_thread.h).
 #include "core/image.h"
+#include "render/headless_context.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
+#include "render/texture_storage_thread.h"
 #include "render_test_util.h"
 
 #include <QTemporaryDir>
@@ -158,6 +161,79 @@ private slots:
                  error.c_str());
         QVERIFY(maxDifference(headless, synchronous) < 1e-4f);
         m_synchronous = synchronous;
+    }
+
+    // The 2048² map's storage (22 MiB with mips) is made on the storage thread: frames keep
+    // coming meanwhile, the finished image is the synchronous one, and a renderer dropped while
+    // its storage is still being made frees it (no leak, no crash).
+    void storageIsMadeOffTheDrawingThread() {
+        QVERIFY(!m_synchronous.pixels.empty()); // framesKeepComingWhileAMapLoads ran first
+        std::string error;
+        const render::FrameSettings fs = frameSettings();
+        {
+            render::Renderer renderer;
+            QVERIFY2(renderer.initialize(&error), error.c_str());
+            renderer.setAsyncTextures(true);
+            auto worker = render::HeadlessContext::workerSharingCurrent(&error);
+            QVERIFY2(worker, error.c_str());
+            renderer.setTextureStorageContext(std::move(worker));
+            renderer.setScene(scene());
+            renderer.finishEnvironment();
+            int frames = 0;
+            while (renderer.textureProgress().loading > 0 && frames < 20000) {
+                QVERIFY(renderer.render(fs, m_target->framebuffer(), &error));
+                ++frames;
+            }
+            QCOMPARE(renderer.textureUploadStats().storageOffThread, 1);
+            QVERIFY(renderer.render(fs, m_target->framebuffer(), &error));
+            const float diff = maxDifference(renderer.readLinear(), m_synchronous);
+            QVERIFY2(diff < 1e-4f, qPrintable(QString::number(diff)));
+        }
+        {
+            render::Renderer renderer;
+            QVERIFY2(renderer.initialize(&error), error.c_str());
+            renderer.setAsyncTextures(true);
+            renderer.setTextureStorageContext(
+                render::HeadlessContext::workerSharingCurrent(&error));
+            renderer.setScene(scene());
+            for (int i = 0; i < 3; ++i)
+                QVERIFY(renderer.render(fs, m_target->framebuffer(), &error));
+        } // dropped with the storage perhaps in flight: abandoned, freed by whoever holds it
+    }
+
+    // A worker context that cannot be made current: the storage is made on the drawing thread
+    // after all, and the map still loads.
+    void aWorkerThatCannotStartFallsBack() {
+        struct Broken final : render::WorkerGlContext {
+            bool makeCurrent(std::string* error) override {
+                *error = "no context here";
+                return false;
+            }
+        };
+        render::TextureStorageThread thread(std::make_unique<Broken>());
+        auto pending = thread.allocate({16, 16, 1, 0x8058 /* GL_RGBA8 */});
+        unsigned texture = 0;
+        std::string why;
+        QCOMPARE(render::TextureStorageThread::wait(*pending, texture, &why),
+                 render::TextureStorageThread::State::Failed);
+        QCOMPARE(why, std::string("no context here"));
+        QCOMPARE(texture, 0u);
+
+        std::string error;
+        render::Renderer renderer;
+        QVERIFY2(renderer.initialize(&error), error.c_str());
+        renderer.setAsyncTextures(true);
+        renderer.setTextureStorageContext(std::make_unique<Broken>());
+        renderer.setScene(scene());
+        renderer.finishEnvironment();
+        int frames = 0;
+        while (renderer.textureProgress().loading > 0 && frames < 20000) {
+            QVERIFY(renderer.render(frameSettings(), m_target->framebuffer(), &error));
+            ++frames;
+        }
+        QCOMPARE(renderer.textureUploadStats().storageOffThread, 0);
+        QVERIFY(renderer.render(frameSettings(), m_target->framebuffer(), &error));
+        QVERIFY(maxDifference(renderer.readLinear(), m_synchronous) < 1e-4f);
     }
 
     // The cache entry level 0 streams from goes mid-stream (a cache cleaned by hand): a warning

@@ -115,6 +115,9 @@ private slots:
                  qPrintable(QStringLiteral("%1 of %2 ms").arg(dropMs).arg(loadMs)));
         QVERIFY(framesWhileLoading >= 3);
         QVERIFY(up2.worstFrameBytes <= (std::uint64_t(8) << 20));
+        // Its storage (22 MiB) was made on the storage thread, in a Qt context of the
+        // viewport's share group (ui/worker_gl_context.h), not by a frame.
+        QCOMPARE(up2.storageOffThread, 1);
         QTRY_VERIFY(label->isHidden());
         // Complete: the map is drawn.
         const QImage image = viewport->grabFramebuffer();
