@@ -70,6 +70,29 @@ std::map<EGLDisplay, int>& displayUsers() {
     return users;
 }
 
+// Counts one more user of @p display (a context on it).
+void retainDisplay(EGLDisplay display) {
+    const std::lock_guard<std::mutex> lock(displayMutex());
+    ++displayUsers()[display];
+}
+// One user fewer; the last terminates the display.
+void releaseDisplay(EGLDisplay display) {
+    const std::lock_guard<std::mutex> lock(displayMutex());
+    if (--displayUsers()[display] <= 0) {
+        displayUsers().erase(display);
+        eglTerminate(display);
+    }
+}
+
+// Desktop OpenGL 4.5, core profile: the drawing context and its workers alike.
+const EGLint kContextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                  4,
+                                  EGL_CONTEXT_MINOR_VERSION,
+                                  5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                  EGL_NONE};
+
 std::string glString(GLenum name) {
     const auto* s = reinterpret_cast<const char*>(glGetString(name));
     return s ? s : "";
@@ -92,11 +115,7 @@ HeadlessContext::~HeadlessContext() {
             eglMakeCurrent(m_impl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (m_impl->context != EGL_NO_CONTEXT)
             eglDestroyContext(m_impl->display, m_impl->context);
-        const std::lock_guard<std::mutex> lock(displayMutex());
-        if (--displayUsers()[m_impl->display] <= 0) {
-            displayUsers().erase(m_impl->display);
-            eglTerminate(m_impl->display);
-        }
+        releaseDisplay(m_impl->display);
     }
 }
 
@@ -172,14 +191,7 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(std::string* error) {
             return fail("no EGL config supports desktop OpenGL on the " + d.platform + " platform");
         config = nullptr; // EGL_NO_CONFIG_KHR
     }
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                     4,
-                                     EGL_CONTEXT_MINOR_VERSION,
-                                     5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_NONE};
-    d.context = eglCreateContext(d.display, config, EGL_NO_CONTEXT, contextAttribs);
+    d.context = eglCreateContext(d.display, config, EGL_NO_CONTEXT, kContextAttribs);
     if (d.context == EGL_NO_CONTEXT)
         return fail("cannot create an OpenGL 4.5 core context on the " + d.platform +
                     " platform (" + eglErrorName(eglGetError()) + ")");
@@ -203,18 +215,13 @@ class EglWorkerContext final : public WorkerGlContext {
 public:
     EglWorkerContext(EGLDisplay display, EGLContext context)
         : m_display(display), m_context(context) {
-        const std::lock_guard<std::mutex> lock(displayMutex());
-        ++displayUsers()[m_display];
+        retainDisplay(m_display);
     }
     ~EglWorkerContext() override {
         if (eglGetCurrentContext() == m_context)
             eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(m_display, m_context);
-        const std::lock_guard<std::mutex> lock(displayMutex());
-        if (--displayUsers()[m_display] <= 0) {
-            displayUsers().erase(m_display);
-            eglTerminate(m_display);
-        }
+        releaseDisplay(m_display);
     }
     bool makeCurrent(std::string* error) override {
         // The bound API is per thread (EGL 1.5, 3.7).
@@ -253,14 +260,7 @@ std::unique_ptr<WorkerGlContext> HeadlessContext::workerSharingCurrent(std::stri
         if (!eglChooseConfig(display, attribs, &config, 1, &count) || count < 1)
             config = nullptr;
     }
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                     4,
-                                     EGL_CONTEXT_MINOR_VERSION,
-                                     5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_NONE};
-    const EGLContext context = eglCreateContext(display, config, shared, contextAttribs);
+    const EGLContext context = eglCreateContext(display, config, shared, kContextAttribs);
     if (context == EGL_NO_CONTEXT) {
         if (error)
             *error = "headless OpenGL: cannot create a worker context sharing the current one (" +

@@ -88,11 +88,7 @@ void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorMa
     // display's default, loaded once by the display at initialize()).
     d.textures.setColorManagement(d.colorManagement || !d.initialized ? d.colorManagement
                                                                       : d.display.sharedConfig());
-    d.dropSplitTextures(); // made again in the new config by the next split frame
-    if (d.initialized) {
-        d.refreshTextureSlots(nullptr);
-        d.uploadMaterial();
-    }
+    d.texturesDropped();
 }
 
 void Renderer::setScene(const Scene& scene, Problems* problems) {
@@ -195,21 +191,12 @@ void Renderer::setAsyncTextures(bool async) {
     if (async == d.textures.async())
         return;
     d.textures.setAsync(async);
-    d.dropSplitTextures();
-    if (d.initialized) {
-        d.refreshTextureSlots(nullptr);
-        d.uploadMaterial();
-    }
+    d.texturesDropped();
 }
 
 void Renderer::setTextureStorageContext(std::unique_ptr<WorkerGlContext> context) {
-    Impl& d = *m_impl;
-    d.textures.setStorageContext(std::move(context));
-    d.dropSplitTextures();
-    if (d.initialized) {
-        d.refreshTextureSlots(nullptr);
-        d.uploadMaterial();
-    }
+    m_impl->textures.setStorageContext(std::move(context));
+    m_impl->texturesDropped();
 }
 
 void Renderer::setTextureUploadBudget(std::uint64_t bytes) {

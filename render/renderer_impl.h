@@ -254,6 +254,15 @@ struct Renderer::Impl {
         ++uploads.textureSlotRefreshes;
         textures.setMaterial(scene.material, problems);
     }
+    /// After a TextureSet setting that drops its textures (colour management, loading mode,
+    /// storage context): B's split set goes, A's slots are requested again.
+    void texturesDropped() {
+        dropSplitTextures(); // made again with the new settings by the next split frame
+        if (initialized) {
+            refreshTextureSlots(nullptr);
+            uploadMaterial();
+        }
+    }
     /// The lights; @p problems hears of each directional light past kMaxDirectionalLights.
     void uploadLights(Problems* problems);
     void requestEnvironment(Problems* problems) {

@@ -23,6 +23,7 @@ GLenum internalFormat(MipFormat f) {
     }
     return GL_RGBA8;
 }
+
 } // namespace
 
 void TextureSet::releaseTexture(Entry& e) {
@@ -196,4 +197,5 @@ bool TextureSet::takeStorage(Entry& e, bool wait) {
     e.storage.reset();
     return true;
 }
+
 } // namespace velvet::render

@@ -53,11 +53,6 @@ TextureStorageThread::allocate(const TextureStorageRequest& request) {
     return pending;
 }
 
-int TextureStorageThread::allocations() const {
-    const std::lock_guard<std::mutex> lock(m_mutex);
-    return m_allocations;
-}
-
 void TextureStorageThread::run() {
     std::unique_lock<std::mutex> lock(m_mutex);
     for (;;) {
@@ -99,21 +94,12 @@ void TextureStorageThread::allocateNow(PendingTextureStorage& pending) {
     // "Propagating Changes to Objects": complete in the changing context, then bound anew).
     GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     glFlush();
-    {
-        const std::lock_guard<std::mutex> lock(m_mutex);
-        ++m_allocations;
-    }
     const std::lock_guard<std::mutex> pendingLock(pending.mutex);
-    if (pending.abandoned) { // given up on while it was being made
-        unsigned t = texture;
-        void* f = fence;
-        glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, GL_TIMEOUT_IGNORED);
-        freeStorage(t, f);
-        return;
-    }
     pending.texture = texture;
     pending.fence = fence;
     pending.done = true;
+    if (pending.abandoned) // given up on while it was being made (GL defers the deletion)
+        freeStorage(pending.texture, pending.fence);
 }
 
 TextureStorageThread::State TextureStorageThread::take(PendingTextureStorage& pending,

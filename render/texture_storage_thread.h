@@ -77,9 +77,6 @@ public:
     /// take() until it is not Waiting (finish(): a headless frame needs every texture now).
     static State wait(PendingTextureStorage& pending, unsigned& texture, std::string* error);
 
-    /// Allocations the worker made (tests, bench).
-    int allocations() const;
-
 private:
     void run();
     void allocateNow(PendingTextureStorage& pending);
@@ -89,7 +86,6 @@ private:
     std::condition_variable m_wake;
     std::deque<std::shared_ptr<PendingTextureStorage>> m_queue;
     std::string m_contextError; // set once when makeCurrent fails: every request fails with it
-    int m_allocations = 0;
     bool m_stop = false;
     bool m_current = false;
     std::thread m_thread;

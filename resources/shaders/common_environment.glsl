@@ -76,10 +76,10 @@ vec3 specularRadiance(vec3 r, float perceptualRoughness) {
            frame.ambientRadiance.rgb;
 }
 
-// The prefiltered radiance of an isotropic GGX lobe seen at n.v: the split sum's cube holds the lobe
-// as n = v = r sees it, but away from normal incidence the reflection l = reflect(-v, h) moves by
-// 2 cos(theta_v) times a half vector's tilt across the plane of incidence and by 2 times its tilt
-// along it (the Jacobian of the reflection, Walter et al. 2007, "Microfacet Models for Refraction
+// The prefiltered radiance along the reflection r of an isotropic GGX lobe seen at n.v: the split
+// sum's cube holds the lobe as n = v = r sees it, but away from normal incidence the reflection
+// l = reflect(-v, h) moves by 2 cos(theta_v) times a half vector's tilt across the plane of
+// incidence and by 2 times its tilt along it (the Jacobian of the reflection, Walter et al. 2007, "Microfacet Models for Refraction
 // through Rough Surfaces", eq. 14), so the reflected lobe is only alpha n.v wide across the plane.
 // One isotropic lookup cannot be narrow one way and wide the other: it takes the narrow width for
 // glossy lobes and fades back to alpha as the lobe widens (weight alpha^2), where a narrow lookup
@@ -87,10 +87,10 @@ vec3 specularRadiance(vec3 r, float perceptualRoughness) {
 // "The reflected lobe's narrowing at grazing angles"): copper on the sphere under the HDRI 4.55 ->
 // 2.66 mean CIEDE2000, rubber unmoved; the same one cube lookup, so it costs the frame nothing
 // (a sweep of several lookups along the plane was closer still but +30-55 % of the frame).
-vec3 reflectedRadiance(vec3 n, vec3 v, float NdotV, float perceptualRoughness) {
+vec3 reflectedRadiance(vec3 r, float NdotV, float perceptualRoughness) {
     float alpha = perceptualRoughness * perceptualRoughness;
     float alphaLookup = mix(alpha * NdotV, alpha, alpha * alpha);
-    return specularRadiance(reflect(-v, n), sqrt(alphaLookup));
+    return specularRadiance(r, sqrt(alphaLookup));
 }
 
 // (A, B) of the split-sum environment BRDF, E = f0 A + B: the DFG LUT (texel centres at

@@ -172,7 +172,7 @@ void main() {
     // An anisotropic base sweeps the lookup along its stretch (anisotropicSpecularRadiance); an
     // isotropic one narrows it at grazing angles (reflectedRadiance).
     vec3 prefiltered = usesAnisotropy(s) ? anisotropicSpecularRadiance(s, n, v, rough)
-                                         : reflectedRadiance(n, v, NdotV, rough);
+                                         : reflectedRadiance(r, NdotV, rough);
     vec2 ab = environmentDfg(NdotV, rough);
 #if WITH_GEOMETRIC_HORIZON
     // A bent normal's reflection may point below the surface, where no light comes from: faded
@@ -214,7 +214,7 @@ void main() {
         vec2 abc = environmentDfg(NdotVc, cr);
         float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotVc);
         ambient = ambient * (1.0 - fc) +
-                  s.clearcoat * (0.04 * abc.x + abc.y) * reflectedRadiance(nc, v, NdotVc, cr) *
+                  s.clearcoat * (0.04 * abc.x + abc.y) * reflectedRadiance(reflect(-v, nc), NdotVc, cr) *
                       specularOcclusion;
         keepEmission = 1.0 - fc;
     }
