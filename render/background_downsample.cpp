@@ -23,8 +23,7 @@ int backgroundDownsampleFactor(BackgroundMode mode, bool prefilteredReady, const
 }
 
 bool BackgroundDownsample::build(std::string* error) {
-    if (!m_upsample.build("fullscreen.vert", "background_upsample.frag", {"FULLSCREEN_FAR_PLANE"},
-                          error))
+    if (!m_upsample.build("fullscreen.vert", "background_upsample.frag", {}, error))
         return false;
     ++m_compileCount;
     return true;
@@ -35,8 +34,11 @@ bool BackgroundDownsample::draw(const ShaderProgram& smallProgram, int factor,
                                 std::string* error) {
     const int smallWidth = (width + factor - 1) / factor;
     const int smallHeight = (height + factor - 1) / factor;
-    // Half floats: the display values are filtered before the display target rounds them once.
-    if (!m_small.resize(smallWidth, smallHeight, GL_RGBA16F, error))
+    // 8 bits, as the display target: llvmpipe filters unorm8 texels on its fixed-point path, so
+    // the upsample costs about half what half floats cost (BENCHMARKS.md, "The inline background's
+    // upsample"). The display values are rounded twice then, once here and once after filtering:
+    // at most one 255th more than half floats gave.
+    if (!m_small.resize(smallWidth, smallHeight, GL_RGBA8, error))
         return false;
     if (m_smallGeneration != m_small.generation()) {
         glTextureParameteri(m_small.texture(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -51,12 +53,14 @@ bool BackgroundDownsample::draw(const ShaderProgram& smallProgram, int factor,
     glDisable(GL_DEPTH_TEST);
     glUseProgram(smallProgram.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    // Where the G-buffer depth is the far plane, as the full-resolution background draws.
+    // Every pixel, without a depth test: the surfaces' pass draws every pixel of the mesh over it
+    // next (as it does over a kept background), so the picture is the same to the bit, and a
+    // plain texture-to-target pass is one llvmpipe draws about 1 ms cheaper at 1280x720 than
+    // one that tests each pixel's depth against the far plane.
     glBindFramebuffer(GL_FRAMEBUFFER, displayFramebuffer);
     glViewport(0, 0, width, height);
     glBindTextureUnit(binding::kHdrTex, m_small.texture());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_EQUAL);
+    glDisable(GL_DEPTH_TEST);
     glUseProgram(m_upsample.id());
     glProgramUniform1f(m_upsample.id(), 0, float(factor));
     glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -43,8 +43,9 @@ public:
 
     /// Draws @p smallProgram (lighting.frag's background with BACKGROUND_DOWNSAMPLE @p factor:
     /// the display step's inputs already bound) into a target @p factor times smaller each way,
-    /// then the upsampled picture into @p displayFramebuffer (@p width x @p height) where the
-    /// G-buffer depth is the far plane. False + message when the target cannot be made.
+    /// then the upsampled picture into every pixel of @p displayFramebuffer (@p width x
+    /// @p height): the surfaces' pass must draw the mesh's pixels after it. Leaves the depth test
+    /// disabled. False + message when the target cannot be made.
     bool draw(const ShaderProgram& smallProgram, int factor, unsigned displayFramebuffer, int width,
               int height, std::string* error);
 
