@@ -169,11 +169,20 @@ void main() {
     if (p.bentShading)
         irradiance *= 0.5 * (1.0 + dot(n, p.ng));
 #endif
-    // An anisotropic base sweeps the lookup along its stretch (anisotropicSpecularRadiance); an
-    // isotropic one narrows it at grazing angles (reflectedRadiance).
-    vec3 prefiltered = usesAnisotropy(s) ? anisotropicSpecularRadiance(s, n, v, rough)
-                                         : reflectedRadiance(r, NdotV, rough);
     vec2 ab = environmentDfg(NdotV, rough);
+    vec3 specDielectric = s.specularWeight * specularAlbedo(dielectricF0(s), ab);
+    vec3 specMetal = specularAlbedo(s.baseColor, ab);
+    // The base's reflected environment light: an isotropic base's split sum, its lookup narrowed at
+    // grazing angles (reflectedRadiance); an anisotropic base's sweep along its stretch, which
+    // weighs its own Fresnel, masking and energy (anisotropicReflection).
+    vec3 specular;
+    if (usesAnisotropy(s)) {
+        SweptReflection sw = anisotropicReflection(s, n, v, NdotV, rough);
+        specular = mix(s.specularWeight * sweptSpecular(sw, dielectricF0(s), ab),
+                       sweptSpecular(sw, s.baseColor, ab), s.metallic);
+    } else {
+        specular = mix(specDielectric, specMetal, s.metallic) * reflectedRadiance(r, NdotV, rough);
+    }
 #if WITH_GEOMETRIC_HORIZON
     // A bent normal's reflection may point below the surface, where no light comes from: faded
     // out as it sinks (Russell 2016, "Horizon Occlusion for Normal Mapped Reflections"; Filament's
@@ -181,17 +190,15 @@ void main() {
     // below the surface".
     if (p.bentShading) {
         float horizon = saturate(1.0 + dot(r, p.ng));
-        prefiltered *= horizon * horizon;
+        specular *= horizon * horizon;
     }
 #endif
-    vec3 specDielectric = s.specularWeight * specularAlbedo(dielectricF0(s), ab);
-    vec3 specMetal = specularAlbedo(s.baseColor, ab);
     // The diffuse and specular parts each under their own occlusion (gbuffer.frag: the
     // material's occlusion, and the mesh's visibility from itself where it has one).
     float diffuseOcclusion = p.occlusion, specularOcclusion = p.specularOcclusion;
     vec3 ambient = (1.0 - s.metallic) * (1.0 - max3(specDielectric)) * s.baseColor * irradiance *
                        diffuseOcclusion +
-                   mix(specDielectric, specMetal, s.metallic) * prefiltered * specularOcclusion;
+                   specular * specularOcclusion;
 #if WITH_SHEEN // (common_brdf.glsl's specialisation)
     if (max3(s.sheenColor) > 0.0) {
         // The sheen model's own albedo for both the scaling and the sheen lobe, lit by the
