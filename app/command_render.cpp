@@ -75,6 +75,9 @@ const std::vector<OptionSpec> kOptions{
      "also encode the turntable's frames into a video (.mp4, .mov or .mkv, H.264) with the "
      "ffmpeg program; without -o the frames go to a temporary folder"},
     {"fps", 0, true, "N", "the video's frame rate, 1 to 240 (default 30)"},
+    {"supersample", 0, true, "N",
+     "anti-aliasing: N x N samples a pixel, 1 to 4 (default 1), each image drawn N times larger "
+     "each way and box-filtered down (about N^2 the frame time)"},
     {"help", 'h', false, "", "this text"},
 };
 
@@ -351,6 +354,14 @@ int runRender(const std::vector<std::string>& argv) {
         if (ec != std::errc() || ptr != text.data() + text.size() || job.fps < 1 || job.fps > 240)
             return usage("--fps expects 1 to 240 frames a second, got '" + text + "'");
     }
+    if (args->has("supersample")) {
+        const std::string text = args->value("supersample");
+        auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), job.supersample);
+        if (ec != std::errc() || ptr != text.data() + text.size() || job.supersample < 1 ||
+            job.supersample > render::kMaxSupersample)
+            return usage("--supersample expects 1 to " + std::to_string(render::kMaxSupersample) +
+                         " samples per pixel side, got '" + text + "'");
+    }
     job.output = args->value("output");
     job.video = args->value("video");
     if (job.output.empty() && (job.frames == 0 || job.video.empty()))
@@ -404,7 +415,12 @@ int runRender(const std::vector<std::string>& argv) {
     if (job.frames == 0) {
         if (const int code = checkOutputFolder(out); code != Ok)
             return code;
-    } else if (std::string why; render::checkRenderJob(job, &why) != render::RenderJobCheck::Ok) {
+    }
+    std::string why;
+    const render::RenderJobCheck check = render::checkRenderJob(job, &why);
+    if (check == render::RenderJobCheck::Usage)
+        return usage(why); // e.g. the size and the supersampling together too large
+    if (check != render::RenderJobCheck::Ok) {
         std::cerr << "velvet render: " << why << "\n";
         return BadInput; // a bad pattern, a missing folder, no ffmpeg (the values parsed above)
     }

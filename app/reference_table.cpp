@@ -3,6 +3,7 @@
 
 #include "core/default_stage.h"
 #include "core/document_io.h"
+#include "core/image_ops.h"
 #include "core/light_rigs.h"
 #include "core/resources.h"
 #include "reference/reference_renderer.h"
@@ -119,15 +120,11 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     fs.width = fs.height = n * ss;
     if (!renderer.render(fs, m_impl->target->framebuffer(), error))
         return false;
-    const Image frame = renderer.readLinear();
+    const Image frame = boxDownsample(renderer.readLinear(), ss);
     Image viewport(n, n, 3);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
-            glm::vec3 sum(0.0f);
-            for (int sy = 0; sy < ss; ++sy)
-                for (int sx = 0; sx < ss; ++sx)
-                    sum += glm::vec3(frame.rgba(x * ss + sx, y * ss + sy));
-            const glm::vec3 mean = sum / float(ss * ss);
+            const glm::vec4 mean = frame.rgba(x, y);
             float* o = viewport.at(x, y);
             o[0] = mean.r, o[1] = mean.g, o[2] = mean.b;
         }

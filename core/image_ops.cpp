@@ -75,6 +75,28 @@ Image resize(const Image& image, int width, int height, std::string* error, Resi
     return out;
 }
 
+Image boxDownsample(const Image& image, int factor) {
+    if (factor < 1 || !consistent(image) || image.width % factor || image.height % factor)
+        return {};
+    if (factor == 1)
+        return image;
+    Image out(image.width / factor, image.height / factor, image.channels);
+    const float weight = 1.0f / float(factor * factor);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            float* o = out.at(x, y);
+            for (int sy = 0; sy < factor; ++sy)
+                for (int sx = 0; sx < factor; ++sx) {
+                    const float* p = image.at(x * factor + sx, y * factor + sy);
+                    for (int c = 0; c < image.channels; ++c)
+                        o[c] += p[c];
+                }
+            for (int c = 0; c < image.channels; ++c)
+                o[c] *= weight;
+        }
+    return out;
+}
+
 int mipLevelCount(int width, int height) {
     int levels = 1;
     for (int side = std::max(width, height); side > 1; side /= 2)

@@ -34,6 +34,12 @@ std::vector<Image> mipChain(const Image& image, std::string* error,
 /// Number of levels of a full mip chain: floor(log2(max(width, height))) + 1.
 int mipLevelCount(int width, int height);
 
+/// The mean of each @p factor x @p factor block of @p image: supersampling's box filter, each
+/// output pixel the average of the samples drawn inside it (as the reference path tracer
+/// averages its samples over the pixel's square). Both sides must be multiples of @p factor
+/// (>= 1); otherwise an empty image.
+Image boxDownsample(const Image& image, int factor);
+
 /// Downscales @p image in place when a side is larger than @p maxSide (e.g. the GPU's
 /// GL_MAX_TEXTURE_SIZE), keeping the aspect ratio (the longer side becomes @p maxSide, the
 /// other is rounded, at least 1). Returns true and sets @p warning, naming @p fileName and both

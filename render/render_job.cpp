@@ -2,6 +2,7 @@
 
 #include "core/frame_pattern.h"
 #include "core/image.h"
+#include "core/image_ops.h"
 #include "core/video_encoder.h"
 #include "render/gbuffer.h"
 #include "render/headless_context.h"
@@ -95,6 +96,20 @@ RenderJobCheck checkRenderJob(const RenderJob& job, std::string* message) {
     if (s.width < 1 || s.height < 1 || s.width > 8192 || s.height > 8192) {
         why = "the size must be 1 to 8192 pixels a side, got " + std::to_string(s.width) + "x" +
               std::to_string(s.height);
+        return RenderJobCheck::Usage;
+    }
+    if (job.supersample < 1 || job.supersample > kMaxSupersample) {
+        why = "supersampling takes 1 to " + std::to_string(kMaxSupersample) +
+              " samples per pixel side, got " + std::to_string(job.supersample);
+        return RenderJobCheck::Usage;
+    }
+    if (const long long n = job.supersample,
+        drawn = (long long)s.width * n * (long long)s.height * n;
+        drawn > kMaxSupersampledPixels) {
+        why = "supersampling " + std::to_string(s.width) + "x" + std::to_string(s.height) + " by " +
+              std::to_string(n) + " draws " + std::to_string(s.width * n) + "x" +
+              std::to_string(s.height * n) + " pixels, more than the 8192x8192 a frame may have: " +
+              "lower the size or the supersampling";
         return RenderJobCheck::Usage;
     }
     if (job.frames < 0 || job.frames > kMaxTurntableFrames) {
@@ -218,6 +233,10 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
         scene.camera = *settings.camera;
         settings.camera.reset();
     }
+    // Supersampled: drawn larger, each written image the box-filtered mean of its samples.
+    const int ss = job.supersample;
+    settings.width *= ss;
+    settings.height *= ss;
 
     std::unique_ptr<HeadlessContext> context;
     if (!HeadlessContext::isAnyContextCurrent()) {
@@ -277,7 +296,11 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
             }
             const std::string file = still ? job.output : framePath(*frames, i);
             const bool linearFile = still ? lowerExtension(job.output) == ".exr" : exr;
-            const Image written = toRgb(linearFile ? linear : renderer.readDisplay());
+            // A .png is filtered after the display step (tone curve and encoding), as renderers
+            // resolve samples for display: a bright edge stays a clean ramp instead of one
+            // unclipped sample dominating its pixel; an .exr is filtered in scene-linear.
+            const Image written =
+                toRgb(boxDownsample(linearFile ? linear : renderer.readDisplay(), ss));
             lap("read back");
             if (!writeImage(file, written, linearFile ? PixelFormat::Half : PixelFormat::UInt8,
                             &why))

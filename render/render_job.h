@@ -39,7 +39,16 @@ struct RenderJob {
     /// Needs .png frames.
     std::string video;
     int fps = 30;
+    /// Samples per pixel side, 1 to kMaxSupersample: each frame drawn this many times larger
+    /// each way and box-filtered down (core/image_ops.h boxDownsample), so edges are
+    /// anti-aliased; it costs about its square in time. The drawn frame may hold at most
+    /// kMaxSupersampledPixels.
+    int supersample = 1;
 };
+
+inline constexpr int kMaxSupersample = 4;
+/// The largest frame a supersampled job draws: as many pixels as the largest still (8192^2).
+inline constexpr long long kMaxSupersampledPixels = 8192LL * 8192LL;
 
 /// What checkRenderJob found: a usage error (a still's extension), bad input (a bad pattern, a
 /// missing folder, no ffmpeg for --video) or nothing.

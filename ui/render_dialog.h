@@ -39,6 +39,7 @@ private:
     QSpinBox* m_height;
     QSpinBox* m_frames;
     QComboBox* m_mode;
+    QComboBox* m_supersample; ///< RenderJob::supersample: samples per pixel side
     QLineEdit* m_output;
     QLineEdit* m_video;
 };

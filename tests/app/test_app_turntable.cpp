@@ -3,6 +3,7 @@
 // and --video with and without the ffmpeg program on PATH.
 #include "core/document_io.h"
 #include "core/image.h"
+#include "core/image_ops.h"
 #include "core/video_encoder.h"
 #include "run_velvet.h"
 
@@ -103,6 +104,53 @@ private slots:
         qInfo("cube: %d pixels differ after a quarter turn, %d after an eighth", quarter, eighth);
         QVERIFY(eighth > 100);
         QVERIFY(quarter < eighth / 10);
+    }
+
+    // --supersample N (stills and turntables alike, render/render_job.h): the frame drawn N times
+    // larger each way and box-filtered. A known answer: the 2x2-supersampled 48x32 still is the
+    // 96x64 still averaged over 2x2 blocks (to the rounding of the 8-bit images), and it differs
+    // from the plain 48x32 still at the sphere's silhouette, whose pixels now hold partial
+    // coverage instead of all mesh or all background.
+    void supersampledStillIsTheBoxFilteredLargerStill() {
+        QTemporaryDir dir;
+        Result r = runVelvet(
+            {"render", "-o", dir.filePath("ss.png"), "--size", "48x32", "--supersample", "2"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        r = runVelvet({"render", "-o", dir.filePath("large.png"), "--size", "96x64"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        r = runVelvet({"render", "-o", dir.filePath("plain.png"), "--size", "48x32"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const velvet::Image ss = read(dir.filePath("ss.png"));
+        const velvet::Image filtered = velvet::boxDownsample(read(dir.filePath("large.png")), 2);
+        QCOMPARE(ss.width, 48);
+        QCOMPARE(ss.height, 32);
+        const auto [worst, count] = difference(ss, filtered);
+        qInfo("supersampled against the filtered large still: max %.4f, %d pixels > 2/255", worst,
+              count);
+        QVERIFY(worst <= 1.01f / 255.0f);
+        const int edge = difference(ss, read(dir.filePath("plain.png"))).second;
+        qInfo("supersampled against the plain still: %d pixels differ by more than 2/255", edge);
+        QVERIFY(edge > 20); // the silhouette's ring (about 2 pi r = 80 pixels at r = 13)
+    }
+
+    // Supersampling outside 1 to 4, or drawing more than 8192x8192 pixels, is a usage error.
+    void supersamplingOutOfRange_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<QString>("message");
+        QTest::newRow("zero") << QStringList{"--supersample", "0"} << "1 to 4";
+        QTest::newRow("five") << QStringList{"--supersample", "5"} << "1 to 4";
+        QTest::newRow("not a number") << QStringList{"--supersample", "2x"} << "1 to 4";
+        QTest::newRow("too many pixels")
+            << QStringList{"--supersample", "3", "--size", "4096x4096"} << "12288x12288";
+    }
+    void supersamplingOutOfRange() {
+        QFETCH(QStringList, args);
+        QFETCH(QString, message);
+        QTemporaryDir dir;
+        Result r = runVelvet(QStringList{"render", "-o", dir.filePath("x.png")} + args);
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains(message), qPrintable(r.err));
+        QVERIFY2(QDir(dir.path()).isEmpty(), "bad input must write nothing");
     }
 
     // Bad patterns, a missing folder and a bad mode are refused before anything is rendered.

@@ -77,6 +77,27 @@ private slots:
         QVERIFY(resize(Image(), 4, 4, &error).empty());
     }
 
+    // Supersampling's box filter: each output pixel the exact mean of its block, every channel.
+    void boxDownsampleAveragesEachBlock() {
+        Image image(4, 2, 2);
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 4; ++x) {
+                image.at(x, y)[0] = float(x + 4 * y); // 0 1 2 3 / 4 5 6 7
+                image.at(x, y)[1] = x < 2 ? 1.0f : 0.0f;
+            }
+        const Image half = boxDownsample(image, 2);
+        QCOMPARE(half.width, 2);
+        QCOMPARE(half.height, 1);
+        QCOMPARE(half.channels, 2);
+        QCOMPARE(half.at(0, 0)[0], (0.0f + 1.0f + 4.0f + 5.0f) / 4.0f);
+        QCOMPARE(half.at(1, 0)[0], (2.0f + 3.0f + 6.0f + 7.0f) / 4.0f);
+        QCOMPARE(half.at(0, 0)[1], 1.0f);
+        QCOMPARE(half.at(1, 0)[1], 0.0f);
+        QCOMPARE(boxDownsample(image, 1).pixels, image.pixels);
+        QVERIFY(boxDownsample(image, 3).empty()); // 4 is not a multiple of 3
+        QVERIFY(boxDownsample(image, 0).empty());
+    }
+
     // Full chain: floor(log2(max side)) + 1 levels, each side halved rounding down (OpenGL 4.5
     // section 8.14.3), down to 1x1; a checkerboard averages to its mean.
     void mipChainHasEveryLevel() {

@@ -73,6 +73,10 @@ private slots:
             retype(dialog->findChild<QSpinBox*>(QStringLiteral("renderHeight")), "180");
             retype(dialog->findChild<QSpinBox*>(QStringLiteral("renderFrames")), "1");
             retype(dialog->findChild<QLineEdit*>(QStringLiteral("renderOutput")), out);
+            // What leaves the editor is anti-aliased by default: 2x2 samples a pixel.
+            auto* supersample = dialog->findChild<QComboBox*>(QStringLiteral("renderSupersample"));
+            QVERIFY(supersample);
+            QCOMPARE(supersample->currentData().toInt(), 2);
             answered = true;
             QTest::mouseClick(dialog->findChild<QPushButton*>(QStringLiteral("renderStart")),
                               Qt::LeftButton);
@@ -89,13 +93,14 @@ private slots:
         QVERIFY2(m_window->logPanel()->text().contains(QStringLiteral("Rendered")),
                  qPrintable(m_window->logPanel()->text()));
 
-        // The same job through render::runRenderJob, as `velvet render` runs it, on a thread of
-        // its own (its own headless context).
+        // The same job through render::runRenderJob, as `velvet render --supersample 2` runs
+        // it, on a thread of its own (its own headless context).
         render::RenderJob job;
         job.settings = m_window->viewport()->frameSettings();
         job.settings.camera = m_window->viewport()->viewCamera();
         job.settings.width = 320;
         job.settings.height = 180;
+        job.supersample = 2;
         job.output = m_dir.filePath(QStringLiteral("reference.png")).toStdString();
         render::RenderJobStatus status = render::RenderJobStatus::Failed;
         std::thread cli([&] { status = render::runRenderJob(m_doc->scene(), job, {}, &error); });
