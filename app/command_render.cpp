@@ -357,8 +357,7 @@ int runRender(const std::vector<std::string>& argv) {
     if (args->has("supersample")) {
         const std::string text = args->value("supersample");
         auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), job.supersample);
-        if (ec != std::errc() || ptr != text.data() + text.size() || job.supersample < 1 ||
-            job.supersample > render::kMaxSupersample)
+        if (ec != std::errc() || ptr != text.data() + text.size()) // the range: checkRenderJob
             return usage("--supersample expects 1 to " + std::to_string(render::kMaxSupersample) +
                          " samples per pixel side, got '" + text + "'");
     }

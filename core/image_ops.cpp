@@ -75,11 +75,11 @@ Image resize(const Image& image, int width, int height, std::string* error, Resi
     return out;
 }
 
-Image boxDownsample(const Image& image, int factor) {
+Image boxDownsample(Image image, int factor) {
     if (factor < 1 || !consistent(image) || image.width % factor || image.height % factor)
         return {};
     if (factor == 1)
-        return image;
+        return image; // moved out: the parameter is ours
     Image out(image.width / factor, image.height / factor, image.channels);
     const float weight = 1.0f / float(factor * factor);
     for (int y = 0; y < out.height; ++y)

@@ -37,8 +37,9 @@ int mipLevelCount(int width, int height);
 /// The mean of each @p factor x @p factor block of @p image: supersampling's box filter, each
 /// output pixel the average of the samples drawn inside it (as the reference path tracer
 /// averages its samples over the pixel's square). Both sides must be multiples of @p factor
-/// (>= 1); otherwise an empty image.
-Image boxDownsample(const Image& image, int factor);
+/// (>= 1); otherwise an empty image. Factor 1 hands @p image back without a copy (moved), so a
+/// job that does not supersample pays nothing for the call.
+Image boxDownsample(Image image, int factor);
 
 /// Downscales @p image in place when a side is larger than @p maxSide (e.g. the GPU's
 /// GL_MAX_TEXTURE_SIZE), keeping the aspect ratio (the longer side becomes @p maxSide, the

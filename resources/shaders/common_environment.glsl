@@ -106,16 +106,20 @@ vec2 environmentDfg(float NdotV, float perceptualRoughness) {
     return textureLod(uDfgLut, vec2(NdotV, perceptualRoughness), 0.0).rg;
 }
 
-// Directional albedo of a specular lobe of Fresnel f0 from (A, B), with the multiple-scattering
-// energy of Fdez-Aguera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based
-// Lighting" (eq. 16) when enabled. Mirrors velvet::ibl::specularAlbedo().
-vec3 specularAlbedo(vec3 f0, vec2 dfg) {
-    vec3 single = f0 * dfg.x + dfg.y;
+// The factor by which multiple scattering raises a specular lobe's single-scattering reflection
+// (Fdez-Aguera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based Lighting",
+// eq. 16: 1 + E_ms F_avg / (1 - E_ms F_avg)), from its Fresnel f0 and (A, B); 1 when disabled.
+vec3 multipleScatteringGain(vec3 f0, vec2 dfg) {
     if (!multipleScatteringOn()) // common_brdf.glsl
-        return single;
+        return vec3(1.0);
     float ems = 1.0 - (dfg.x + dfg.y);
     vec3 favg = f0 + (1.0 - f0) / 21.0;
-    return single + ems * single * favg / (1.0 - ems * favg);
+    return 1.0 + ems * favg / (1.0 - ems * favg);
+}
+// Directional albedo of a specular lobe of Fresnel f0 from (A, B), multiple scattering included.
+// Mirrors velvet::ibl::specularAlbedo().
+vec3 specularAlbedo(vec3 f0, vec2 dfg) {
+    return (f0 * dfg.x + dfg.y) * multipleScatteringGain(f0, dfg);
 }
 
 // ---- Procedural background (seed 004: Perlin noise made smoky by FBM; in HSV a hue that turns
@@ -255,8 +259,7 @@ SweptReflection anisotropicReflection(Surface s, vec3 n, vec3 v, float NdotV,
 // energy specularAlbedo gives the split sum (Fdez-Aguera 2019; @p dfg at the base roughness), so
 // that an anisotropic base keeps the energy an isotropic one of its roughness has.
 vec3 sweptSpecular(SweptReflection sw, vec3 f0, vec2 dfg) {
-    vec3 single = f0 * dfg.x + dfg.y;
-    return (f0 * (sw.radiance - sw.grazing) + sw.grazing) * specularAlbedo(f0, dfg) / single;
+    return (f0 * (sw.radiance - sw.grazing) + sw.grazing) * multipleScatteringGain(f0, dfg);
 }
 
 // Where image-based light's sheen looks the environment up (lighting.frag). The Charlie lobe
