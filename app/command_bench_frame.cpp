@@ -9,13 +9,16 @@
 // the roughness, so the background's pixels are kept, render/frame_reuse.h). Beside it, in
 // turn, the same frame while the camera orbits (orbit_: half a degree a frame, every pixel
 // drawn), through the scene-linear target with the tone map a pass of its own (hdr_), and with
-// the generic lighting program (every term and lobe at run time, generic_), so each gain is
-// measured on the same machine state.
+// the generic lighting program (every term and lobe at run time, generic_), and as the editor
+// refines a still view (refine_: each frame jittered and folded into the progressive mean,
+// render/progressive_accumulation.h), so each gain and cost is measured on the same machine
+// state.
 #include "app/cli.h"
 #include "core/document_io.h"
 #include "core/post_effects.h"
 #include "render/headless_context.h"
 #include "render/offscreen.h"
+#include "render/progressive_accumulation.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -50,7 +53,7 @@ int runFrameBench(bool json, bool quick) {
     const int width = quick ? 320 : 1280, height = quick ? 180 : 720, frames = quick ? 5 : 21;
     // Two renderers, alternate frames: the lighting pass specialised to the frame (the default)
     // and the generic one, so both see the same machine state (render/lighting_features.h).
-    enum class Change { ValueEdit, Orbit };
+    enum class Change { ValueEdit, Orbit, Refine };
     struct Variant {
         const char* name;
         bool specialised;
@@ -60,10 +63,11 @@ int runFrameBench(bool json, bool quick) {
         std::vector<double> wall, cpu, gbuffer, lighting, post;
         int backgroundKept = 0;
     };
-    Variant variants[4] = {{"", true, true, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
+    Variant variants[5] = {{"", true, true, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
                            {"orbit_", true, true, Change::Orbit, {}, {}, {}, {}, {}, {}},
                            {"hdr_", true, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
-                           {"generic_", false, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}}};
+                           {"generic_", false, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
+                           {"refine_", true, true, Change::Refine, {}, {}, {}, {}, {}, {}}};
     render::OffscreenTarget target;
     if (!target.resize(width, height, &error)) {
         std::cerr << "velvet bench: " << error << "\n";
@@ -90,7 +94,12 @@ int runFrameBench(bool json, bool quick) {
             // What changed since the last frame: a value (the roughness, by turns 1 % either
             // side) or the camera (the yaw).
             fs.camera.reset();
-            if (v.change == Change::Orbit) {
+            fs.accumulation = -1;
+            fs.jitter = glm::vec2(0.0f);
+            if (v.change == Change::Refine) { // the editor's still view: one more frame of its mean
+                fs.accumulation = i % 16;
+                fs.jitter = render::progressiveJitter(fs.accumulation);
+            } else if (v.change == Change::Orbit) {
                 Camera camera = edited.camera;
                 camera.yawDeg += 0.5f * float(i);
                 fs.camera = camera;
@@ -146,6 +155,9 @@ int runFrameBench(bool json, bool quick) {
                          median(variants[2].cpu) / median(variants[1].cpu));
     figures.emplace_back("inline_display_speedup",
                          median(variants[2].wall) / median(variants[1].wall));
+    // A refinement frame (jittered, every pixel drawn, then folded into the mean) against an
+    // orbit's frame (every pixel drawn): what the mean adds.
+    figures.emplace_back("refine_vs_orbit", median(variants[4].wall) / median(variants[1].wall));
     const render::FramePasses passes = variants[0].renderer.lastFramePasses();
     figures.emplace_back("inline_display_frames", passes.inlineDisplay ? 1.0 : 0.0);
     figures.emplace_back("fullscreen_passes", passes.fullScreen);

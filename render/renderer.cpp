@@ -251,6 +251,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
                                std::to_string(fs.height));
     if (fs.renderScale > 0.0f && fs.renderScale < 1.0f)
         return d.renderScaled(*this, fs, targetFbo, error);
+    if (fs.accumulation >= 0)
+        return d.renderAccumulated(*this, fs, targetFbo, error);
     const auto cpuStart = std::chrono::steady_clock::now();
     takeGlErrors(); // errors left by whoever owns the context are not ours
     DisplayChoice display;
@@ -454,6 +456,24 @@ Image Renderer::readDisplay() const {
     if (!d.initialized || d.lastWidth == 0)
         return {};
     return readFramebuffer(d.lastTarget, d.lastWidth, d.lastHeight);
+}
+
+int Renderer::accumulatedSamples() const {
+    return m_impl->accumulation.samples();
+}
+
+bool Renderer::showAccumulated(int width, int height, unsigned targetFbo) {
+    Impl& d = *m_impl;
+    if (!d.initialized || d.accumulation.samples() == 0 || d.accumulation.width() != width ||
+        d.accumulation.height() != height)
+        return false;
+    const auto start = std::chrono::steady_clock::now();
+    d.accumulation.present(targetFbo);
+    FrameSettings fs;
+    fs.width = width;
+    fs.height = height;
+    d.finishFrame(targetFbo, fs, start);
+    return true;
 }
 
 FramePasses Renderer::lastFramePasses() const {

@@ -167,6 +167,16 @@ struct FrameSettings {
     /// when it is the default framebuffer); Renderer::lastFramePasses() tells. readLinear() is
     /// then empty.
     bool displayOnly = false;
+    /// @name Progressive anti-aliasing (render/progressive_accumulation.h)
+    /// @{
+    /// The projection offset by this many pixels (x right, y up; progressiveJitter), so the
+    /// frame samples each pixel there instead of at its centre.
+    glm::vec2 jitter{0.0f};
+    /// -1: the frame goes to the target as drawn. 0: it starts the renderer's running mean of
+    /// frames, and the target gets the mean; n > 0: it is added to the mean
+    /// (Renderer::accumulatedSamples()). Not with renderScale < 1, which draws a frame alone.
+    int accumulation = -1;
+    /// @}
 };
 
 /// What the last frame drew after the G-buffer (Renderer::lastFramePasses).
@@ -298,6 +308,12 @@ public:
     Image readLinear() const;
     /// What the last frame drew after the G-buffer (passes, copies, the linear target).
     FramePasses lastFramePasses() const;
+    /// The frames in the progressive mean the last FrameSettings::accumulation frame showed.
+    int accumulatedSamples() const;
+    /// Copies that mean into @p targetFbo and draws nothing (a repaint or a grab of a still
+    /// view that has finished refining: the same picture each time); readDisplay() then reads
+    /// it. False, with nothing done, when there is no mean of @p width x @p height.
+    bool showAccumulated(int width, int height, unsigned targetFbo);
     /// The last frame's display-encoded colour as written to the target, RGBA in [0, 1].
     Image readDisplay() const;
 

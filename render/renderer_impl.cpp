@@ -397,4 +397,20 @@ bool Renderer::Impl::renderScaled(Renderer& self, const FrameSettings& fs, unsig
     return true;
 }
 
+bool Renderer::Impl::renderAccumulated(Renderer& self, const FrameSettings& fs, unsigned targetFbo,
+                                       std::string* error) {
+    const auto start = std::chrono::steady_clock::now();
+    FrameSettings inner = fs;
+    inner.accumulation = -1;
+    if (!accumulationFrame.resize(fs.width, fs.height, GL_RGBA8, error) ||
+        !self.render(inner, accumulationFrame.framebuffer(), error) ||
+        !accumulation.add(accumulationFrame, fs.accumulation == 0, emptyVao, error))
+        return false;
+    accumulation.present(targetFbo);
+    finishFrame(targetFbo, fs, start);
+    if (const std::string e = takeGlErrors(); !e.empty())
+        return fail(error, "OpenGL error while averaging anti-aliasing frames: " + e);
+    return true;
+}
+
 } // namespace velvet::render

@@ -24,6 +24,7 @@
 #include "render/material_table.h"
 #include "render/mesh_cache.h"
 #include "render/post_chain.h"
+#include "render/progressive_accumulation.h"
 #include "render/renderer.h"
 #include "render/shader_program.h"
 #include "render/stage.h"
@@ -62,6 +63,9 @@ struct Renderer::Impl {
 
     FrameTargets targets; ///< G-buffer, HDR colour, the framebuffers over them
     ColorTarget scaled;   ///< FrameSettings::renderScale < 1: the reduced display-encoded frame
+    /// FrameSettings::accumulation >= 0: the jittered frame, and the running mean of them
+    ColorTarget accumulationFrame;
+    ProgressiveAccumulation accumulation;
     FrameUniforms uniforms;
     MeshCache meshes;
     const MeshCache::Entry* mesh = nullptr;
@@ -168,6 +172,8 @@ struct Renderer::Impl {
         if (!lighting.build(&message, keepGoing))
             errors += (errors.empty() ? "" : "\n") + message;
         if (!backgroundDownsample.build(&message))
+            errors += (errors.empty() ? "" : "\n") + message;
+        if (!accumulation.build(&message))
             errors += (errors.empty() ? "" : "\n") + message;
         return errors.empty() || fail(error, errors);
     }
@@ -359,6 +365,10 @@ struct Renderer::Impl {
     /// stretched over the caller's (one linear blit).
     bool renderScaled(Renderer& self, const FrameSettings& fs, unsigned targetFbo,
                       std::string* error);
+    /// FrameSettings::accumulation >= 0: the frame into our own display target, folded into
+    /// the running mean, the mean copied into the caller's (render/progressive_accumulation.h).
+    bool renderAccumulated(Renderer& self, const FrameSettings& fs, unsigned targetFbo,
+                           std::string* error);
     BackgroundMode stageBackground() const {
         const BackgroundMode mode = scene.environment.background;
         return mode == BackgroundMode::Blurred && !ibl.specularReady() ? BackgroundMode::Sharp

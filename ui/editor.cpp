@@ -20,6 +20,8 @@ namespace {
 
 constexpr int kExitRenderFailure = 3;
 constexpr int kScreenshotTimeoutMs = 120000; // llvmpipe compiles shaders slowly; never hang
+/// The longest a screenshot waits for the still view's anti-aliasing to settle.
+constexpr int kRefineWaitMs = 10000;
 
 /// True when Qt's platform plugin would find a display to talk to.
 bool haveDisplay() {
@@ -149,12 +151,9 @@ int runEditor(int& argc, char** argv, const EditorOptions& options) {
     const QString file = QString::fromStdString(options.screenshotFile);
     int exitCode = kExitRenderFailure;
     ViewportWidget* viewport = window.viewport();
-    bool grabbed = false;
-    QObject::connect(viewport, &ViewportWidget::frameCompleted, &window, [&] {
-        // Wait for the environment bake (the main window keeps frames coming meanwhile), so the
-        // image shows the finished lighting.
-        const double progress = viewport->environmentProgress();
-        if (grabbed || (progress >= 0.0 && progress < 1.0))
+    bool grabbed = false, refining = false;
+    const auto grab = [&] {
+        if (grabbed)
             return;
         grabbed = true;
         // Let the frame reach the window before grabbing it.
@@ -167,6 +166,22 @@ int runEditor(int& argc, char** argv, const EditorOptions& options) {
             }
             QApplication::exit(exitCode);
         });
+    };
+    QObject::connect(viewport, &ViewportWidget::frameCompleted, &window, [&] {
+        // Wait for the environment bake (the main window keeps frames coming meanwhile), so the
+        // image shows the finished lighting, and for the still view's anti-aliasing to settle
+        // (ViewportWidget's progressive frames; a scene that animates never settles).
+        const double progress = viewport->environmentProgress();
+        if (grabbed || (progress >= 0.0 && progress < 1.0))
+            return;
+        const bool settled = !viewport->progressiveAntialiasing() || viewport->isAnimating() ||
+                             viewport->progressiveSamples() >= ViewportWidget::kProgressiveSamples;
+        if (settled)
+            return grab();
+        if (!refining) { // whatever keeps the view from settling, the screenshot still comes
+            refining = true;
+            QTimer::singleShot(kRefineWaitMs, &window, grab);
+        }
     });
     QObject::connect(viewport, &ViewportWidget::renderFailed, &window, [&](const QString& m) {
         fail(m);

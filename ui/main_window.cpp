@@ -120,6 +120,8 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
             &ReferencePanel::viewStateChanged);
     connect(m_viewToolbar, &ViewportToolbar::timingOverlayToggled, m_viewport,
             &ViewportWidget::setTimingOverlayVisible);
+    connect(m_viewToolbar, &ViewportToolbar::progressiveAntialiasToggled, m_viewport,
+            &ViewportWidget::setProgressiveAntialiasing);
 
     resize(1280, 800);
     // Under the viewport: the graph three fifths of the width, the Log (and Post chain) the rest,
@@ -302,6 +304,7 @@ void MainWindow::createToolbars() {
 void MainWindow::applyViewState() {
     m_viewport->setFrameSettings(m_viewToolbar->frameSettings());
     m_viewport->setTimingOverlayVisible(m_viewToolbar->timingOverlay());
+    m_viewport->setProgressiveAntialiasing(m_viewToolbar->progressiveAntialias());
     m_properties->setPickerColorSpace(m_viewToolbar->pickerColorSpace());
 }
 

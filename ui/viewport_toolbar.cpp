@@ -5,6 +5,7 @@
 #include "ui/commands/set_scene_command.h"
 #include "ui/document_controller.h"
 #include "ui/scene/scene_choosers.h"
+#include "ui/viewport_widget.h"
 
 #include <QAction>
 #include <QComboBox>
@@ -56,6 +57,7 @@ const char* const kViewKey = "viewport/view";
 const char* const kLookKey = "viewport/look";
 const char* const kExposureKey = "viewport/exposureEv";
 const char* const kOverlayKey = "viewport/timingOverlay";
+const char* const kAntialiasKey = "viewport/progressiveAntialias";
 
 constexpr double kMaxExposure = 10.0;
 constexpr int kExposureSliderSteps = 10; // slider units per EV
@@ -119,6 +121,14 @@ ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorMan
     addWidget(m_exposure);
     addSeparator();
 
+    m_antialias = addAction(tr("Refine"));
+    m_antialias->setObjectName(QStringLiteral("progressiveAntialiasAction"));
+    m_antialias->setCheckable(true);
+    m_antialias->setChecked(true);
+    m_antialias->setToolTip(
+        tr("Anti-alias the still view: once nothing changes, average %1 frames offset by a "
+           "fraction of a pixel (smooth silhouettes, highlights and threads)")
+            .arg(ViewportWidget::kProgressiveSamples));
     m_overlay = addAction(tr("Timings"));
     m_overlay->setObjectName(QStringLiteral("timingOverlayAction"));
     m_overlay->setCheckable(true);
@@ -140,6 +150,10 @@ ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorMan
     });
     connect(m_exposureSlider, &QSlider::valueChanged, this, [this](int steps) {
         m_exposure->setValue(double(steps) / kExposureSliderSteps); // emits valueChanged
+    });
+    connect(m_antialias, &QAction::toggled, this, [this](bool on) {
+        saveSettings();
+        emit progressiveAntialiasToggled(on);
     });
     connect(m_overlay, &QAction::toggled, this, [this](bool on) {
         saveSettings();
@@ -213,6 +227,10 @@ bool ViewportToolbar::timingOverlay() const {
     return m_overlay->isChecked();
 }
 
+bool ViewportToolbar::progressiveAntialias() const {
+    return m_antialias->isChecked();
+}
+
 void ViewportToolbar::restoreSettings() {
     QSettings settings;
     m_updating = true;
@@ -228,6 +246,7 @@ void ViewportToolbar::restoreSettings() {
     m_exposure->setValue(settings.value(kExposureKey, 0.0).toDouble());
     m_updating = false;
     m_overlay->setChecked(settings.value(kOverlayKey, false).toBool());
+    m_antialias->setChecked(settings.value(kAntialiasKey, true).toBool());
     emit viewStateChanged();
 }
 
@@ -239,6 +258,7 @@ void ViewportToolbar::saveSettings() const {
     settings.setValue(kLookKey, m_look->currentData().toString());
     settings.setValue(kExposureKey, m_exposure->value());
     settings.setValue(kOverlayKey, m_overlay->isChecked());
+    settings.setValue(kAntialiasKey, m_antialias->isChecked());
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -56,6 +56,8 @@ public:
     /// The colour pickers' space: the chosen display/view/look, or sRGB when built-in.
     PickerColorSpace pickerColorSpace() const;
     bool timingOverlay() const;
+    /// The still view refined by progressive anti-aliasing (ViewportWidget; on by default).
+    bool progressiveAntialias() const;
 
     /// Reads the view state from QSettings (unknown names fall back to the defaults).
     void restoreSettings();
@@ -66,6 +68,7 @@ signals:
     /// Debug view, display, view, look or exposure changed.
     void viewStateChanged();
     void timingOverlayToggled(bool visible);
+    void progressiveAntialiasToggled(bool on);
 
 private:
     void fillViews();
@@ -78,6 +81,7 @@ private:
     QComboBox* m_look;
     QDoubleSpinBox* m_exposure;
     QSlider* m_exposureSlider;
+    QAction* m_antialias;
     QAction* m_overlay;
     bool m_updating = false;
 };

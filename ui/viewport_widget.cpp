@@ -4,6 +4,7 @@
 #include "core/image.h"
 #include "render/camera.h"
 #include "render/offscreen.h"
+#include "render/progressive_accumulation.h"
 #include "ui/texture_file_watcher.h"
 #include "ui/worker_gl_context.h"
 
@@ -101,7 +102,7 @@ ViewportWidget::ViewportWidget(QWidget* parent)
     : QWidget(parent), m_surface(new Surface(this)),
       m_container(QWidget::createWindowContainer(m_surface, this)), m_flyTimer(new QTimer(this)),
       m_refineTimer(new QTimer(this)), m_animationTimer(new QTimer(this)),
-      m_textureWatcher(new TextureFileWatcher(this)) {
+      m_progressiveTimer(new QTimer(this)), m_textureWatcher(new TextureFileWatcher(this)) {
     setObjectName(QStringLiteral("viewport"));
     m_surface->setObjectName(QStringLiteral("viewportWindow"));
     m_container->setObjectName(QStringLiteral("viewportContainer"));
@@ -130,6 +131,8 @@ ViewportWidget::ViewportWidget(QWidget* parent)
     // time for input, instead of drawing as fast as llvmpipe can.
     m_animationTimer->setInterval(kAnimationIntervalMs);
     connect(m_animationTimer, &QTimer::timeout, this, &ViewportWidget::requestFrame);
+    m_progressiveTimer->setSingleShot(true);
+    connect(m_progressiveTimer, &QTimer::timeout, this, &ViewportWidget::progressiveStep);
 }
 
 QOpenGLWindow* ViewportWidget::glWindow() const {
@@ -137,6 +140,11 @@ QOpenGLWindow* ViewportWidget::glWindow() const {
 }
 
 void ViewportWidget::requestFrame() {
+    restartProgressive(); // a change: the plain frame now, the refinement after a pause
+    postFrame();
+}
+
+void ViewportWidget::postFrame() {
     m_surface->update(); // marks the window dirty and asks Qt for an update request
     // Qt delivers that request from a timer of QT_QPA_UPDATE_IDLE_TIME (5 ms by default): 5 ms
     // added to every frame, the whole of the viewport_overhead_ms budget. Post the request now;
@@ -394,11 +402,28 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
     settings.time = float(animationTime());
     settings.displayOnly = displayOnly;
+    // A refinement frame (viewport_progressive.cpp); a grab that reads the linear image draws
+    // the plain frame.
+    if (m_progressiveIndex >= 0 && settings.renderScale == 1.0f && displayOnly) {
+        settings.accumulation = m_progressiveIndex;
+        settings.jitter = render::progressiveJitter(m_progressiveIndex);
+    }
 
     QElapsedTimer timer;
     timer.start();
     std::string error;
-    if (!m_renderer->render(settings, fbo, &error)) {
+    // A still view that has finished refining repaints (an expose, a grab) with its mean as it
+    // is: the same picture every time, and nothing drawn.
+    bool showMean = false;
+    if (settings.accumulation >= kProgressiveSamples) {
+        showMean = m_renderer->showAccumulated(settings.width, settings.height, fbo);
+        if (!showMean) { // resized since: a plain frame, refined again after it
+            restartProgressive();
+            settings.accumulation = -1;
+            settings.jitter = glm::vec2(0.0f);
+        }
+    }
+    if (!showMean && !m_renderer->render(settings, fbo, &error)) {
         m_grabTarget.reset();
         m_graphPreview.reset();
         m_renderer.reset(); // keep the viewport alive; show what went wrong instead of drawing
@@ -426,6 +451,7 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
     // specialised one (render/lighting_features.h), so no compile ever lands inside a drag.
     if (m_renderer->specialisationPending())
         m_refineTimer->start();
+    progressiveFrameDrawn(settings);
     updateOverlay();
     emit frameCompleted(static_cast<double>(timer.nsecsElapsed()) / 1.0e6);
     return true;

@@ -115,6 +115,21 @@ public:
     /// The render scale of the last frame drawn (1 at full size).
     float lastRenderScale() const { return m_lastRenderScale; }
     /// @}
+    /// @name Progressive anti-aliasing at rest (render/progressive_accumulation.h)
+    /// kProgressiveDelayMs after the last change, a still view — nothing dragged, animating,
+    /// loading or compiling, drawn at full size — draws kProgressiveSamples more frames, each
+    /// offset by a sub-pixel jitter, one per event-loop turn, and shows their running mean: its
+    /// edges, highlights and threads settle to the supersampled picture in about half a second,
+    /// then the viewport stops drawing. Any change shows the plain frame again at once and starts
+    /// over. View state (the viewport toolbar's Refine, kept in QSettings), on by default.
+    /// @{
+    static constexpr int kProgressiveDelayMs = 200;
+    static constexpr int kProgressiveSamples = 16;
+    void setProgressiveAntialiasing(bool enabled);
+    bool progressiveAntialiasing() const { return m_progressiveEnabled; }
+    /// The frames in the mean the viewport shows (0: a plain frame).
+    int progressiveSamples() const { return m_progressiveShown; }
+    /// @}
     /// @name Animation
     /// Film grain, night-vision grain, vaporwave static, paintbrush strokes and the procedural
     /// FBM background read FrameSettings::time. While the scene reads time (sceneReadsTime) and
@@ -227,6 +242,16 @@ private:
     void paintOverlay();
     void releaseRenderer();
     void fail(const QString& message);
+    /// Posts an update request without counting it as a change (requestFrame does).
+    void postFrame();
+    /// @name Progressive anti-aliasing (viewport_progressive.cpp)
+    /// @{
+    void restartProgressive();
+    /// After a frame drawn with @p settings: schedules the next refinement frame while the
+    /// view is still (or the first one kProgressiveDelayMs later), or stops.
+    void progressiveFrameDrawn(const render::FrameSettings& settings);
+    void progressiveStep();
+    /// @}
     /// A scene or view change: decides whether the next frame is reduced (see kRefineDelayMs).
     void noteInteraction();
     /// Starts or stops the animation clock and timer after a scene or pause change.
@@ -271,6 +296,11 @@ private:
     double m_animatedSeconds = 0.0; ///< time accumulated before m_animationClock started
     QElapsedTimer m_animationClock; ///< valid while animating
     QTimer* m_animationTimer;
+    bool m_progressiveEnabled = true;
+    /// The next frame's FrameSettings::accumulation: -1 a plain frame, n the n-th of the mean.
+    int m_progressiveIndex = -1;
+    int m_progressiveShown = 0; ///< frames in the mean on screen (0: a plain frame)
+    QTimer* m_progressiveTimer;
     /// Draws a frame when a texture file the material uses changes on disk (an idle viewport
     /// would otherwise not notice; ui/texture_file_watcher.h).
     QStringList m_lastSceneProblems; ///< the problems update reported last (no repeats)

@@ -21,6 +21,7 @@
 #include "ui/viewport_widget.h"
 #include "ui_test_util.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QComboBox>
 #include <QDockWidget>
@@ -106,6 +107,7 @@ private slots:
     void animationRunsOnlyWhileSceneReadsTime();
     void editedTextureFileRedrawsIdleViewport();
     void lookComboChangesPixelAndPersists();
+    void stillViewRefinesThenStops();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -749,6 +751,67 @@ void TestUiViewport::lookComboChangesPixelAndPersists() {
     QVERIFY(m_window->viewport()->frameSettings().look.empty());
     QCOMPARE(QSettings().value(QStringLiteral("viewport/look")).toString(), QString());
     QVERIFY(maxImageDifference(without, viewportImage()) <= 1);
+}
+
+void TestUiViewport::stillViewRefinesThenStops() {
+    // At rest the viewport averages kProgressiveSamples jittered frames, then draws nothing; the
+    // mean smooths the silhouette and leaves the sphere's inside as it was; a change shows the
+    // plain frame at once; the toolbar's Refine turns it off and is remembered.
+    ViewportWidget* viewport = m_window->viewport();
+    auto* refine = m_window->findChild<QAction*>(QStringLiteral("progressiveAntialiasAction"));
+    QVERIFY(refine);
+    QVERIFY2(refine->isChecked(), "on by default");
+    QElapsedTimer settling;
+    settling.start();
+    viewport->requestFrame();
+    QVERIFY(QTest::qWaitFor(
+        [&] { return viewport->progressiveSamples() >= ViewportWidget::kProgressiveSamples; },
+        kFrameTimeoutMs));
+    qInfo("refined in %lld ms after a change (%dx%d)", settling.elapsed(), viewport->width(),
+          viewport->height());
+    const int frames = viewport->frameCount();
+    QTest::qWait(4 * ViewportWidget::kProgressiveDelayMs);
+    QCOMPARE(viewport->frameCount(), frames); // converged: the idle editor costs nothing
+    const QImage refined = viewportImage();
+
+    // A change: the next frame is a plain one, and the refinement starts over after it.
+    find<QDoubleSpinBox>(QStringLiteral("exposureSpin"))->setValue(0.5);
+    QVERIFY(QTest::qWaitFor([&] { return viewport->progressiveSamples() == 0; }, kFrameTimeoutMs));
+    find<QDoubleSpinBox>(QStringLiteral("exposureSpin"))->setValue(0.0);
+    QVERIFY(QTest::qWaitFor(
+        [&] { return viewport->progressiveSamples() >= ViewportWidget::kProgressiveSamples; },
+        kFrameTimeoutMs));
+
+    refine->trigger();
+    QVERIFY(!viewport->progressiveAntialiasing());
+    QCOMPARE(QSettings().value(QStringLiteral("viewport/progressiveAntialias")).toBool(), false);
+    const QImage plain = viewportImage();
+    QCOMPARE(viewport->progressiveSamples(), 0);
+    QTest::qWait(4 * ViewportWidget::kProgressiveDelayMs);
+    QCOMPARE(viewport->progressiveSamples(), 0);
+
+    // The silhouette's pixels change (the plain frame's steps become blends), the sphere's
+    // inside does not.
+    QCOMPARE(refined.size(), plain.size());
+    int total = 0, changed = 0;
+    const int cx = plain.width() / 2, cy = plain.height() / 2;
+    for (int y = 0; y < plain.height(); ++y)
+        for (int x = 0; x < plain.width(); ++x) {
+            const QColor a = refined.pixelColor(x, y), b = plain.pixelColor(x, y);
+            const int d = std::max({std::abs(a.red() - b.red()), std::abs(a.green() - b.green()),
+                                    std::abs(a.blue() - b.blue())});
+            if (d > 8)
+                ++changed;
+            if (std::abs(x - cx) < 20 && std::abs(y - cy) < 20)
+                QVERIFY2(d <= 3, qPrintable(QStringLiteral("inside the sphere: %1").arg(d)));
+            ++total;
+        }
+    QVERIFY2(changed > 50, qPrintable(QStringLiteral("%1 pixels smoothed").arg(changed)));
+    QVERIFY2(changed * 20 < total, "only the edges and fine detail change");
+
+    refine->trigger();
+    QVERIFY(viewport->progressiveAntialiasing());
+    QCOMPARE(QSettings().value(QStringLiteral("viewport/progressiveAntialias")).toBool(), true);
 }
 
 int main(int argc, char** argv) {

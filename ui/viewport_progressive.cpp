@@ -1,0 +1,61 @@
+/// @file viewport_progressive.cpp
+/// The viewport's progressive anti-aliasing at rest (ViewportWidget's "Progressive
+/// anti-aliasing" group; render/progressive_accumulation.h): when to draw the next jittered
+/// frame, and when to stop. Split from viewport_widget.cpp by job.
+#include "ui/viewport_widget.h"
+
+#include <QTimer>
+
+namespace velvet::ui {
+
+void ViewportWidget::setProgressiveAntialiasing(bool enabled) {
+    if (enabled == m_progressiveEnabled)
+        return;
+    m_progressiveEnabled = enabled;
+    requestFrame(); // off: the plain frame again; on: the refinement after the pause
+}
+
+void ViewportWidget::restartProgressive() {
+    m_progressiveIndex = -1;
+    m_progressiveTimer->stop();
+}
+
+void ViewportWidget::progressiveFrameDrawn(const render::FrameSettings& settings) {
+    if (settings.accumulation >= 0) {
+        // The renderer's count, not ours: a mean it restarted (the size changed) goes on from
+        // its own first frame.
+        m_progressiveShown = m_renderer->accumulatedSamples();
+        m_progressiveIndex = m_progressiveShown;
+    } else {
+        m_progressiveShown = 0;
+    }
+    // Still: nothing the next frames would differ by but the jitter. A drag, reduced frames,
+    // an animation, textures loading, a mesh baking or a graph or a specialised lighting
+    // program compiling each bring frames of their own, and refining between them would only
+    // delay those.
+    const bool still = m_progressiveEnabled && settings.renderScale == 1.0f && !m_interacting &&
+                       m_drag == Drag::None && !m_flyTimer->isActive() && !isAnimating() &&
+                       !m_renderer->graphPending() && !m_renderer->meshBakePending() &&
+                       !m_renderer->specialisationPending() &&
+                       m_renderer->textureProgress().loading == 0;
+    if (!still) {
+        m_progressiveTimer->stop();
+        return;
+    }
+    if (m_progressiveIndex < 0) // a plain frame: refine once the changes pause
+        m_progressiveTimer->start(kProgressiveDelayMs);
+    else if (m_progressiveIndex < kProgressiveSamples) // the next one at the next turn
+        m_progressiveTimer->start(0);
+    else
+        m_progressiveTimer->stop(); // converged: nothing more to draw
+}
+
+void ViewportWidget::progressiveStep() {
+    if (!m_progressiveEnabled || !m_renderer)
+        return;
+    if (m_progressiveIndex < 0)
+        m_progressiveIndex = 0;
+    postFrame();
+}
+
+} // namespace velvet::ui
