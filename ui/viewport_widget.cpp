@@ -379,6 +379,7 @@ void ViewportWidget::paintGL() {
 
 bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
     if (m_pendingParts != ScenePart::None) {
+        restartProgressive(); // a scene change is never averaged with the frames before it
         Problems problems;
         m_renderer->update(m_scene, m_pendingParts, &problems);
         m_pendingParts = ScenePart::None;
