@@ -35,6 +35,7 @@
 #include <QToolButton>
 #include <QUndoStack>
 #include <QUndoView>
+#include <algorithm>
 #include <cmath>
 
 namespace velvet::ui {
@@ -378,6 +379,11 @@ void MainWindow::showFrameTime(double cpuMs) {
         if (gpuMs > 0.0)
             text += tr(" · GPU %1 ms").arg(gpuMs, 0, 'f', 1);
     }
+    // The still view's refinement (ViewportWidget's progressive anti-aliasing), as it goes.
+    if (const int samples = m_viewport->progressiveSamples(); samples > 0)
+        text += tr(" · Refined %1/%2")
+                    .arg(std::min(samples, ViewportWidget::kProgressiveSamples))
+                    .arg(ViewportWidget::kProgressiveSamples);
     m_frameLabel->setText(text);
 
     // Textures loading off the drawing thread (the viewport keeps frames coming meanwhile).

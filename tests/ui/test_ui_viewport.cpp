@@ -28,6 +28,7 @@
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QLabel>
 #include <QMimeData>
 #include <QRegularExpression>
 #include <QSettings>
@@ -769,6 +770,11 @@ void TestUiViewport::stillViewRefinesThenStops() {
         kFrameTimeoutMs));
     qInfo("refined in %lld ms after a change (%dx%d)", settling.elapsed(), viewport->width(),
           viewport->height());
+    // The status bar says so.
+    auto* frameTime = m_window->findChild<QLabel*>(QStringLiteral("frameTime"));
+    QVERIFY(frameTime);
+    QVERIFY2(frameTime->text().contains(QStringLiteral("Refined 16/16")),
+             qPrintable(frameTime->text()));
     const int frames = viewport->frameCount();
     QTest::qWait(4 * ViewportWidget::kProgressiveDelayMs);
     QCOMPARE(viewport->frameCount(), frames); // converged: the idle editor costs nothing
