@@ -59,7 +59,7 @@ bool Renderer::reloadShaders(std::string* error) {
     if (!d.initialized)
         return fail(error, "Renderer::reloadShaders called before initialize()");
     d.backgroundReuse.invalidate();
-    d.stage.invalidateOcclusion();
+    d.stage.invalidateScreenPasses();
     // Every program from disk; each failure keeps its last good program and adds its message.
     std::string errors;
     auto collect = [&](bool ok, const std::string& message) {
@@ -81,7 +81,7 @@ bool Renderer::reloadShaders(std::string* error) {
 void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
     Impl& d = *m_impl;
     d.backgroundReuse.invalidate();
-    d.stage.invalidateOcclusion(); // the textures are taken again
+    d.stage.invalidateScreenPasses(); // the textures are taken again
     d.colorManagement = std::move(colorManagement);
     d.display.setColorManagement(d.colorManagement);
     // Input colour space names are looked up in the new config too (without one, in the
@@ -107,7 +107,7 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     // them without its key seeing it (the camera, the ground and the material's values it sees).
     if (touches(parts, ScenePart::Mesh | ScenePart::MaterialStructure | ScenePart::Graph |
                            ScenePart::Atlases))
-        d.stage.invalidateOcclusion();
+        d.stage.invalidateScreenPasses();
     if (!d.initialized)
         return; // uploaded by initialize()
     if (touches(parts, ScenePart::Mesh))
@@ -347,8 +347,10 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
     // Screen-space occlusion of the G-buffer, at half resolution (off: nothing runs).
     d.targets.gbuffer().bindTextures();
+    // One key for both screen-space passes: it also notes what no key sees (screenPassKey).
+    const FrameKey screenKey = d.screenPassKey(fs, block);
     if (!d.stage.drawOcclusion(d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                               d.occlusionKey(fs, block), d.emptyVao, error))
+                               screenKey, d.emptyVao, error))
         return false;
     // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
     // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).
@@ -358,7 +360,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(),
                            d.targets.shadowKey().texture(), d.targets.groundShadowMask().texture(),
                            d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                           d.emptyVao, fs.settleShadows);
+                           screenKey, d.emptyVao, fs.settleShadows);
     glViewport(0, 0, fs.width, fs.height);
 
     // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only
@@ -539,6 +541,7 @@ FrameTimings Renderer::lastTimings() const {
     }
     d.timings.shadowMaskPasses = d.stage.lastShadowMaskPasses();
     d.timings.occlusionKept = d.stage.lastOcclusionKept();
+    d.timings.shadowMaskKept = d.stage.lastShadowMaskKept();
     return d.timings;
 }
 

@@ -215,8 +215,12 @@ struct FrameTimings {
     /// The frame kept the last frame's occlusion (render/ao_pass.h: the camera, the depth and the
     /// normals as they were; occlusionMs is then 0). Counted, not timed: always set.
     bool occlusionKept = false;
-    /// The screen-space shadow mask's passes (render/shadow_mask.h; 0 without a shadowed light).
+    /// The screen-space shadow mask's passes (render/shadow_mask.h; 0 without a shadowed light,
+    /// and when the frame kept the last frame's masks).
     double shadowMaskMs = 0;
+    /// The frame kept the last frame's shadow masks (render/stage.h: the camera, the normals,
+    /// the lights and the maps as they were, as after a material value edit). Always set.
+    bool shadowMaskKept = false;
     /// How many shadow-mask passes the frame drew: one per shadowed light with receivers on
     /// screen, never more than the cap (kMaxShadowLights). Counted, not timed: always set.
     int shadowMaskPasses = 0;

@@ -241,14 +241,14 @@ bool Renderer::Impl::steadySince(const FrameSettings& fs, std::uint64_t& uploade
     return steady;
 }
 
-FrameKey Renderer::Impl::occlusionKey(const FrameSettings& fs, const FrameBlock& b) {
-    if (!steadySince(fs, occlusionUploadedBytes))
-        stage.invalidateOcclusion();
+FrameKey Renderer::Impl::screenPassKey(const FrameSettings& fs, const FrameBlock& b) {
+    if (!steadySince(fs, screenPassUploadedBytes))
+        stage.invalidateScreenPasses();
     FrameKey key;
     key.add(b.viewMatrix).add(b.projMatrix).add(fs.width).add(fs.height);
     // sheenWeightAnisotropy.w: the shading normal varies per pixel (a normal map, a graph's).
     if (packedA.sheenWeightAnisotropy.w > 0.5f)
-        key.add(packedA);
+        key.add(packedA).add(graph.valueUploads());
     return key;
 }
 

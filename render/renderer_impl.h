@@ -105,9 +105,9 @@ struct Renderer::Impl {
     FrameReuse backgroundReuse;
     BackgroundDownsample backgroundDownsample; ///< the inline background at a quarter size
     std::uint64_t uploadedBytes = 0;
-    /// The texture bytes uploaded as of the last frame that drew the occlusion (a normal map
-    /// arriving changes the normals it reads).
-    std::uint64_t occlusionUploadedBytes = 0;
+    /// The texture bytes uploaded as of the last frame's screen-space passes (a normal map
+    /// arriving changes the normals the occlusion and the shadow mask read).
+    std::uint64_t screenPassUploadedBytes = 0;
     /// Specialised builds that failed, lighting and G-buffer, already warned about.
     int reportedLightingFailures = 0, reportedGeometryFailures = 0;
     /// A specialised program that failed to build is a warning (once each): the generic one
@@ -339,10 +339,11 @@ struct Renderer::Impl {
     /// (the texture bytes uploaded then, updated): not a split frame, no texture arriving or
     /// loading, no graph structure adopted this frame.
     bool steadySince(const FrameSettings& fs, std::uint64_t& uploadedAsOf);
-    /// The frame's part of the occlusion's key (render/ao_pass.h): the camera and, where the
-    /// material bends its normals, its record (a value edit may then move them); what it cannot
-    /// see (steadySince()) invalidates the kept occlusion.
-    FrameKey occlusionKey(const FrameSettings& fs, const FrameBlock& b);
+    /// The frame's part of the screen-space passes' keys (the occlusion, render/ao_pass.h, and
+    /// the shadow mask, render/stage.h): the camera and, where the material bends its normals,
+    /// its record and its graph's values (a value edit may then move them); what it cannot see
+    /// (steadySince()) invalidates what they kept. Once a frame: it notes the uploads.
+    FrameKey screenPassKey(const FrameSettings& fs, const FrameBlock& b);
     /// Whether this inline frame may keep the last one's background pixels (frame_reuse.h).
     bool keepsBackground(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
                          const InlineDisplay& d, unsigned targetFbo);

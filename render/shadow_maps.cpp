@@ -226,6 +226,7 @@ bool ShadowMaps::draw(const GpuMesh& mesh) {
         return false;
     }
     allocate(int(m_slots.size()), kShadowMapSize);
+    ++m_drawCount;
     glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
     glDrawBuffer(GL_NONE);
     glViewport(0, 0, m_size, m_size);

@@ -68,6 +68,8 @@ public:
     /// Draws the depth maps of @p mesh when plan() or a new mesh asked for it; true when it drew.
     /// Leaves the framebuffer, viewport and depth state for the caller to set.
     bool draw(const class GpuMesh& mesh);
+    /// How many times draw() has drawn the maps: what the shadow mask's reuse key sees of them.
+    unsigned long long drawCount() const { return m_drawCount; }
     /// Fills the shadow members of @p block (the scene's lights for the catcher's radiance).
     void fill(StageBlock& block, const std::vector<Light>& lights) const;
     /// Binds the depth array at both shadow units with their samplers, and its depth bounds
@@ -83,6 +85,7 @@ private:
     int m_compileCount = 0;
     std::vector<ShadowSlot> m_slots;
     bool m_dirty = true;
+    unsigned long long m_drawCount = 0;
     const GpuMesh* m_drawnMesh = nullptr;
     unsigned m_texture = 0, m_fbo = 0, m_compareSampler = 0, m_depthSampler = 0;
     int m_layers = 0, m_size = 0;

@@ -126,6 +126,7 @@ void Stage::beginFrame(const Scene& scene, int width, int height) {
                   float(OcclusionPass::halfSize(width)), float(OcclusionPass::halfSize(height)));
     glNamedBufferSubData(m_ubo, 0, sizeof(StageBlock), &b);
     glBindBufferBase(GL_UNIFORM_BUFFER, stage_binding::kStageUbo, m_ubo);
+    m_block = b;
 }
 
 void Stage::drawGround(const Environment& environment) {
@@ -173,17 +174,34 @@ bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewP
 
 void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
                            unsigned groundMaskTexture, const Environment& environment,
-                           const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
-                           bool settle) {
+                           const glm::mat4& viewProj, int width, int height, FrameKey frameKey,
+                           unsigned emptyVao, bool settle) {
     m_maskTexture = m_keyTexture = m_groundMaskTexture = 0;
-    m_maskPasses = 0;
-    if (!hasShadows())
+    m_maskKept = false;
+    if (!hasShadows()) {
+        m_maskPasses = 0;
+        m_maskReuse.invalidate(); // its targets are not kept up to date meanwhile
         return;
+    }
     m_maskTexture = maskTexture;
     m_keyTexture = keyTexture;
     m_groundMaskTexture = groundMaskTexture;
     const float r = sphereOf(m_bounds).radius;
     const float height0 = m_bounds.empty() ? 0.0f : m_bounds.min.y - kGroundGap * r;
+    // The stage's part of the key: what the masks' passes read besides the G-buffer.
+    for (const ShadowSlot& s : m_shadows.slots()) // member by member: no padding bytes
+        frameKey.add(s.light)
+            .add(s.perspective)
+            .add(s.view)
+            .add(s.proj)
+            .add(s.nearPlane)
+            .add(s.farPlane)
+            .add(s.sourceSize)
+            .add(s.metresPerUv);
+    frameKey.add(m_block).add(m_shadows.drawCount()).add(environment.ground).add(m_bounds);
+    frameKey.add(settle).add(framebuffer).add(maskTexture).add(keyTexture).add(groundMaskTexture);
+    if ((m_maskKept = m_maskReuse.reuse(std::move(frameKey))))
+        return; // the passes and their timers are the frame's that drew the masks
     m_shadows.bind();
     glQueryCounter(m_queries[4], GL_TIMESTAMP);
     m_maskPasses =
@@ -240,7 +258,7 @@ double Stage::lastOcclusionMs() const {
 }
 
 double Stage::lastShadowMaskMs() const {
-    if (m_maskPasses == 0)
+    if (m_maskPasses == 0 || m_maskKept)
         return 0.0;
     GLuint64 t0 = 0, t1 = 0;
     glGetQueryObjectui64v(m_queries[4], GL_QUERY_RESULT, &t0);

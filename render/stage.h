@@ -67,8 +67,11 @@ public:
     bool drawOcclusion(const Environment& environment, const glm::mat4& viewProj, int width,
                        int height, FrameKey frameKey, unsigned emptyVao, std::string* error);
     /// The depth or the normals changed in a way no key sees (the mesh, a texture, a graph, the
-    /// shaders, a split frame): the next frame's occlusion is drawn again.
-    void invalidateOcclusion() { m_occlusion.invalidate(); }
+    /// shaders, a split frame): the next frame's occlusion and shadow mask are drawn again.
+    void invalidateScreenPasses() {
+        m_occlusion.invalidate();
+        m_maskReuse.invalidate();
+    }
     /// Whether the last frame kept the frame before's occlusion.
     bool lastOcclusionKept() const { return m_occlusionKept; }
     /// Whether a point, spot or area light has a shadow slot (the catcher's slot loop).
@@ -79,11 +82,17 @@ public:
     /// @p framebuffer (FrameTargets::shadowMaskFramebuffer(), whose colours are @p maskTexture
     /// and @p keyTexture), timed; nothing when no light casts a shadow. Expects the G-buffer's
     /// textures bound and @p viewProj the frame's camera. Leaves the viewport and depth state for
-    /// the caller to set.
+    /// the caller to set. The last frame's masks are kept, as the occlusion is, when
+    /// @p frameKey (the camera, the material's normals where it bends them, the targets) and the
+    /// stage's own inputs (the lights' slots and the StageBlock, the maps as drawn, the ground,
+    /// the bounds) are as they were: after a material value edit, a slider dragged on a shadowed
+    /// stage, the masks are the same texels.
     void drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
                         unsigned groundMaskTexture, const Environment& environment,
-                        const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
-                        bool settle = true);
+                        const glm::mat4& viewProj, int width, int height, FrameKey frameKey,
+                        unsigned emptyVao, bool settle = true);
+    /// Whether the last frame kept the frame before's shadow masks.
+    bool lastShadowMaskKept() const { return m_maskKept; }
     /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through
     /// @p viewProj in a @p width x @p height frame (the whole frame when they reach behind the
     /// camera); false when there is no mesh.
@@ -100,6 +109,7 @@ public:
     /// GPU milliseconds of the last frame's shadow-mask passes, and how many it drew (one per
     /// shadow slot with receivers on screen; at most kMaxShadowLights).
     double lastShadowMaskMs() const;
+    /// (The passes of the masks the frame reads: a kept mask's are the frame's that drew it.)
     int lastShadowMaskPasses() const { return m_maskPasses; }
     /// The last frame's shadow-mask texels drawn and filtered (ShadowMaskPass::lastTexels).
     void lastShadowMaskTexels(long long* texels, long long* filtered) const {
@@ -120,6 +130,9 @@ private:
     unsigned m_keyTexture = 0;        ///< its key (view depth, material id per texel)
     unsigned m_groundMaskTexture = 0; ///< the ground's mask, read by the shadow catcher
     int m_maskPasses = 0;
+    FrameReuse m_maskReuse;
+    bool m_maskKept = false;
+    StageBlock m_block{}; ///< the frame's, as beginFrame() uploaded it (the mask's key)
     bool m_occlusionOn = false;
     bool m_occlusionKept = false;
 };

@@ -1,7 +1,9 @@
-// The screen-space occlusion kept across frames (render/ao_pass.h): a frame whose camera, depth
-// and normals are the last frame's keeps the last occlusion instead of drawing it again, and its
-// image is the one a frame drawing the occlusion gives, to the bit; a moved camera, another mesh,
-// or a value edit of a material that bends its normals (a fabric's weave) draws it again.
+// The screen-space occlusion and shadow mask kept across frames (render/ao_pass.h,
+// render/stage.h): a frame whose camera, depth and normals are the last frame's keeps the last
+// occlusion instead of drawing it again, and its image is the one a frame drawing the occlusion
+// gives, to the bit; a moved camera, another mesh, or a value edit of a material that bends its
+// normals (a fabric's weave) draws it again. The shadow mask likewise, and a moved or resized
+// light draws it again too.
 #include "core/document_io.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
@@ -100,6 +102,51 @@ private slots:
         QVERIFY(draw()); // still again
         m_rig->renderer->update(lit, ScenePart::Mesh);
         QVERIFY(!draw());
+    }
+
+    // A shadowed key light over the ball on a catcher: a colour edit keeps the masks and the
+    // frame is the one drawn with them drawn again; a light moved or made larger (a softer
+    // penumbra), a camera moved, draw them again.
+    void shadowMaskKeptAcrossAColourEdit() {
+        Scene shadowed = stage();
+        shadowed.environment.ground = GroundMode::ShadowCatcher;
+        shadowed.environment.ambientOcclusion = false;
+        Light key = test::analyticKeyLight();
+        key.castShadows = true;
+        shadowed.lights = {key};
+        m_rig->renderer->setScene(shadowed);
+        const auto maskKept = [&](Image* image = nullptr) {
+            draw(image);
+            const render::FrameTimings t = m_rig->renderer->lastTimings();
+            if (t.shadowMaskPasses < 1)
+                qFatal("the key light cast no shadow");
+            return t.shadowMaskKept;
+        };
+        QVERIFY(!maskKept());
+        QVERIFY(maskKept()); // nothing changed
+        Scene edited = shadowed;
+        edited.material.setColor(ParamId::BaseColor, glm::vec3(0.7f, 0.2f, 0.1f));
+        m_rig->renderer->update(edited, ScenePart::MaterialValues);
+        Image kept, drawn;
+        QVERIFY(maskKept(&kept));
+        QCOMPARE(m_rig->renderer->lastTimings().shadowMaskMs, 0.0);
+        m_rig->renderer->update(edited, ScenePart::Mesh);
+        QVERIFY(!maskKept(&drawn));
+        QVERIFY(test::samePixels(kept, drawn));
+        Scene moved = edited;
+        moved.lights[0].direction = glm::vec3(0.6f, -0.5f, 0.2f);
+        m_rig->renderer->update(moved, ScenePart::Lights);
+        QVERIFY(!maskKept());
+        QVERIFY(maskKept());
+        Scene softer = moved;
+        softer.lights[0].sourceAngleDeg *= 4.0f;
+        m_rig->renderer->update(softer, ScenePart::Lights);
+        QVERIFY(!maskKept());
+        Camera turned = softer.camera;
+        turned.yawDeg += 10.0f;
+        m_fs.camera = turned;
+        QVERIFY(!maskKept());
+        QVERIFY(maskKept());
     }
 
     // A fabric bends its normals by its weave, which its values (the weave's scale among them)
