@@ -9,6 +9,8 @@
 #include "render/renderer.h"
 
 #include <QtTest>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -100,6 +102,17 @@ inline Scene shippedDefaultScene() {
     if (!problems.items.empty())
         QTest::qFail("the default scene reported problems", __FILE__, __LINE__);
     return scene;
+}
+
+/// The largest difference of two same-sized images' RGB channels, in 1/255 steps.
+inline int maxDifference(const Image& a, const Image& b) {
+    int worst = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int k = 0; k < 3; ++k)
+                worst = std::max(
+                    worst, int(std::lround(std::abs(a.at(x, y)[k] - b.at(x, y)[k]) * 255.0f)));
+    return worst;
 }
 
 /// Whether two images are the same size and the same pixels, bit for bit.

@@ -16,17 +16,6 @@ namespace {
 
 constexpr int kWidth = 160, kHeight = 96;
 
-/// The largest channel difference between two images, in 1/255 steps.
-int maxDifference(const Image& a, const Image& b) {
-    int worst = 0;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x)
-            for (int k = 0; k < 3; ++k)
-                worst = std::max(
-                    worst, int(std::lround(std::abs(a.at(x, y)[k] - b.at(x, y)[k]) * 255.0f)));
-    return worst;
-}
-
 } // namespace
 
 class TestRenderFrameReuse : public QObject {
@@ -94,12 +83,12 @@ private slots:
         m_renderer->update(edited, ScenePart::MaterialValues);
         const Image kept = draw();
         QVERIFY2(this->kept(), "a value edit keeps the background");
-        QVERIFY2(maxDifference(before, kept) > 10, "the edit shows on the sphere");
+        QVERIFY2(test::maxDifference(before, kept) > 10, "the edit shows on the sphere");
         // The same scene with every part changed: the background drawn again.
         m_renderer->update(edited, ScenePart::All);
         const Image full = draw();
         QVERIFY(!this->kept());
-        QCOMPARE(maxDifference(kept, full), 0);
+        QCOMPARE(test::maxDifference(kept, full), 0);
         // The background's pixels themselves: the corner is the backdrop, not black.
         QVERIFY(full.at(1, 1)[0] + full.at(1, 1)[1] + full.at(1, 1)[2] > 0.0f);
     }
@@ -115,7 +104,7 @@ private slots:
         m_fs.camera = orbit;
         const Image orbited = draw();
         QVERIFY2(!kept(), "a camera move");
-        QVERIFY(maxDifference(still, orbited) > 0);
+        QVERIFY(test::maxDifference(still, orbited) > 0);
         draw();
         QVERIFY2(kept(), "the orbit's camera, held");
         m_fs.camera.reset();
@@ -125,7 +114,7 @@ private slots:
         m_fs.exposureEv = 1.0f;
         const Image brighter = draw();
         QVERIFY2(!kept(), "an exposure change");
-        QVERIFY2(maxDifference(still, brighter) > 10, "the exposure shows");
+        QVERIFY2(test::maxDifference(still, brighter) > 10, "the exposure shows");
         m_fs.exposureEv = 0.0f;
         draw();
 

@@ -16,17 +16,6 @@ namespace {
 
 constexpr int kWidth = 96, kHeight = 64;
 
-/// The largest channel difference between two images, in 1/255 steps.
-int maxDifference(const Image& a, const Image& b) {
-    int worst = 0;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x)
-            for (int k = 0; k < 3; ++k)
-                worst = std::max(
-                    worst, int(std::lround(std::abs(a.at(x, y)[k] - b.at(x, y)[k]) * 255.0f)));
-    return worst;
-}
-
 /// The mean absolute channel difference over the whole image.
 double meanDifference(const Image& a, const Image& b) {
     double sum = 0.0;
@@ -106,7 +95,7 @@ private slots:
         render::FrameSettings fs = plain();
         fs.jitter = glm::vec2(1.0f, 0.0f);
         const Image moved = draw(fs);
-        QVERIFY2(maxDifference(still, moved) > 20, "the silhouette moved");
+        QVERIFY2(test::maxDifference(still, moved) > 20, "the silhouette moved");
         int off = 0, total = 0;
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x + 1 < kWidth; ++x, ++total)
@@ -131,7 +120,7 @@ private slots:
         fs.accumulation = 0;
         const Image started = draw(fs);
         QCOMPARE(m_renderer->accumulatedSamples(), 1);
-        QCOMPARE(maxDifference(started, dark), 0);
+        QCOMPARE(test::maxDifference(started, dark), 0);
 
         fs.accumulation = 1;
         draw(fs);
@@ -148,12 +137,12 @@ private slots:
                         worst, int(std::lround(std::abs(mean.at(x, y)[k] - expected) * 255.0f)));
                 }
         QVERIFY2(worst <= 1, qPrintable(QString("off by %1/255").arg(worst)));
-        QVERIFY(maxDifference(mean, dark) > 10);
+        QVERIFY(test::maxDifference(mean, dark) > 10);
 
         // Accumulation 0 starts again: the plain frame.
         fs = plain();
         fs.accumulation = 0;
-        QCOMPARE(maxDifference(draw(fs), dark), 0);
+        QCOMPARE(test::maxDifference(draw(fs), dark), 0);
         QCOMPARE(m_renderer->accumulatedSamples(), 1);
     }
 
@@ -196,7 +185,7 @@ private slots:
               255.0 * edgeBefore / std::max(edges, 1), 255.0 * edgeAfter / std::max(edges, 1));
         QVERIFY2(edges > 50, "the silhouette is aliased in the plain frame");
         QVERIFY2(edgeAfter < 0.35 * edgeBefore, "the aliased pixels settle");
-        QVERIFY2(maxDifference(mean, reference) < maxDifference(single, reference),
+        QVERIFY2(test::maxDifference(mean, reference) < test::maxDifference(single, reference),
                  "the worst edge pixel too");
     }
 };
