@@ -487,7 +487,10 @@ vec3 dielectricF0(Surface s) {
 }
 
 // f(l, v) * max(n.l, 0), all lobes layered. Mirrors velvet::brdf::evalDirectional().
-vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
+// sheenAlbedoV: the sheen's directional albedo along the view, sheenDirectionalAlbedo(NdotV,
+// ...), which depends on no light: a pass that lights a pixel by several lights and reads it for
+// the image-based light too fetches it once (lighting.frag; llvmpipe pays every fetch).
+vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l, float sheenAlbedoV) {
     float NdotL = dot(n, l);
     if (NdotL <= 0.0)
         return vec3(0.0);
@@ -518,7 +521,7 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
         float sheen = distributionCharlie(NdotH, sin2H, s.sheenRoughness) *
                       visibilitySheen(s.sheenModel, NdotL, NdotV, s.sheenRoughness);
         float scaling =
-            min(1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel),
+            min(1.0 - max3(s.sheenColor) * sheenAlbedoV,
                 1.0 - max3(s.sheenColor) * sheenDirectionalAlbedo(NdotL, s.sheenRoughness, s.sheenModel));
         f = f * scaling + s.sheenColor * sheen;
     }
@@ -535,4 +538,14 @@ vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
     }
 #endif
     return f;
+}
+
+vec3 shadeDirectional(Surface s, vec3 n, vec3 v, vec3 l) {
+#if WITH_SHEEN
+    float sheenAlbedoV =
+        sheenDirectionalAlbedo(max(dot(n, v), 1e-4), s.sheenRoughness, s.sheenModel);
+#else
+    float sheenAlbedoV = 0.0;
+#endif
+    return shadeDirectional(s, n, v, l, sheenAlbedoV);
 }

@@ -145,11 +145,20 @@ void main() {
     float ssao = screenSpaceOcclusion(pixel, -posView.z);
     vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
 
+    // The sheen's albedo along the view: every light's scaling and the image-based sheen read it.
+    float NdotV = max(dot(n, v), 1e-4);
+#if WITH_SHEEN
+    float sheenAlbedoV = sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel);
+#else
+    float sheenAlbedoV = 0.0;
+#endif
+
     // Direct light, shadowed by the lights' shadow maps (the shadow mask, shadow_mask.glsl).
     vec3 color = vec3(0.0);
     // A bent shading normal takes no light from below the surface (geometricHorizon).
     for (int i = 0; i < frame.modes.x; ++i)
-        color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz) * frame.lightRadiance[i].rgb *
+        color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz, sheenAlbedoV) *
+                 frame.lightRadiance[i].rgb *
                  directionalShadow(i, shadows) * geometricHorizon(p, frame.lightDirection[i].xyz, 0.0);
 
     // Ambient (common_environment.glsl): SH9 irradiance for the diffuse lobes, times the chosen
@@ -157,7 +166,6 @@ void main() {
     // the split sum for the specular ones, the GGX-prefiltered cube times the DFG LUT with
     // Fdez-Aguera 2019's multiple-scattering energy (or the approximate path while the bake is
     // incomplete).
-    float NdotV = max(dot(n, v), 1e-4);
     vec3 irradiance = irradianceOverPi(n);
     vec3 r = reflect(-v, n);
     float rough = max(s.roughness, MIN_ROUGHNESS);
@@ -205,7 +213,7 @@ void main() {
         // irradiance about the lobe's mean direction (sheenLightDirection): not the prefiltered
         // radiance along the reflection at the sheen roughness (Filament's evaluateSheenIBL),
         // which lit velvet with a lamp highlight its lobe does not have.
-        float e = sheenDirectionalAlbedo(NdotV, s.sheenRoughness, s.sheenModel);
+        float e = sheenAlbedoV;
         vec3 sheenLight = irradianceOverPi(sheenLightDirection(n, v, NdotV, s.sheenRoughness));
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
                   s.sheenColor * e * sheenLight * diffuseOcclusion;
