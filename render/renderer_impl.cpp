@@ -59,6 +59,10 @@ bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
     const int graphBuilds = graph.compileCount();
     graph.buildPending(textures.sharedCache());
     structureAdoptedThisFrame = graph.compileCount() != graphBuilds;
+    // A split frame draws B into the right of the G-buffer: what it or the frame after it would
+    // keep (the screen passes, the background) must not outlive the split.
+    splitDrawnOrEnded = fs.splitMaterial.has_value() || lastFrameSplit;
+    lastFrameSplit = fs.splitMaterial.has_value();
     if (graph.writtenFields() != packedGraphFields)
         uploadMaterial(); // the program now drawing writes other fields: a new lobe map
     graph.refreshTextures(textures.sharedCache(), nullptr); // files changed on disk re-upload
@@ -235,7 +239,7 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
 
 bool Renderer::Impl::steadySince(const FrameSettings& fs, std::uint64_t& uploadedAsOf) {
     const std::uint64_t uploaded = textures.uploadStats().bytes;
-    const bool steady = !fs.splitMaterial && textures.progress().loading == 0 &&
+    const bool steady = !splitDrawnOrEnded && textures.progress().loading == 0 &&
                         uploaded == uploadedAsOf && !structureAdoptedThisFrame;
     uploadedAsOf = uploaded;
     return steady;
@@ -248,7 +252,7 @@ FrameKey Renderer::Impl::screenPassKey(const FrameSettings& fs, const FrameBlock
     key.add(b.viewMatrix).add(b.projMatrix).add(fs.width).add(fs.height);
     // sheenWeightAnisotropy.w: the shading normal varies per pixel (a normal map, a graph's).
     if (packedA.sheenWeightAnisotropy.w > 0.5f)
-        key.add(packedA).add(graph.valueUploads());
+        key.add(packedA);
     return key;
 }
 

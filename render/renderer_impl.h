@@ -91,6 +91,9 @@ struct Renderer::Impl {
     /// prepareFrame adopted a new graph structure (its build ran on the driver's threads: this
     /// frame must not then stall on a specialised build).
     bool structureAdoptedThisFrame = false;
+    /// This frame draws the A/B split, or the last one did (steadySince()).
+    bool splitDrawnOrEnded = false;
+    bool lastFrameSplit = false;
     /// Whether this frame may build a specialised program: not after a value edit, not the
     /// frame that adopts a graph built asynchronously, not while textures stream in (each
     /// arrival changes the record's slots). The viewport draws once more when they pause.
@@ -341,8 +344,9 @@ struct Renderer::Impl {
     bool steadySince(const FrameSettings& fs, std::uint64_t& uploadedAsOf);
     /// The frame's part of the screen-space passes' keys (the occlusion, render/ao_pass.h, and
     /// the shadow mask, render/stage.h): the camera and, where the material bends its normals,
-    /// its record and its graph's values (a value edit may then move them); what it cannot see
-    /// (steadySince()) invalidates what they kept. Once a frame: it notes the uploads.
+    /// its record (a value edit may then move them; a graph edit invalidates them in update());
+    /// what it cannot see (steadySince()) invalidates what they kept. Once a frame: it notes the
+    /// uploads.
     FrameKey screenPassKey(const FrameSettings& fs, const FrameBlock& b);
     /// Whether this inline frame may keep the last one's background pixels (frame_reuse.h).
     bool keepsBackground(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
