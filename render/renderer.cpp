@@ -103,8 +103,9 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     // (a texture slot's cut-out, the mesh, the environment: render/frame_reuse.h).
     if (touches(parts, ~ScenePart::MaterialValues))
         d.backgroundReuse.invalidate();
-    // The occlusion reads the depth and the normals: the mesh, the textures and the graph move
-    // them without its key seeing it (the camera, the ground and the material's values it sees).
+    // The occlusion and the shadow mask read the depth and the normals: the mesh, the textures
+    // and the graph move them without their keys seeing it (the camera, the ground, the lights
+    // and the material's values they see).
     if (touches(parts, ScenePart::Mesh | ScenePart::MaterialStructure | ScenePart::Graph |
                            ScenePart::Atlases))
         d.stage.invalidateScreenPasses();

@@ -86,7 +86,7 @@ void ViewportWidget::paintSplitDecorations(QPainter& painter, QSize size) const 
 }
 
 QImage ViewportWidget::grabDecorated() {
-    QImage image = grabFramebuffer();
+    QImage image = grabFramebuffer(nullptr, /*settled=*/true);
     if (image.isNull() || !m_splitMaterial)
         return image;
     QPainter painter(&image);

@@ -17,6 +17,7 @@ void ViewportWidget::setProgressiveAntialiasing(bool enabled) {
 
 void ViewportWidget::restartProgressive() {
     m_progressiveIndex = -1;
+    m_progressiveShown = 0; // the mean on screen is the last view's, gone at the next frame
     m_progressiveTimer->stop();
 }
 

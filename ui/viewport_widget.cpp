@@ -377,7 +377,7 @@ void ViewportWidget::paintGL() {
     paintOverlay();
 }
 
-bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
+bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab) {
     if (m_pendingParts != ScenePart::None) {
         restartProgressive(); // a scene change is never averaged with the frames before it
         Problems problems;
@@ -403,9 +403,13 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
     settings.time = float(animationTime());
     settings.displayOnly = displayOnly;
-    // A refinement frame (viewport_progressive.cpp); a grab that reads the linear image draws
-    // the plain frame.
-    if (m_progressiveIndex >= 0 && settings.renderScale == 1.0f && displayOnly) {
+    // A refinement frame (viewport_progressive.cpp). A grab (any other target) never adds to
+    // the refinement: it draws the plain frame, or with @p settledGrab the settled mean once
+    // there is one; one that reads the linear image draws the plain frame.
+    const bool grab = fbo != m_surface->defaultFramebufferObject();
+    const bool refined =
+        grab ? settledGrab && m_progressiveIndex >= kProgressiveSamples : m_progressiveIndex >= 0;
+    if (refined && settings.renderScale == 1.0f && displayOnly) {
         settings.accumulation = m_progressiveIndex;
         settings.jitter = render::progressiveJitter(m_progressiveIndex);
     }
@@ -452,13 +456,14 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly) {
     // specialised one (render/lighting_features.h), so no compile ever lands inside a drag.
     if (m_renderer->specialisationPending())
         m_refineTimer->start();
-    progressiveFrameDrawn(settings);
+    if (!grab)
+        progressiveFrameDrawn(settings);
     updateOverlay();
     emit frameCompleted(static_cast<double>(timer.nsecsElapsed()) / 1.0e6);
     return true;
 }
 
-QImage ViewportWidget::grabFramebuffer(Image* linear) {
+QImage ViewportWidget::grabFramebuffer(Image* linear, bool settled) {
     if (!m_renderer || !m_surface->context())
         return {};
     m_surface->makeCurrent();
@@ -469,7 +474,7 @@ QImage ViewportWidget::grabFramebuffer(Image* linear) {
     const QSize size = frameSize();
     if (!m_grabTarget->resize(size.width(), size.height(), &error)) {
         qWarning("velvet: grabFramebuffer: %s", error.c_str());
-    } else if (drawFrame(m_grabTarget->framebuffer(), /*displayOnly=*/linear == nullptr)) {
+    } else if (drawFrame(m_grabTarget->framebuffer(), /*displayOnly=*/linear == nullptr, settled)) {
         const Image frame = m_renderer->readDisplay(); // top row first, display-encoded RGBA
         result = QImage(frame.width, frame.height, QImage::Format_RGB32);
         for (int y = 0; y < frame.height; ++y) {

@@ -97,8 +97,8 @@ public:
     /// The divider and the A / B labels, drawn over the frame by Qt's paint engine while the
     /// split is on (nothing otherwise); also what grabDecorated() adds to a frame.
     void paintSplitDecorations(QPainter& painter, QSize size) const;
-    /// grabFramebuffer() with the split's divider and labels painted over it (what the artist
-    /// sees; screenshots).
+    /// grabFramebuffer(settled) with the split's divider and labels painted over it (what the
+    /// artist sees; screenshots).
     QImage grabDecorated();
     /// A press within this many pixels of the seam drags it instead of orbiting.
     static constexpr int kSeamGrabPixels = 6;
@@ -175,8 +175,10 @@ public:
     /// returns it as the renderer wrote it (display-encoded, RGB32; no timing overlay). A null
     /// image before the renderer exists. Counts as a frame (frameCompleted). @p linear, when
     /// given, gets the same frame's scene-linear colour (Renderer::readLinear; the Reference view
-    /// compares it with the path tracer's).
-    QImage grabFramebuffer(Image* linear = nullptr);
+    /// compares it with the path tracer's). The plain frame, never the still view's refinement
+    /// (so grabs repeat), unless @p settled and the view has finished refining: then its
+    /// anti-aliased mean, what the artist sees (screenshots).
+    QImage grabFramebuffer(Image* linear = nullptr, bool settled = false);
     /// Renders material-graph node thumbnails (render/graph_preview.h) with the GL window's
     /// context current, texture nodes loading through the renderer's cache. Empty (no thumbnail
     /// drawn) before the renderer exists; one entry per request otherwise. Reasons a request
@@ -234,7 +236,8 @@ private:
 
     /// Hands dirty state to the renderer and draws one frame into @p fbo; false when it failed.
     /// @p displayOnly: nothing reads the frame's linear image (render::FrameSettings).
-    bool drawFrame(unsigned fbo, bool displayOnly = true);
+    /// @p settledGrab: a grab that takes the refined mean if the view has settled.
+    bool drawFrame(unsigned fbo, bool displayOnly = true, bool settledGrab = false);
 
     void setViewCamera(const Camera& camera);
     void flyStep();
