@@ -30,15 +30,14 @@ double meanDifference(const Image& a, const Image& b) {
 
 class TestRenderProgressive : public QObject {
     Q_OBJECT
-    std::unique_ptr<render::Renderer> m_renderer;
-    std::unique_ptr<render::OffscreenTarget> m_target;
+    test::OffscreenRenderer m_rig;
 
     Image draw(render::FrameSettings fs) {
         std::string error;
-        if (!m_target->resize(fs.width, fs.height, &error) ||
-            !m_renderer->render(fs, m_target->framebuffer(), &error))
+        if (!m_rig.target->resize(fs.width, fs.height, &error) ||
+            !m_rig.renderer->render(fs, m_rig.target->framebuffer(), &error))
             qFatal("render failed: %s", error.c_str());
-        return m_renderer->readDisplay();
+        return m_rig.renderer->readDisplay();
     }
     static render::FrameSettings plain(int scale = 1) {
         render::FrameSettings fs;
@@ -53,20 +52,18 @@ private slots:
         std::string error;
         if (!test::headlessContext(&error))
             QSKIP(qPrintable(QString::fromStdString("no headless context: " + error)));
-        m_renderer = std::make_unique<render::Renderer>();
-        m_target = std::make_unique<render::OffscreenTarget>();
-        QVERIFY2(m_renderer->initialize(&error), error.c_str());
+        error = m_rig.start(kWidth); // each draw sizes the target to its frame
+        QVERIFY2(error.empty(), error.c_str());
         // The sharp HDRI behind the sphere: silhouettes against a bright, detailed backdrop.
         Scene scene = forwardPeerScene();
-        m_renderer->setScene(scene);
-        m_renderer->finishEnvironment();
-        m_renderer->finishGraph();
+        m_rig.renderer->setScene(scene);
+        m_rig.renderer->finishEnvironment();
+        m_rig.renderer->finishGraph();
         for (int i = 0; i < 3; ++i) // the specialised programs built
             draw(plain());
     }
     void cleanupTestCase() {
-        m_target.reset();
-        m_renderer.reset();
+        m_rig.stop();
     }
 
     /// The first frame sits at the pixel's centre; the first 16 spread over the whole pixel:
@@ -119,7 +116,7 @@ private slots:
         fs = plain();
         fs.accumulation = 0;
         const Image started = draw(fs);
-        QCOMPARE(m_renderer->accumulatedSamples(), 1);
+        QCOMPARE(m_rig.renderer->accumulatedSamples(), 1);
         QCOMPARE(test::maxDifference(started, dark), 0);
 
         fs.accumulation = 1;
@@ -127,7 +124,7 @@ private slots:
         fs.accumulation = 2;
         fs.exposureEv = 1.0f;
         const Image mean = draw(fs); // (2 dark + bright) / 3
-        QCOMPARE(m_renderer->accumulatedSamples(), 3);
+        QCOMPARE(m_rig.renderer->accumulatedSamples(), 3);
         int worst = 0;
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x)
@@ -143,7 +140,7 @@ private slots:
         fs = plain();
         fs.accumulation = 0;
         QCOMPARE(test::maxDifference(draw(fs), dark), 0);
-        QCOMPARE(m_renderer->accumulatedSamples(), 1);
+        QCOMPARE(m_rig.renderer->accumulatedSamples(), 1);
     }
 
     /// 16 jittered frames against the picture drawn 4x4 times larger and box-filtered down
@@ -159,7 +156,7 @@ private slots:
             fs.jitter = render::progressiveJitter(i);
             mean = draw(fs);
         }
-        QCOMPARE(m_renderer->accumulatedSamples(), 16);
+        QCOMPARE(m_rig.renderer->accumulatedSamples(), 16);
         const double before = meanDifference(single, reference);
         const double after = meanDifference(mean, reference);
         qInfo("mean difference from the 4x4 supersampled picture: plain %.5f, 16 frames %.5f",
