@@ -62,9 +62,7 @@ private slots:
         for (int i = 0; i < 3; ++i) // the specialised programs built
             draw(plain());
     }
-    void cleanupTestCase() {
-        m_rig.stop();
-    }
+    void cleanupTestCase() { m_rig.stop(); }
 
     /// The first frame sits at the pixel's centre; the first 16 spread over the whole pixel:
     /// none outside it, their mean near its centre, each quadrant holding three to five.
