@@ -59,6 +59,7 @@ private slots:
     void rightClickPaletteAddsAtClick();
     void copyPasteKeepsValuesAndLinks();
     void frameAllShowsEveryNode();
+    void anOpenedGraphIsFramed();
     void wheelZoomAndMiddlePanAreViewOnly();
 
 private:
@@ -584,6 +585,40 @@ void TestUiGraph::frameAllShowsEveryNode() {
         QCOMPARE(stack->count(), count);          // view state, not an edit
     }
     stack->setIndex(start);
+}
+
+// A material replaced from outside the panel (a preset picked, a file opened) shows its whole
+// graph, wherever the view was; an edit in the panel leaves the view where the artist put it.
+void TestUiGraph::anOpenedGraphIsFramed() {
+    const Material before = m_doc->material();
+    Material spread = before;
+    graph::Graph g;
+    QVERIFY(g.addNode("output.material", glm::vec2(1600.0f, 0.0f)));
+    QVERIFY(g.addNode("constant.color", glm::vec2(-1900.0f, 1200.0f)));
+    QVERIFY(g.addNode("constant.float", glm::vec2(-1900.0f, -1300.0f)));
+    spread.graph = SharedGraph(std::make_shared<graph::Graph>(g));
+    const auto outside = [this] {
+        int n = 0;
+        for (const QRectF& r : nodeRects())
+            n += visibleSceneRect().contains(r) ? 0 : 1;
+        return n;
+    };
+    m_view->setTransform(QTransform::fromScale(2.0, 2.0));
+    m_view->centerOn(4500.0, -4500.0);
+    m_doc->setMaterial(spread, "spread");
+    QCOMPARE(int(nodeRects().size()), 3);
+    QVERIFY2(outside() == 0, qPrintable(QStringLiteral("%1 nodes outside").arg(outside())));
+    QVERIFY(m_view->transform().m11() < 1.0);
+    // The panel's own edit: the view stays.
+    const QTransform framed = m_view->transform();
+    m_view->centerOn(4500.0, -4500.0);
+    const QRectF away = visibleSceneRect();
+    m_doc->undoStack()->push(
+        new AddNodeCommand(m_panel->model(), "constant.float", glm::vec2(0.0f, 0.0f)));
+    QCOMPARE(m_view->transform(), framed);
+    QCOMPARE(visibleSceneRect(), away);
+    m_doc->undoStack()->undo();
+    m_doc->setMaterial(before, "");
 }
 
 // The wheel scales the view about the cursor and back; a middle drag scrolls the view by the

@@ -33,6 +33,10 @@ GraphPanel::GraphPanel(DocumentController* controller, QWidget* parent)
             schedulePreviews();
     });
     connect(m_model, &GraphModel::reset, this, &GraphPanel::schedulePreviews);
+    // A graph from outside (a file opened, a preset picked, New): show all of it. The scene
+    // rebuilt itself first (its connection is older). Edits in the panel leave the view alone.
+    connect(m_model, &GraphModel::reset, m_view, &GraphView::frameAllWhenSized);
+    m_view->frameAllWhenSized(); // the document's graph at start
 }
 
 bool GraphPanel::showNode(graph::NodeId id) {

@@ -70,6 +70,19 @@ void GraphView::frameAll() {
     centerOn(bounds.center());
 }
 
+void GraphView::frameAllWhenSized() {
+    // A view smaller than a node would zoom out to nothing: wait for the dock's layout.
+    m_framePending = viewport()->width() < 100 || viewport()->height() < 60;
+    if (!m_framePending)
+        frameAll();
+}
+
+void GraphView::resizeEvent(QResizeEvent* event) {
+    QGraphicsView::resizeEvent(event);
+    if (m_framePending)
+        frameAllWhenSized();
+}
+
 void GraphView::openPalette(QPointF scenePos) {
     m_paletteScenePos = scenePos;
     m_palette->popup(mapToGlobal(mapFromScene(scenePos)));

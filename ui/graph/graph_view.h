@@ -27,6 +27,9 @@ public:
     NodePalette* palette() const { return m_palette; }
     /// Fits every node into the view.
     void frameAll();
+    /// frameAll() now if the view has its size, else at its first resize (a graph opened
+    /// before the dock is laid out): a material opened or picked shows its whole graph.
+    void frameAllWhenSized();
     /// Opens the node palette; a chosen type is added at scene point @p scenePos.
     void openPalette(QPointF scenePos);
     void copySelection();
@@ -42,6 +45,7 @@ protected:
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void contextMenuEvent(QContextMenuEvent* event) override;
+    void resizeEvent(QResizeEvent* event) override;
     /// An empty graph says how to start one (and that the parameters apply until then).
     void drawForeground(QPainter* painter, const QRectF& rect) override;
 
@@ -59,6 +63,7 @@ private:
     bool m_panning = false;
     QPoint m_panLast;
     int m_dragCounter = 0;
+    bool m_framePending = false; ///< frameAllWhenSized() waits for a usable size
 };
 
 } // namespace velvet::ui
