@@ -152,11 +152,13 @@ ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorMan
         m_exposure->setValue(double(steps) / kExposureSliderSteps); // emits valueChanged
     });
     connect(m_antialias, &QAction::toggled, this, [this](bool on) {
-        saveSettings();
+        if (!m_updating) // restoreSettings(): nothing new to save
+            saveSettings();
         emit progressiveAntialiasToggled(on);
     });
     connect(m_overlay, &QAction::toggled, this, [this](bool on) {
-        saveSettings();
+        if (!m_updating)
+            saveSettings();
         emit timingOverlayToggled(on);
     });
 }
@@ -244,9 +246,13 @@ void ViewportToolbar::restoreSettings() {
     if (const int i = m_look->findData(settings.value(kLookKey).toString()); i >= 0)
         m_look->setCurrentIndex(i);
     m_exposure->setValue(settings.value(kExposureKey, 0.0).toDouble());
+    // Both read before either is set: each toggle saves the whole toolbar, which would write the
+    // other's not yet restored state over the stored one.
+    const bool overlay = settings.value(kOverlayKey, false).toBool();
+    const bool antialias = settings.value(kAntialiasKey, true).toBool();
+    m_overlay->setChecked(overlay);
+    m_antialias->setChecked(antialias);
     m_updating = false;
-    m_overlay->setChecked(settings.value(kOverlayKey, false).toBool());
-    m_antialias->setChecked(settings.value(kAntialiasKey, true).toBool());
     emit viewStateChanged();
 }
 

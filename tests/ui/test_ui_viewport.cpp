@@ -821,6 +821,25 @@ void TestUiViewport::stillViewRefinesThenStops() {
     refine->trigger();
     QVERIFY(viewport->progressiveAntialiasing());
     QCOMPARE(QSettings().value(QStringLiteral("viewport/progressiveAntialias")).toBool(), true);
+
+    // Refine off with Timings on comes back as it was saved (restoring the one toggle saved the
+    // whole toolbar, the other's default included, over the stored state).
+    auto* toolbar = m_window->findChild<ViewportToolbar*>();
+    QVERIFY(toolbar);
+    {
+        QSettings settings;
+        settings.setValue(QStringLiteral("viewport/timingOverlay"), true);
+        settings.setValue(QStringLiteral("viewport/progressiveAntialias"), false);
+    }
+    toolbar->restoreSettings();
+    QVERIFY(toolbar->timingOverlay());
+    QVERIFY(!refine->isChecked());
+    QVERIFY(!viewport->progressiveAntialiasing());
+    QCOMPARE(QSettings().value(QStringLiteral("viewport/progressiveAntialias")).toBool(), false);
+    refine->trigger();
+    find<QAction>(QStringLiteral("timingOverlayAction"))->trigger();
+    QVERIFY(!toolbar->timingOverlay());
+    QVERIFY(viewport->progressiveAntialiasing());
 }
 
 int main(int argc, char** argv) {
