@@ -20,20 +20,21 @@ constexpr float kBlurredBackgroundRoughness = 0.6f;
 
 } // namespace
 
+glm::mat4 jitterMatrix(const FrameSettings& fs) {
+    // A sub-pixel offset in clip space, x' = x + (2 jitter / size) w, for a perspective and an
+    // orthographic projection alike (render/progressive_accumulation.h).
+    glm::mat4 offset(1.0f);
+    offset[3] = glm::vec4(2.0f * fs.jitter.x / float(std::max(fs.width, 1)),
+                          2.0f * fs.jitter.y / float(std::max(fs.height, 1)), 0.0f, 1.0f);
+    return offset;
+}
+
 FrameBlock makeFrameBlock(const Scene& scene, const Camera& cam, const GpuEnvironment& environment,
                           const FrameSettings& fs) {
     FrameBlock b{};
     const float aspect = float(fs.width) / float(std::max(fs.height, 1));
     b.viewMatrix = viewMatrix(cam);
-    b.projMatrix = projectionMatrix(cam, aspect);
-    if (fs.jitter != glm::vec2(0.0f)) {
-        // A sub-pixel offset in clip space, x' = x + (2 jitter / size) w, for a perspective and an
-        // orthographic projection alike (render/progressive_accumulation.h).
-        glm::mat4 offset(1.0f);
-        offset[3] = glm::vec4(2.0f * fs.jitter.x / float(fs.width),
-                              2.0f * fs.jitter.y / float(fs.height), 0.0f, 1.0f);
-        b.projMatrix = offset * b.projMatrix;
-    }
+    b.projMatrix = jitterMatrix(fs) * projectionMatrix(cam, aspect);
     b.invProjMatrix = glm::inverse(b.projMatrix);
     b.invViewMatrix = glm::inverse(b.viewMatrix);
     b.viewProjMatrix = b.projMatrix * b.viewMatrix;

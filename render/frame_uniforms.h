@@ -19,6 +19,9 @@ class IblBaker;
 /// summed (point, spot and area lights are render/light_passes.h's).
 FrameBlock makeFrameBlock(const Scene& scene, const Camera& camera,
                           const GpuEnvironment& environment, const FrameSettings& fs);
+/// The clip-space offset that moves the image by FrameSettings::jitter pixels (identity without
+/// one): the frame block's projection is it times the camera's.
+glm::mat4 jitterMatrix(const FrameSettings& fs);
 /// The IBL block for the bake's current state.
 IblBlock makeIblBlock(const IblBaker& ibl, const FrameSettings& fs);
 

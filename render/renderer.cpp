@@ -411,7 +411,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         glViewport(0, 0, fs.width, fs.height);
         glBindVertexArray(d.emptyVao);
     }
-    d.lastViewProj = block.viewProjMatrix;
+    // Unjittered: a still camera's refinement frames move nothing (postInputs).
+    d.lastViewProj = glm::inverse(jitterMatrix(fs)) * block.viewProjMatrix;
     d.haveLastViewProj = true;
 
     // 6. Display, into the target (unless the chain's tone map and LDR effects did it, or the

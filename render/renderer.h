@@ -133,8 +133,8 @@ struct FrameSettings {
         return !display.empty() || !displayView.empty() || !look.empty();
     }
     /// @name Post chain (render/post_chain.h; `time` above also animates grain and brushes)
-    /// The previous frame's view-projection, for motion blur. Unset: the one this renderer drew
-    /// last (the first frame counts as a still camera).
+    /// The previous frame's view-projection (without a jitter), for motion blur. Unset: the one
+    /// this renderer drew last (the first frame counts as a still camera).
     /// @{
     bool hasPreviousViewProj = false;
     glm::mat4 previousViewProj{1.0f};

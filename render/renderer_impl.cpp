@@ -343,8 +343,10 @@ PostRunInputs Renderer::Impl::postInputs(const FrameSettings& fs, const FrameBlo
     in.height = fs.height;
     in.viewProj = b.viewProjMatrix;
     in.proj = b.projMatrix;
-    in.prevViewProj = fs.hasPreviousViewProj ? fs.previousViewProj
-                      : haveLastViewProj     ? lastViewProj
+    // The last camera seen through this frame's jitter (both unjittered): the refinement's
+    // sub-pixel offsets are no camera motion for the motion blur.
+    in.prevViewProj = fs.hasPreviousViewProj ? jitterMatrix(fs) * fs.previousViewProj
+                      : haveLastViewProj     ? jitterMatrix(fs) * lastViewProj
                                              : b.viewProjMatrix;
     in.time = fs.time;
     in.exposureEv = fs.exposureEv;

@@ -183,6 +183,29 @@ private slots:
         QVERIFY2(test::maxDifference(mean, reference) < test::maxDifference(single, reference),
                  "the worst edge pixel too");
     }
+
+    /// The refinement's sub-pixel offsets are no camera motion: with the camera still, the
+    /// motion blur leaves a jittered frame as it is (it smeared each one along its offset).
+    void jitterIsNoCameraMotion() {
+        Scene scene = forwardPeerScene();
+        EffectInstance blur = makeEffect("motion_blur");
+        blur.params["strength"] = {4.0f};
+        scene.post.effects = {blur};
+        const auto jittered = [&](bool blurOn) {
+            scene.post.effects[0].enabled = blurOn;
+            m_rig.renderer->update(scene, ScenePart::PostChain);
+            draw(plain()); // the last camera: this one, unjittered
+            render::FrameSettings fs = plain();
+            fs.jitter = glm::vec2(0.45f, -0.4f);
+            return draw(fs);
+        };
+        const Image blurred = jittered(true), sharp = jittered(false);
+        scene.post.effects.clear();
+        m_rig.renderer->update(scene, ScenePart::PostChain);
+        const int worst = test::maxDifference(blurred, sharp);
+        qInfo("motion blur on a jittered frame of a still camera: %d/255 at most", worst);
+        QVERIFY2(worst <= 2, qPrintable(QString::number(worst)));
+    }
 };
 
 QTEST_GUILESS_MAIN(TestRenderProgressive)
