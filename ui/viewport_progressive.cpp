@@ -27,6 +27,7 @@ void ViewportWidget::progressiveFrameDrawn(const render::FrameSettings& settings
         // its own first frame.
         m_progressiveShown = m_renderer->accumulatedSamples();
         m_progressiveIndex = m_progressiveShown;
+        m_progressiveSize = QSize(settings.width, settings.height);
     } else {
         m_progressiveShown = 0;
     }

@@ -407,6 +407,9 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
     // the refinement: it draws the plain frame, or with @p settledGrab the settled mean once
     // there is one; one that reads the linear image draws the plain frame.
     const bool grab = fbo != m_surface->defaultFramebufferObject();
+    // Resized while refining: the plain frame at the new size first, as after any change.
+    if (!grab && m_progressiveIndex > 0 && size != m_progressiveSize)
+        restartProgressive();
     const bool refined =
         grab ? settledGrab && m_progressiveIndex >= kProgressiveSamples : m_progressiveIndex >= 0;
     if (refined && settings.renderScale == 1.0f && displayOnly) {

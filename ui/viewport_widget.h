@@ -303,6 +303,7 @@ private:
     /// The next frame's FrameSettings::accumulation: -1 a plain frame, n the n-th of the mean.
     int m_progressiveIndex = -1;
     int m_progressiveShown = 0; ///< frames in the mean on screen (0: a plain frame)
+    QSize m_progressiveSize;    ///< the frame size the refinement's mean has
     QTimer* m_progressiveTimer;
     /// Draws a frame when a texture file the material uses changes on disk (an idle viewport
     /// would otherwise not notice; ui/texture_file_watcher.h).

@@ -109,6 +109,7 @@ private slots:
     void editedTextureFileRedrawsIdleViewport();
     void lookComboChangesPixelAndPersists();
     void stillViewRefinesThenStops();
+    void aResizeWhileRefiningShowsThePlainFrame();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -840,6 +841,32 @@ void TestUiViewport::stillViewRefinesThenStops() {
     find<QAction>(QStringLiteral("timingOverlayAction"))->trigger();
     QVERIFY(!toolbar->timingOverlay());
     QVERIFY(viewport->progressiveAntialiasing());
+}
+
+void TestUiViewport::aResizeWhileRefiningShowsThePlainFrame() {
+    // Resized part way through the refinement: the first frame at the new size is a plain one
+    // (not the next jittered frame starting a mean of its own), and the refinement starts over.
+    ViewportWidget* viewport = m_window->viewport();
+    const QSize before = viewport->size();
+    bool resized = false;
+    int samplesWhenResized = -1, firstAtNewSize = -1;
+    const auto watch = connect(viewport, &ViewportWidget::frameCompleted, this, [&] {
+        if (!resized && viewport->progressiveSamples() == 3) {
+            resized = true; // between two refinement frames, synchronously
+            samplesWhenResized = viewport->progressiveSamples();
+            viewport->resize(before.width() + 24, before.height());
+        } else if (resized && firstAtNewSize < 0) {
+            firstAtNewSize = viewport->progressiveSamples();
+        }
+    });
+    viewport->requestFrame();
+    QVERIFY(QTest::qWaitFor([&] { return firstAtNewSize >= 0; }, kFrameTimeoutMs));
+    disconnect(watch);
+    QCOMPARE(samplesWhenResized, 3);
+    QCOMPARE(firstAtNewSize, 0);
+    QVERIFY(QTest::qWaitFor(
+        [&] { return viewport->progressiveSamples() >= ViewportWidget::kProgressiveSamples; },
+        kFrameTimeoutMs));
 }
 
 int main(int argc, char** argv) {
