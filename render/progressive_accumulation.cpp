@@ -54,14 +54,22 @@ bool ProgressiveAccumulation::add(const ColorTarget& frame, bool restart, unsign
     glUseProgram(m_copy.id());
     glBindVertexArray(emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    // The defaults Renderer::render() leaves for the host.
     glBindTextureUnit(binding::kHdrTex, 0);
     glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glBlendColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glUseProgram(0);
+    glBindVertexArray(0);
     ++m_samples;
     return true;
 }
 
 void ProgressiveAccumulation::present(unsigned targetFbo) const {
-    // Half floats to the target's format: the blit converts and rounds once.
+    // Half floats to the target's format: the blit converts and rounds once. A host (Qt) may
+    // leave a scissor or sRGB encoding on, which a blit would honour.
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_FRAMEBUFFER_SRGB);
     glBlitNamedFramebuffer(m_history.framebuffer(), targetFbo, 0, 0, m_history.width(),
                            m_history.height(), 0, 0, m_history.width(), m_history.height(),
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);

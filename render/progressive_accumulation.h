@@ -21,8 +21,8 @@ namespace velvet::render {
 
 /// The sub-pixel offset, in pixels within (-0.5, 0.5), of the @p index-th frame of a progressive
 /// mean: (0, 0) for index 0 (the pixel's centre, so the mean starts from the frame the view
-/// already shows), then the Halton sequence in bases 2 and 3, whose first n points cover the
-/// pixel evenly for every n (a low-discrepancy sequence: no clumping at any count).
+/// already shows), then the Halton sequence in bases 2 and 3 from its point 1 (a low-discrepancy
+/// sequence; the centre stands in for its point 0, the pixel's corner, so x = 0 comes twice).
 glm::vec2 progressiveJitter(int index);
 
 /// The running mean of display-encoded frames of one size, kept in half floats so that 16 8-bit

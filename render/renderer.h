@@ -174,7 +174,8 @@ struct FrameSettings {
     glm::vec2 jitter{0.0f};
     /// -1: the frame goes to the target as drawn. 0: it starts the renderer's running mean of
     /// frames, and the target gets the mean; n > 0: it is added to the mean
-    /// (Renderer::accumulatedSamples()). Not with renderScale < 1, which draws a frame alone.
+    /// (Renderer::accumulatedSamples()). Ignored, as the jitter, with renderScale < 1 (a reduced
+    /// frame is drawn alone, never averaged).
     int accumulation = -1;
     /// @}
 };
@@ -221,11 +222,13 @@ struct FrameTimings {
     /// The frame kept the last frame's shadow masks (render/stage.h: the camera, the normals,
     /// the lights and the maps as they were, as after a material value edit). Always set.
     bool shadowMaskKept = false;
-    /// How many shadow-mask passes the frame drew: one per shadowed light with receivers on
-    /// screen, never more than the cap (kMaxShadowLights). Counted, not timed: always set.
+    /// How many shadow-mask passes the frame's masks took: one per shadowed light with receivers
+    /// on screen, never more than the cap (kMaxShadowLights); a frame that kept the masks
+    /// (shadowMaskKept) reports the frame that drew them. Counted, not timed: always set.
     int shadowMaskPasses = 0;
     /// The shadow masks' texels drawn (settled or filtered) and, of those, the ones the PCSS
-    /// lookup filtered (occlusion queries; with the timers: 0 when none were issued).
+    /// lookup filtered (occlusion queries; with the timers: 0 when none were issued); kept
+    /// masks report the frame that drew them, as shadowMaskPasses.
     long long shadowMaskTexels = 0, shadowMaskFiltered = 0;
 };
 

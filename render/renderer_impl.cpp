@@ -389,6 +389,8 @@ bool Renderer::Impl::renderScaled(Renderer& self, const FrameSettings& fs, unsig
     const auto start = std::chrono::steady_clock::now();
     FrameSettings inner = fs;
     inner.renderScale = 1.0f;
+    inner.accumulation = -1; // a reduced frame is drawn alone (FrameSettings::accumulation)
+    inner.jitter = glm::vec2(0.0f);
     inner.width = std::max(1, int(std::lround(float(fs.width) * fs.renderScale)));
     inner.height = std::max(1, int(std::lround(float(fs.height) * fs.renderScale)));
     if (!scaled.resize(inner.width, inner.height, GL_RGBA8, error) ||

@@ -25,7 +25,7 @@ void ViewportWidget::setSplitPosition(float fraction) {
 
 void ViewportWidget::setSplitLabel(const QString& label) {
     m_splitLabel = label;
-    requestFrame();
+    postFrame(); // Qt paints the label over the frame: the refinement goes on
 }
 
 void ViewportWidget::setSplitSwapped(bool swapped) {
@@ -97,7 +97,7 @@ QImage ViewportWidget::grabDecorated() {
 void ViewportWidget::setTimingOverlayVisible(bool visible) {
     m_overlayVisible = visible;
     updateOverlay();
-    requestFrame();
+    postFrame(); // painted over the frame: the refinement goes on
 }
 
 bool ViewportWidget::isTimingOverlayVisible() const {

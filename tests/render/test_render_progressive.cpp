@@ -9,6 +9,7 @@
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
+#include <epoxy/gl.h>
 
 using namespace velvet;
 
@@ -182,6 +183,29 @@ private slots:
         QVERIFY2(edgeAfter < 0.35 * edgeBefore, "the aliased pixels settle");
         QVERIFY2(test::maxDifference(mean, reference) < test::maxDifference(single, reference),
                  "the worst edge pixel too");
+    }
+
+    /// A refinement frame, and a repaint of the settled mean, leave the GL state a plain frame
+    /// leaves the host (Renderer::render's defaults): no program, no vertex array, blending
+    /// off with the default factors.
+    void leavesTheHostTheDefaultState() {
+        render::FrameSettings fs = plain();
+        for (int i = 0; i < 3; ++i) {
+            fs.accumulation = i;
+            fs.jitter = render::progressiveJitter(i);
+            draw(fs);
+        }
+        QVERIFY(m_rig.renderer->showAccumulated(fs.width, fs.height, m_rig.target->framebuffer()));
+        GLint program = -1, vao = -1, source = -1, destination = -1;
+        glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+        glGetIntegerv(GL_BLEND_SRC_RGB, &source);
+        glGetIntegerv(GL_BLEND_DST_RGB, &destination);
+        QCOMPARE(program, 0);
+        QCOMPARE(vao, 0);
+        QVERIFY(!glIsEnabled(GL_BLEND));
+        QCOMPARE(source, GLint(GL_ONE));
+        QCOMPARE(destination, GLint(GL_ZERO));
     }
 
     /// The refinement's sub-pixel offsets are no camera motion: with the camera still, the
