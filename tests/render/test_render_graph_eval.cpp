@@ -152,6 +152,7 @@ private slots:
             {knit, "normal"},      {fuzz, "color"},     {fuzz, "mask"},       {pile, "normal"},
             {pile, "sheen"},       {pile, "roughness"}, {uv, "uv"},           {image, "alpha"},
             {grain, "color"},      {grain, "normal"},   {grain, "roughness"}, {grain, "cavity"},
+            {weave, "occlusion"},  {knit, "occlusion"},
         };
         std::vector<render::PreviewRequest> requests;
         for (const Probe& p : probes)
