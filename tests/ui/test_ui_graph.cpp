@@ -5,7 +5,7 @@
 // reaches the viewport as a uniform (the renderer compiles nothing) and undo restores it; vector
 // inputs and settings (an image node's UV scale and file) are edited there too. A right click on
 // the canvas opens the palette and adds at the click; Ctrl+C / Ctrl+V paste linked copies in one
-// command; F and Home frame every node; wheel zoom and middle-button pan change only the view.
+// command. The view's own gestures (framing, zoom, pan) are test_ui_graph_view's.
 #include "core/graph/graph.h"
 #include "ui/commands/graph_commands.h"
 #include "ui/document_controller.h"
@@ -58,9 +58,6 @@ private slots:
     void nodeThumbnailsAreLive();
     void rightClickPaletteAddsAtClick();
     void copyPasteKeepsValuesAndLinks();
-    void frameAllShowsEveryNode();
-    void anOpenedGraphIsFramed();
-    void wheelZoomAndMiddlePanAreViewOnly();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -70,12 +67,6 @@ private:
     graph::NodeId addFromPalette(const QString& filter);
     /// A left-button drag on the view's viewport from @p a to @p b.
     void drag(QPoint a, QPoint b);
-    /// The part of the scene the viewport shows now.
-    QRectF visibleSceneRect() const {
-        return m_view->mapToScene(m_view->viewport()->rect()).boundingRect();
-    }
-    /// Scene rects of every node item.
-    std::vector<QRectF> nodeRects() const;
 
     std::unique_ptr<MainWindow> m_window;
     DocumentController* m_doc = nullptr;
@@ -126,14 +117,6 @@ void TestUiGraph::drag(QPoint a, QPoint b) {
     for (int i = 1; i <= 4; ++i)
         QTest::mouseMove(vp, a + (b - a) * i / 4);
     QTest::mouseRelease(vp, Qt::LeftButton, {}, b);
-}
-
-std::vector<QRectF> TestUiGraph::nodeRects() const {
-    std::vector<QRectF> rects;
-    for (const auto& [id, node] : m_panel->model()->graph().nodes())
-        if (NodeItem* item = m_panel->scene()->nodeItem(id))
-            rects.push_back(item->sceneBoundingRect());
-    return rects;
 }
 
 void TestUiGraph::buildConnectUndoDelete() {
@@ -555,112 +538,6 @@ void TestUiGraph::copyPasteKeepsValuesAndLinks() {
     QVERIFY(!scene->nodeItem(c2) && !scene->nodeItem(inv2));
     stack->setIndex(start);
     QVERIFY(!model->graph().node(c) && !model->graph().node(inv));
-}
-
-// F and Home fit every node into the view, from a view scrolled far away (and zoomed in).
-void TestUiGraph::frameAllShowsEveryNode() {
-    GraphModel* model = m_panel->model();
-    QUndoStack* stack = m_doc->undoStack();
-    // Two nodes far apart, so the graph is larger than the view at 1:1 whatever came before.
-    const int start = stack->index();
-    stack->push(new AddNodeCommand(model, "constant.float", glm::vec2(-1800.0f, 1100.0f)));
-    stack->push(new AddNodeCommand(model, "constant.color", glm::vec2(1500.0f, -900.0f)));
-    QVERIFY(model->graph().nodes().size() >= 2);
-    const int count = stack->count();
-    const auto outside = [this] {
-        int n = 0;
-        for (const QRectF& r : nodeRects())
-            n += visibleSceneRect().contains(r) ? 0 : 1;
-        return n;
-    };
-    m_view->setFocus();
-    for (Qt::Key key : {Qt::Key_F, Qt::Key_Home}) {
-        m_view->setTransform(QTransform::fromScale(2.0, 2.0));
-        m_view->centerOn(4500.0, -4500.0);
-        QCOMPARE(outside(), int(nodeRects().size())); // none visible
-        QTest::keyClick(m_view, key);
-        QVERIFY2(outside() == 0,
-                 qPrintable(QStringLiteral("key %1: %2 nodes outside").arg(key).arg(outside())));
-        QVERIFY(m_view->transform().m11() < 1.0); // zoomed out to fit
-        QCOMPARE(stack->count(), count);          // view state, not an edit
-    }
-    stack->setIndex(start);
-}
-
-// A material replaced from outside the panel (a preset picked, a file opened) shows its whole
-// graph, wherever the view was; an edit in the panel leaves the view where the artist put it.
-void TestUiGraph::anOpenedGraphIsFramed() {
-    const Material before = m_doc->material();
-    Material spread = before;
-    graph::Graph g;
-    QVERIFY(g.addNode("output.material", glm::vec2(1600.0f, 0.0f)));
-    QVERIFY(g.addNode("constant.color", glm::vec2(-1900.0f, 1200.0f)));
-    QVERIFY(g.addNode("constant.float", glm::vec2(-1900.0f, -1300.0f)));
-    spread.graph = SharedGraph(std::make_shared<graph::Graph>(g));
-    const auto outside = [this] {
-        int n = 0;
-        for (const QRectF& r : nodeRects())
-            n += visibleSceneRect().contains(r) ? 0 : 1;
-        return n;
-    };
-    m_view->setTransform(QTransform::fromScale(2.0, 2.0));
-    m_view->centerOn(4500.0, -4500.0);
-    m_doc->setMaterial(spread, "spread");
-    QCOMPARE(int(nodeRects().size()), 3);
-    QVERIFY2(outside() == 0, qPrintable(QStringLiteral("%1 nodes outside").arg(outside())));
-    QVERIFY(m_view->transform().m11() < 1.0);
-    // The panel's own edit: the view stays.
-    const QTransform framed = m_view->transform();
-    m_view->centerOn(4500.0, -4500.0);
-    const QRectF away = visibleSceneRect();
-    m_doc->undoStack()->push(
-        new AddNodeCommand(m_panel->model(), "constant.float", glm::vec2(0.0f, 0.0f)));
-    QCOMPARE(m_view->transform(), framed);
-    QCOMPARE(visibleSceneRect(), away);
-    m_doc->undoStack()->undo();
-    m_doc->setMaterial(before, "");
-}
-
-// The wheel scales the view about the cursor and back; a middle drag scrolls the view by the
-// drag, in scene units at the current scale. Neither touches the graph or the undo stack.
-void TestUiGraph::wheelZoomAndMiddlePanAreViewOnly() {
-    GraphModel* model = m_panel->model();
-    QUndoStack* stack = m_doc->undoStack();
-    const graph::Graph before = model->graph();
-    const int count = stack->count();
-    m_view->setTransform(QTransform());
-    m_view->centerOn(0.0, 0.0);
-    QWidget* vp = m_view->viewport();
-    const QPoint centre = vp->rect().center();
-    const auto wheel = [&](int delta) {
-        QWheelEvent e(QPointF(centre), QPointF(vp->mapToGlobal(centre)), QPoint(), QPoint(0, delta),
-                      Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
-        QApplication::sendEvent(vp, &e);
-    };
-    wheel(120);
-    const double zoomed = m_view->transform().m11();
-    QVERIFY2(std::abs(zoomed - std::pow(1.0015, 120)) < 1e-6, qPrintable(QString::number(zoomed)));
-    QCOMPARE(m_view->transform().m22(), zoomed);
-    wheel(-120);
-    QVERIFY2(std::abs(m_view->transform().m11() - 1.0) < 1e-9,
-             qPrintable(QString::number(m_view->transform().m11())));
-    QCOMPARE(stack->count(), count);
-
-    // Pan at scale 0.8: 120 x 80 px of drag is 150 x 100 scene units.
-    m_view->setTransform(QTransform::fromScale(0.8, 0.8));
-    m_view->centerOn(0.0, 0.0);
-    const QRectF start = visibleSceneRect();
-    const QPoint a = centre, b = centre + QPoint(-120, -80);
-    QTest::mousePress(vp, Qt::MiddleButton, {}, a);
-    for (int i = 1; i <= 4; ++i)
-        QTest::mouseMove(vp, a + (b - a) * i / 4);
-    QTest::mouseRelease(vp, Qt::MiddleButton, {}, b);
-    const QPointF moved = visibleSceneRect().topLeft() - start.topLeft();
-    QVERIFY2(std::abs(moved.x() - 150.0) < 1.5 && std::abs(moved.y() - 100.0) < 1.5,
-             qPrintable(QStringLiteral("moved %1, %2").arg(moved.x()).arg(moved.y())));
-    QCOMPARE(visibleSceneRect().size(), start.size()); // a pan does not zoom
-    QCOMPARE(stack->count(), count);
-    QVERIFY(model->graph() == before); // no node moved with it
 }
 
 int main(int argc, char** argv) {
