@@ -34,7 +34,6 @@
 #include <QStyleOptionSlider>
 #include <QSurfaceFormat>
 #include <QUndoStack>
-#include <QWheelEvent>
 #include <QtTest>
 #include <cmath>
 
