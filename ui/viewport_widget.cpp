@@ -378,8 +378,13 @@ void ViewportWidget::paintGL() {
 }
 
 bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab) {
+    // A grab (any other target) never adds to the refinement (below).
+    const bool grab = fbo != m_surface->defaultFramebufferObject();
     if (m_pendingParts != ScenePart::None) {
-        restartProgressive(); // a scene change is never averaged with the frames before it
+        // A drawn change is never averaged with the frames before it (setScene asked the window
+        // for its frame); atlas documents are not drawn: the mean stays what the view shows.
+        if (touches(m_pendingParts, ~ScenePart::Atlases))
+            restartProgressive();
         Problems problems;
         m_renderer->update(m_scene, m_pendingParts, &problems);
         m_pendingParts = ScenePart::None;
@@ -403,10 +408,9 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
     settings.time = float(animationTime());
     settings.displayOnly = displayOnly;
-    // A refinement frame (viewport_progressive.cpp). A grab (any other target) never adds to
-    // the refinement: it draws the plain frame, or with @p settledGrab the settled mean once
-    // there is one; one that reads the linear image draws the plain frame.
-    const bool grab = fbo != m_surface->defaultFramebufferObject();
+    // A refinement frame (viewport_progressive.cpp). A grab draws the plain frame, or with
+    // @p settledGrab the settled mean once there is one; one that reads the linear image draws
+    // the plain frame.
     // Resized while refining: the plain frame at the new size first, as after any change.
     if (!grab && m_progressiveIndex > 0 && size != m_progressiveSize)
         restartProgressive();

@@ -3,6 +3,7 @@
 // and then stops drawing; a change or a resize shows the plain frame at once; screenshots take
 // the settled mean, plain grabs the plain frame; the toolbar's Refine turns it off and is
 // remembered with the Timings toggle.
+#include "ui/document_controller.h"
 #include "ui/main_window.h"
 #include "ui/viewport_toolbar.h"
 #include "ui/viewport_widget.h"
@@ -32,6 +33,7 @@ private slots:
     void cleanupTestCase();
     void stillViewRefinesThenStops();
     void aResizeWhileRefiningShowsThePlainFrame();
+    void aGrabLeavesTheSettledViewSettled();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -86,8 +88,15 @@ void TestUiViewportRefine::stillViewRefinesThenStops() {
     const QImage unrefined = viewportImage();
 
     // A change: the next frame is a plain one, and the refinement starts over after it.
+    int samplesAfterChange = -1;
+    const auto afterChange = connect(viewport, &ViewportWidget::frameCompleted, this, [&] {
+        if (samplesAfterChange < 0)
+            samplesAfterChange = viewport->progressiveSamples();
+    });
     find<QDoubleSpinBox>(QStringLiteral("exposureSpin"))->setValue(0.5);
-    QVERIFY(QTest::qWaitFor([&] { return viewport->progressiveSamples() == 0; }, kFrameTimeoutMs));
+    QVERIFY(QTest::qWaitFor([&] { return samplesAfterChange >= 0; }, kFrameTimeoutMs));
+    disconnect(afterChange);
+    QCOMPARE(samplesAfterChange, 0); // the first frame after the change is a plain one
     find<QDoubleSpinBox>(QStringLiteral("exposureSpin"))->setValue(0.0);
     QVERIFY(QTest::qWaitFor(
         [&] { return viewport->progressiveSamples() >= ViewportWidget::kProgressiveSamples; },
@@ -149,26 +158,48 @@ void TestUiViewportRefine::aResizeWhileRefiningShowsThePlainFrame() {
     // Resized part way through the refinement: the first frame at the new size is a plain one
     // (not the next jittered frame starting a mean of its own), and the refinement starts over.
     ViewportWidget* viewport = m_window->viewport();
-    const QSize before = viewport->size();
+    const QSize before = viewport->glWindow()->size();
     bool resized = false;
     int samplesWhenResized = -1, firstAtNewSize = -1;
     const auto watch = connect(viewport, &ViewportWidget::frameCompleted, this, [&] {
         if (!resized && viewport->progressiveSamples() == 3) {
-            resized = true; // between two refinement frames, synchronously
+            resized = true; // between two refinement frames, synchronously; fixed, so that the
+                            // main window's next layout keeps it
             samplesWhenResized = viewport->progressiveSamples();
-            viewport->resize(before.width() + 24, before.height());
-        } else if (resized && firstAtNewSize < 0) {
+            viewport->setFixedSize(viewport->width() + 24, viewport->height());
+        } else if (resized && firstAtNewSize < 0 && viewport->glWindow()->size() != before) {
             firstAtNewSize = viewport->progressiveSamples();
         }
     });
     viewport->requestFrame();
-    QVERIFY(QTest::qWaitFor([&] { return firstAtNewSize >= 0; }, kFrameTimeoutMs));
+    const bool seen = QTest::qWaitFor([&] { return firstAtNewSize >= 0; }, kFrameTimeoutMs);
     disconnect(watch);
+    viewport->setMinimumSize(0, 0);
+    viewport->setMaximumSize(QWIDGETSIZE_MAX, QWIDGETSIZE_MAX);
+    QVERIFY2(seen, "no frame at the new size");
     QCOMPARE(samplesWhenResized, 3);
     QCOMPARE(firstAtNewSize, 0);
     QVERIFY(QTest::qWaitFor(
         [&] { return viewport->progressiveSamples() >= ViewportWidget::kProgressiveSamples; },
         kFrameTimeoutMs));
+}
+
+void TestUiViewportRefine::aGrabLeavesTheSettledViewSettled() {
+    // A grab that takes a pending change the window does not draw (an atlas document) leaves the
+    // settled mean on screen, its count in the status bar and no frame to come.
+    ViewportWidget* viewport = m_window->viewport();
+    viewport->requestFrame();
+    QVERIFY(QTest::qWaitFor(
+        [&] { return viewport->progressiveSamples() >= ViewportWidget::kProgressiveSamples; },
+        kFrameTimeoutMs));
+    viewport->setScene(m_window->controller()->scene(), ScenePart::Atlases);
+    const QImage grabbed = viewportImage();
+    QVERIFY(!grabbed.isNull());
+    QCOMPARE(viewport->progressiveSamples(), ViewportWidget::kProgressiveSamples);
+    const int frames = viewport->frameCount();
+    QTest::qWait(4 * ViewportWidget::kProgressiveDelayMs);
+    QCOMPARE(viewport->frameCount(), frames);
+    QCOMPARE(viewport->progressiveSamples(), ViewportWidget::kProgressiveSamples);
 }
 
 int main(int argc, char** argv) {

@@ -324,8 +324,8 @@ bool LinearColorPicker::eventFilter(QObject* watched, QEvent* event) {
 void LinearColorPicker::pickAt(QPoint pos) {
     // The pixel as displayed (the renderer's display-encoded frame), back through the inverse of
     // the picker's display transform: the linear value that shows as that pixel, as Blender's
-    // eyedropper does.
-    const QImage frame = m_viewport->grabFramebuffer();
+    // eyedropper does; the refined mean once the still view has settled, as it is on screen.
+    const QImage frame = m_viewport->grabFramebuffer(nullptr, /*settled=*/true);
     if (frame.isNull())
         return;
     const qreal dpr = frame.devicePixelRatio();
