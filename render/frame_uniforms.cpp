@@ -20,12 +20,12 @@ constexpr float kBlurredBackgroundRoughness = 0.6f;
 
 } // namespace
 
-glm::mat4 jitterMatrix(const FrameSettings& fs) {
+glm::mat4 jitterMatrix(glm::vec2 jitter, int width, int height) {
     // A sub-pixel offset in clip space, x' = x + (2 jitter / size) w, for a perspective and an
     // orthographic projection alike (render/progressive_accumulation.h).
     glm::mat4 offset(1.0f);
-    offset[3] = glm::vec4(2.0f * fs.jitter.x / float(std::max(fs.width, 1)),
-                          2.0f * fs.jitter.y / float(std::max(fs.height, 1)), 0.0f, 1.0f);
+    offset[3] = glm::vec4(2.0f * jitter.x / float(std::max(width, 1)),
+                          2.0f * jitter.y / float(std::max(height, 1)), 0.0f, 1.0f);
     return offset;
 }
 
@@ -34,7 +34,7 @@ FrameBlock makeFrameBlock(const Scene& scene, const Camera& cam, const GpuEnviro
     FrameBlock b{};
     const float aspect = float(fs.width) / float(std::max(fs.height, 1));
     b.viewMatrix = viewMatrix(cam);
-    b.projMatrix = jitterMatrix(fs) * projectionMatrix(cam, aspect);
+    b.projMatrix = jitterMatrix(fs.jitter, fs.width, fs.height) * projectionMatrix(cam, aspect);
     b.invProjMatrix = glm::inverse(b.projMatrix);
     b.invViewMatrix = glm::inverse(b.viewMatrix);
     b.viewProjMatrix = b.projMatrix * b.viewMatrix;

@@ -19,9 +19,10 @@ class IblBaker;
 /// summed (point, spot and area lights are render/light_passes.h's).
 FrameBlock makeFrameBlock(const Scene& scene, const Camera& camera,
                           const GpuEnvironment& environment, const FrameSettings& fs);
-/// The clip-space offset that moves the image by FrameSettings::jitter pixels (identity without
-/// one): the frame block's projection is it times the camera's.
-glm::mat4 jitterMatrix(const FrameSettings& fs);
+/// The clip-space offset that moves a @p width x @p height image by @p jitter pixels
+/// (FrameSettings::jitter; identity for none): the frame block's projection is it times the
+/// camera's. jitterMatrix(-jitter, ...) undoes it.
+glm::mat4 jitterMatrix(glm::vec2 jitter, int width, int height);
 /// The IBL block for the bake's current state.
 IblBlock makeIblBlock(const IblBaker& ibl, const FrameSettings& fs);
 

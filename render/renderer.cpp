@@ -412,7 +412,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         glBindVertexArray(d.emptyVao);
     }
     // Unjittered: a still camera's refinement frames move nothing (postInputs).
-    d.lastViewProj = glm::inverse(jitterMatrix(fs)) * block.viewProjMatrix;
+    d.lastViewProj = jitterMatrix(-fs.jitter, fs.width, fs.height) * block.viewProjMatrix;
     d.haveLastViewProj = true;
 
     // 6. Display, into the target (unless the chain's tone map and LDR effects did it, or the

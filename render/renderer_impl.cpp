@@ -237,7 +237,7 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
     return !failed;
 }
 
-bool Renderer::Impl::steadySince(const FrameSettings& fs, std::uint64_t& uploadedAsOf) {
+bool Renderer::Impl::steadySince(std::uint64_t& uploadedAsOf) {
     const std::uint64_t uploaded = textures.uploadStats().bytes;
     const bool steady = !splitDrawnOrEnded && textures.progress().loading == 0 &&
                         uploaded == uploadedAsOf && !structureAdoptedThisFrame;
@@ -246,7 +246,7 @@ bool Renderer::Impl::steadySince(const FrameSettings& fs, std::uint64_t& uploade
 }
 
 FrameKey Renderer::Impl::screenPassKey(const FrameSettings& fs, const FrameBlock& b) {
-    if (!steadySince(fs, screenPassUploadedBytes))
+    if (!steadySince(screenPassUploadedBytes))
         stage.invalidateScreenPasses();
     FrameKey key;
     key.add(b.viewMatrix).add(b.projMatrix).add(fs.width).add(fs.height);
@@ -261,7 +261,7 @@ bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& 
                                      unsigned targetFbo) {
     // What the key cannot see (frame_reuse.h): a split frame's B, textures arriving (a
     // cut-out changes the coverage), the bake's slices, a graph structure adopted this frame.
-    const bool steady = steadySince(fs, uploadedBytes) && ibl.state.x > 0.5f;
+    const bool steady = steadySince(uploadedBytes) && ibl.state.x > 0.5f;
     if (!steady)
         backgroundReuse.invalidate();
     IblBlock keyed = ibl;
@@ -345,8 +345,9 @@ PostRunInputs Renderer::Impl::postInputs(const FrameSettings& fs, const FrameBlo
     in.proj = b.projMatrix;
     // The last camera seen through this frame's jitter (both unjittered): the refinement's
     // sub-pixel offsets are no camera motion for the motion blur.
-    in.prevViewProj = fs.hasPreviousViewProj ? jitterMatrix(fs) * fs.previousViewProj
-                      : haveLastViewProj     ? jitterMatrix(fs) * lastViewProj
+    const glm::mat4 jitter = jitterMatrix(fs.jitter, fs.width, fs.height);
+    in.prevViewProj = fs.hasPreviousViewProj ? jitter * fs.previousViewProj
+                      : haveLastViewProj     ? jitter * lastViewProj
                                              : b.viewProjMatrix;
     in.time = fs.time;
     in.exposureEv = fs.exposureEv;

@@ -339,9 +339,9 @@ struct Renderer::Impl {
                              const DisplayChoice& choice, bool emission, InlineDisplay& out,
                              bool& failed, std::string* error);
     /// Whether nothing a reuse key cannot see changed since the frame that set @p uploadedAsOf
-    /// (the texture bytes uploaded then, updated): not a split frame, no texture arriving or
-    /// loading, no graph structure adopted this frame.
-    bool steadySince(const FrameSettings& fs, std::uint64_t& uploadedAsOf);
+    /// (the texture bytes uploaded then, updated): not a split frame nor the one after it, no
+    /// texture arriving or loading, no graph structure adopted this frame.
+    bool steadySince(std::uint64_t& uploadedAsOf);
     /// The frame's part of the screen-space passes' keys (the occlusion, render/ao_pass.h, and
     /// the shadow mask, render/stage.h): the camera and, where the material bends its normals,
     /// its record (a value edit may then move them; a graph edit invalidates them in update());
