@@ -89,10 +89,7 @@ private:
     QVector<double> settledCentrePixel();
     template <class T>
     T* find(const QString& name) {
-        T* w = m_window->findChild<T*>(name);
-        if (!w)
-            qWarning("no widget named %s", qPrintable(name));
-        return w;
+        return test::findNamed<T>(m_window.get(), name);
     }
 
     std::unique_ptr<MainWindow> m_window;

@@ -7,6 +7,7 @@
 // the canvas opens the palette and adds at the click; Ctrl+C / Ctrl+V paste linked copies in one
 // command. The view's own gestures (framing, zoom, pan) are test_ui_graph_view's.
 #include "core/graph/graph.h"
+#include "graph_editor_window.h"
 #include "ui/commands/graph_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_panel.h"
@@ -23,7 +24,6 @@
 
 #include <QApplication>
 #include <QClipboard>
-#include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QLineEdit>
 #include <QSignalSpy>
@@ -78,20 +78,10 @@ void TestUiGraph::initTestCase() {
     m_doc = m_window->controller();
     const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
     QVERIFY2(up.isEmpty(), qPrintable(up));
-    m_panel = m_window->findChild<GraphPanel*>();
-    QVERIFY(m_panel);
-    m_view = m_panel->view();
     // The node editor gets a window of its own, large enough for the material output node.
-    auto* dock = m_window->findChild<QDockWidget*>(QStringLiteral("graphDock"));
-    QVERIFY(dock);
-    dock->setFloating(true);
-    dock->resize(1000, 700);
-    dock->show();
-    QVERIFY(QTest::qWaitForWindowExposed(dock));
-    dock->activateWindow();
-    QApplication::setActiveWindow(dock);
-    m_view->setFocus();
-    QTRY_VERIFY(m_view->hasFocus());
+    const QString editor = test::openGraphEditor(m_window.get(), m_panel);
+    QVERIFY2(editor.isEmpty(), qPrintable(editor));
+    m_view = m_panel->view();
 }
 
 void TestUiGraph::cleanupTestCase() {

@@ -2,6 +2,7 @@
 // opened or picked from outside the panel is framed whole, and wheel zoom and middle-button pan
 // change only the view (never the graph or the undo stack).
 #include "core/graph/graph.h"
+#include "graph_editor_window.h"
 #include "ui/commands/graph_commands.h"
 #include "ui/document_controller.h"
 #include "ui/graph/graph_panel.h"
@@ -14,7 +15,6 @@
 #include "ui_test_util.h"
 
 #include <QApplication>
-#include <QDockWidget>
 #include <QStandardPaths>
 #include <QSurfaceFormat>
 #include <QUndoStack>
@@ -60,20 +60,9 @@ void TestUiGraphView::initTestCase() {
     m_doc = m_window->controller();
     const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
     QVERIFY2(up.isEmpty(), qPrintable(up));
-    m_panel = m_window->findChild<GraphPanel*>();
-    QVERIFY(m_panel);
+    const QString editor = test::openGraphEditor(m_window.get(), m_panel);
+    QVERIFY2(editor.isEmpty(), qPrintable(editor));
     m_view = m_panel->view();
-    // The node editor in a window of its own, as test_ui_graph has it.
-    auto* dock = m_window->findChild<QDockWidget*>(QStringLiteral("graphDock"));
-    QVERIFY(dock);
-    dock->setFloating(true);
-    dock->resize(1000, 700);
-    dock->show();
-    QVERIFY(QTest::qWaitForWindowExposed(dock));
-    dock->activateWindow();
-    QApplication::setActiveWindow(dock);
-    m_view->setFocus();
-    QTRY_VERIFY(m_view->hasFocus());
 }
 
 void TestUiGraphView::cleanupTestCase() {

@@ -81,10 +81,7 @@ private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
     template <class T>
     T* find(const QString& name) {
-        T* w = m_window->findChild<T*>(name);
-        if (!w)
-            qWarning("no widget named %s", qPrintable(name));
-        return w;
+        return test::findNamed<T>(m_window.get(), name);
     }
     void chooseRig(QComboBox* combo, std::string_view id) {
         const int index = combo->findData(QString::fromUtf8(id.data(), qsizetype(id.size())));

@@ -116,10 +116,7 @@ private:
     bool focusViewport();
     template <class T>
     T* find(const QString& name) {
-        T* w = m_window->findChild<T*>(name);
-        if (!w)
-            qWarning("no widget named %s", qPrintable(name));
-        return w;
+        return test::findNamed<T>(m_window.get(), name);
     }
     /// Resets the view state to the defaults (built-in tone mapper, Final, 0 EV).
     void resetViewState();

@@ -59,6 +59,16 @@ inline QPoint handleCentre(QSlider* slider) {
         .center();
 }
 
+/// The child of @p root named @p name (a widget or an action), with a warning naming it when
+/// there is none (the tests then fail on the null pointer's check).
+template <class T>
+T* findNamed(const QObject* root, const QString& name) {
+    T* found = root->findChild<T*>(name);
+    if (!found)
+        qWarning("no widget named %s", qPrintable(name));
+    return found;
+}
+
 /// Sends a file drop of @p file to @p target (enter, move, drop, as QGuiApplication does).
 inline bool dropFile(QObject* target, QPoint pos, const QString& file) {
     QMimeData mime;
