@@ -50,17 +50,18 @@ PixelRect occlusionRect(const MeshBounds& bounds, float radius, const glm::mat4&
 }
 
 bool OcclusionPass::build(std::string* error) {
-    if (!m_gtao.build("fullscreen.vert", "ao_gtao.frag", {}, error) ||
+    if (!m_gtao[0].build("fullscreen.vert", "ao_gtao.frag", {"WITH_GEOMETRIC_HORIZON 0"}, error) ||
+        !m_gtao[1].build("fullscreen.vert", "ao_gtao.frag", {}, error) ||
         !m_blur.build("fullscreen.vert", "ao_blur.frag", {}, error))
         return false;
-    m_compileCount += 2;
+    m_compileCount += 3;
     return true;
 }
 
-bool OcclusionPass::run(int width, int height, const PixelRect& texels, FrameKey key,
-                        unsigned emptyVao, bool* kept, std::string* error) {
+bool OcclusionPass::run(int width, int height, const PixelRect& texels, bool geometricNormals,
+                        FrameKey key, unsigned emptyVao, bool* kept, std::string* error) {
     const int w = halfSize(width), h = halfSize(height);
-    key.add(w).add(h).add(texels);
+    key.add(w).add(h).add(texels).add(geometricNormals);
     *kept = m_reuse.reuse(std::move(key)) && m_blurred.width() == w && m_blurred.height() == h;
     if (*kept)
         return true;
@@ -75,7 +76,7 @@ bool OcclusionPass::run(int width, int height, const PixelRect& texels, FrameKey
     glDisable(GL_BLEND);
     glViewport(0, 0, w, h);
     glBindVertexArray(emptyVao);
-    glUseProgram(m_gtao.id());
+    glUseProgram(m_gtao[geometricNormals ? 1 : 0].id());
     drawInto(m_raw, gtaoRect);
     glBindTextureUnit(stage_binding::kOcclusionRawTex, m_raw.texture());
     glUseProgram(m_blur.id());

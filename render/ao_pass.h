@@ -4,6 +4,11 @@
 /// the geometry pass, then a depth-aware 4x4 blur (ao_blur.frag); the lighting pass reads the
 /// result at stage_binding::kOcclusionTex with a depth-aware upsample (stage_shading.glsl) and
 /// multiplies the environment's light by it and the material's occlusion map.
+/// The search integrates the visible share of the hemisphere about the surface's geometric
+/// normal (the depth's) where a material bends its shading normal (a weave, a knit, a normal
+/// map), so the micro-relief's own horizon is not counted twice (the lighting's geometric horizon
+/// and the material's occlusion have it); the program with that reconstruction runs only in a
+/// frame that draws such a material (LightingFeatures::geometricHorizon).
 /// Only the texels that can differ from 1 run: a point farther than the search radius from the
 /// mesh sees nothing but the flat ground, so both passes are scissored to the mesh's bounds grown
 /// by the radius (occlusionRect()) and the rest is cleared to 1. And only in frames whose result
@@ -39,20 +44,22 @@ public:
     static PixelRect texelRect(const PixelRect& frameRect, int width, int height) {
         return maskRect(frameRect, halfSize(width), halfSize(height));
     }
-    /// Runs both passes for a @p width x @p height frame over @p texels (texelRect()), unless
+    /// Runs both passes for a @p width x @p height frame over @p texels (texelRect()), with the
+    /// geometric normal for the materials that bend theirs when @p geometricNormals, unless
     /// @p key (every byte the result depends on that can change without invalidate()) is the last
     /// run's: then the targets already hold the result and @p kept is set. Expects the frame and
     /// stage blocks and the G-buffer's textures bound. Leaves the viewport at the half size and
     /// the scissor test off.
-    bool run(int width, int height, const PixelRect& texels, FrameKey key, unsigned emptyVao,
-             bool* kept, std::string* error);
+    bool run(int width, int height, const PixelRect& texels, bool geometricNormals, FrameKey key,
+             unsigned emptyVao, bool* kept, std::string* error);
     /// Something the key cannot see changed (the mesh, a texture, the shaders): the next run draws.
     void invalidate() { m_reuse.invalidate(); }
     /// The blurred occlusion at stage_binding::kOcclusionTex.
     void bind() const;
 
 private:
-    ShaderProgram m_gtao, m_blur;
+    ShaderProgram m_gtao[2]; // [1]: the geometric normal for materials that bend theirs
+    ShaderProgram m_blur;
     ColorTarget m_raw, m_blurred;
     FrameReuse m_reuse;
     int m_compileCount = 0;

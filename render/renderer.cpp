@@ -351,7 +351,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // One key for both screen-space passes: it also notes what no key sees (screenPassKey).
     const FrameKey screenKey = d.screenPassKey(fs, block);
     if (!d.stage.drawOcclusion(d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                               screenKey, d.emptyVao, error))
+                               d.frameFeatures(fs).geometricHorizon, screenKey, d.emptyVao, error))
         return false;
     // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
     // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).

@@ -152,7 +152,8 @@ void Stage::drawGround(const Environment& environment) {
 }
 
 bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewProj, int width,
-                          int height, FrameKey frameKey, unsigned emptyVao, std::string* error) {
+                          int height, bool bentNormals, FrameKey frameKey, unsigned emptyVao,
+                          std::string* error) {
     m_occlusionOn = environment.ambientOcclusion;
     m_occlusionTimed = m_occlusionKept = false;
     if (!m_occlusionOn) {
@@ -164,7 +165,7 @@ bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewP
     // The stage's part of the key: what the ground's depth and the search depend on.
     frameKey.add(environment.ground).add(environment.occlusionRadius).add(m_bounds);
     glQueryCounter(m_queries[2], GL_TIMESTAMP);
-    if (!m_occlusion.run(width, height, OcclusionPass::texelRect(near, width, height),
+    if (!m_occlusion.run(width, height, OcclusionPass::texelRect(near, width, height), bentNormals,
                          std::move(frameKey), emptyVao, &m_occlusionKept, error))
         return false;
     glQueryCounter(m_queries[3], GL_TIMESTAMP);

@@ -62,10 +62,12 @@ public:
     /// After the ground: the occlusion term, if on, over the pixels near the mesh seen through
     /// @p viewProj, the frame's camera (occlusionRect()), or the last frame's kept when
     /// @p frameKey (the camera, the material's normals where it bends them) and the stage's own
-    /// inputs are as they were (render/ao_pass.h); expects the G-buffer textures bound. Leaves
-    /// the viewport for the caller to reset.
+    /// inputs are as they were (render/ao_pass.h); expects the G-buffer textures bound.
+    /// @p bentNormals: some drawn material bends its shading normal (about the geometric normal
+    /// there). Leaves the viewport for the caller to reset.
     bool drawOcclusion(const Environment& environment, const glm::mat4& viewProj, int width,
-                       int height, FrameKey frameKey, unsigned emptyVao, std::string* error);
+                       int height, bool bentNormals, FrameKey frameKey, unsigned emptyVao,
+                       std::string* error);
     /// The depth or the normals changed in a way no key sees (the mesh, a texture, a graph, the
     /// shaders, a split frame): the next frame's occlusion and shadow mask are drawn again.
     void invalidateScreenPasses() {

@@ -4,6 +4,7 @@
 // two slices per pixel and the slice's cosine-weighted visibility integrated in closed form with
 // the projected normal (as Intel's XeGTAO). Writes r: visibility in [0, 1] (1 on an open plane),
 // g: the view depth (m) of the pixel it stands for (r is clamped by the blur), for the depth-aware blur and upsample.
+// Built twice (render/ao_pass.h): WITH_GEOMETRIC_HORIZON 0 when no drawn material bends its normal.
 #include "gbuffer_read.glsl"
 #include "stage_interface.glsl"
 
@@ -23,7 +24,20 @@ void main() {
     // loop whose count is 0 for the background and where the radius is under a pixel.
     bool background = depth >= 1.0;
     vec3 P = viewPositionAt(pixel);
-    vec3 N = normalize(mat3(frame.viewMatrix) * octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg));
+    // The horizons bound the visible share of the surface's own hemisphere, so it is measured
+    // about the geometric normal where the material bends its shading normal (a weave, a knit, a
+    // normal map): about the bent one, the part of its hemisphere below the surface counted as
+    // occluded here, and the lighting's geometric horizon (gbuffer_read.glsl) and the material's
+    // occlusion take it out again. XeGTAO likewise takes its normals from the depth.
+    vec3 nWorld = octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg);
+#if WITH_GEOMETRIC_HORIZON // some drawn material bends its normal (render/ao_pass.h)
+    int materialId = readMaterialId(pixel);
+    if (!background && materialId != GROUND_PLAIN_MATERIAL_ID &&
+        materialId != GROUND_CATCHER_MATERIAL_ID &&
+        materials[materialId].sheenWeightAnisotropy.w > 0.5)
+        nWorld = geometricNormalFromDepth(pixel, P, nWorld);
+#endif
+    vec3 N = normalize(mat3(frame.viewMatrix) * nWorld);
     bool ortho = frame.cameraPosition.w > 0.5;
     vec3 V = ortho ? vec3(0.0, 0.0, 1.0) : normalize(-P);
     float radius = stage.occlusion.y;

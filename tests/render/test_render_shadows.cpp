@@ -1,7 +1,9 @@
 // The look-dev stage's known answers (docs/shadows.md): shadow maps against shadows computed on
 // the CPU (a ray from each ground point to the light, against the sphere), no self-shadowing of
-// a flat plane, and the screen-space occlusion term: 1 on an open plane, below 1 in a crease,
-// exactly 1 beyond its radius from the mesh, and the light a bright crease bounces given back.
+// a flat plane, and the screen-space occlusion term: 1 on an open plane (also under a weave that
+// bends its normals), below 1 in a crease, exactly 1 beyond its radius from the mesh, and the
+// light a bright crease bounces given back.
+#include "core/document_io.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render/stage_interface.h"
@@ -409,6 +411,53 @@ private slots:
         qInfo("%d plane pixels, least occlusion term %.4f", checked, double(least));
         QVERIFY(checked > 1000);
         QVERIFY2(least > 0.97f, qPrintable(QString("open plane occluded: %1").arg(least)));
+    }
+
+    // A weave bends the shading normal, not the surface: the open plane stays open. The search
+    // measures the hemisphere about the geometric normal there (render/ao_pass.h); about the
+    // bent normal it counted the part below the plane as occluded (down to 0.78 at the denim's
+    // steepest threads), on top of the material's occlusion and the lighting's horizon. The
+    // screen-space term alone: the occlusion view with the search on over the view with it off
+    // (the material's occlusion alone).
+    void occlusionIsOneOnAnOpenPlaneWhoseWeaveBendsItsNormal() {
+        Problems problems;
+        const std::optional<Material> denim = loadMaterialFile(
+            std::string(VELVET_SOURCE_DIR) + "/resources/presets/denim.json", problems);
+        QVERIFY2(denim, problems.items.empty() ? "" : problems.items[0].toString().c_str());
+        Scene scene = stageScene(PreviewMeshKind::Plane);
+        scene.material = *denim;
+        scene.camera.orthographic = false;
+        scene.camera.target = {0.0f, 0.0f, 0.0f};
+        scene.camera.distance = 0.25f; // a few pixels a thread
+        scene.environment.occlusionRadius = 0.05f;
+        const int size = 96;
+        const Image materialOnly = renderLinear(scene, size, render::DebugView::Occlusion);
+        scene.environment.ambientOcclusion = true;
+        const Image both = renderLinear(scene, size, render::DebugView::Occlusion);
+        const Image normal = renderLinear(scene, size, render::DebugView::Normal);
+        int checked = 0, bent = 0;
+        float least = 1.0f;
+        double sum = 0.0;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const glm::vec3 n(normal.rgba(x, y));
+                if (glm::length(n) < 0.5f || materialOnly.rgba(x, y).r < 0.05f)
+                    continue;
+                ++checked;
+                bent += n.y < 0.95f; // the threads tilt it by more than 18 degrees
+                const float term = both.rgba(x, y).r / materialOnly.rgba(x, y).r;
+                least = std::min(least, term);
+                sum += term;
+            }
+        qInfo("%d plane pixels, %d bent by more than 18 degrees, screen-space term: least %.4f, "
+              "mean %.4f",
+              checked, bent, double(least), sum / std::max(checked, 1));
+        QVERIFY(checked > 1000);
+        QVERIFY2(bent > 100, "the weave bends too few normals for the check to mean anything");
+        // About the bent normals: least 0.78, mean 0.88.
+        QVERIFY2(least > 0.95f, qPrintable(QString("open plane occluded: %1").arg(least)));
+        QVERIFY2(sum / checked > 0.985,
+                 qPrintable(QString("open plane occluded: mean %1").arg(sum / checked)));
     }
 
     void occlusionIsBelowOneInACrease() {
