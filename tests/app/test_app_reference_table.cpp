@@ -49,7 +49,10 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // common_environment.glsl): the metals' rows fell by a fifth to a half, and ceramic under the HDRI,
 // 1.94 before, now sits on the goal's line (2.00 here, 1.89 at 48x48 and 512 samples); and on
 // 2026-12-06 after the anisotropic sweep weighted each sample by the lobe's own Fresnel and
-// masking (anisotropicReflection): brushed aluminium's rows fell by more than half.
+// masking (anisotropicReflection): brushed aluminium's rows fell by more than half; and on
+// 2026-12-06 (evening) after the sheen's image-based light lost the share of its lobe below a
+// bent normal's face (lighting.frag): wool, terry and crushed velvet under the HDRI fell (wool's
+// p95 7.36 to 6.46).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 3.97, 10.93},
     {"brushed_aluminium", kSphere, "three-point", 2.29, 7.32},
@@ -57,14 +60,14 @@ const Miss kMisses[] = {
     {"copper", kSphere, "three-point", 1.76, 5.78},
     {"ceramic", kSphere, "environment", 2.00, 4.30},
     {"cotton", kSphere, "environment", 2.56, 5.85},
-    {"crushed_velvet", kSphere, "environment", 2.08, 6.04},
+    {"crushed_velvet", kSphere, "environment", 2.06, 5.97},
     {"denim", kSphere, "three-point", 2.51, 5.99},
     {"gold", kSphere, "environment", 3.20, 9.37},
     {"gold", kSphere, "three-point", 2.35, 7.14},
-    {"terry", kSphere, "environment", 2.76, 6.08},
+    {"terry", kSphere, "environment", 2.71, 5.80},
     {"tweed", kSphere, "environment", 2.64, 5.77},
     {"tweed", kSphere, "three-point", 2.80, 6.65},
-    {"wool", kSphere, "environment", 2.61, 7.36},
+    {"wool", kSphere, "environment", 2.47, 6.46},
     {"plastic", kBall, "environment", 2.31, 6.76},
     {"plastic", kBall, "three-point", 2.71, 8.32},
     {"gold", kBall, "environment", 8.36, 35.00},
