@@ -51,10 +51,11 @@ Light rectangle(std::string name, glm::vec3 position, glm::vec2 size, float nits
 std::vector<Light> rigLights(std::string_view id) {
     if (id == "key") // the default scene's light (core/document_io.cpp)
         return {directional("Key", {1.0f, 0.93f, 0.85f}, 3.0f, {0.5f, -0.6f, -0.62f}, true)};
-    if (id == "three-point")
+    if (id == "three-point") // every light shadows, as in a studio and in the path tracer: a
+        // shadowless fill and rim lit the shader ball under its rings (BENCHMARKS.md)
         return {directional("Key", {1.0f, 0.92f, 0.82f}, 3.0f, {0.55f, -0.55f, -0.63f}, true),
-                directional("Fill", {0.78f, 0.86f, 1.0f}, 0.9f, {-0.7f, -0.2f, -0.68f}),
-                directional("Rim", {1.0f, 1.0f, 1.0f}, 2.5f, {-0.25f, -0.45f, 0.86f})};
+                directional("Fill", {0.78f, 0.86f, 1.0f}, 0.9f, {-0.7f, -0.2f, -0.68f}, true),
+                directional("Rim", {1.0f, 1.0f, 1.0f}, 2.5f, {-0.25f, -0.45f, 0.86f}, true)};
     if (id == "softboxes")
         return {[] {
                     // The key of the rig: its shadow is soft from the box's size.

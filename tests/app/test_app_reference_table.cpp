@@ -52,7 +52,10 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // masking (anisotropicReflection): brushed aluminium's rows fell by more than half; and on
 // 2026-12-06 (evening) after the sheen's image-based light lost the share of its lobe below a
 // bent normal's face (lighting.frag): wool, terry and crushed velvet under the HDRI fell (wool's
-// p95 7.36 to 6.46).
+// p95 7.36 to 6.46); and again when the three-point rig's fill and rim began to cast shadows, as
+// the path tracer's do: the fabrics and leather on the ball under the rig fell (satin, crushed
+// velvet and leather now meet the goal there and joined the table), gold's rose (10.74 / 56.88
+// to 11.47 / 57.93: its interreflections, which the viewport lacks, now sit in more shadow).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 3.97, 10.93},
     {"brushed_aluminium", kSphere, "three-point", 2.29, 7.32},
@@ -71,7 +74,8 @@ const Miss kMisses[] = {
     {"plastic", kBall, "environment", 2.31, 6.76},
     {"plastic", kBall, "three-point", 2.71, 8.32},
     {"gold", kBall, "environment", 8.36, 35.00},
-    {"gold", kBall, "three-point", 10.74, 56.88},
+    {"gold", kBall, "three-point", 11.47, 57.93},
+    {"crushed_velvet", kBall, "environment", 2.09, 4.76},
 };
 
 const Miss* knownMiss(const ReferenceTableCase& c) {
@@ -116,7 +120,10 @@ private slots:
         };
         for (const std::string& preset : libraryPresets())
             add(preset, kSphere);
-        for (const char* preset : {"rubber", "plastic", "gold"})
+        // On the ball: a plain dielectric, a glossy one, a metal, and fabrics and leather whose
+        // rows under the rig depend on every light's shadow (the rig's fill and rim cast theirs).
+        for (const char* preset :
+             {"rubber", "plastic", "gold", "satin", "crushed_velvet", "leather"})
             add(preset, kBall);
     }
 
