@@ -33,6 +33,7 @@ private slots:
     void cleanupTestCase();
     void frameAllShowsEveryNode();
     void anOpenedGraphIsFramed();
+    void anOpenedGraphStaysFramedUntilTheViewIsMoved();
     void wheelZoomAndMiddlePanAreViewOnly();
 
 private:
@@ -130,6 +131,40 @@ void TestUiGraphView::anOpenedGraphIsFramed() {
     QCOMPARE(m_view->transform(), framed);
     QCOMPARE(visibleSceneRect(), away);
     m_doc->undoStack()->undo();
+    m_doc->setMaterial(before, "");
+}
+
+// The dock may still be settling when a material opens, or the artist widens it at once: until
+// the artist moves the view, each resize frames the whole graph again; after a wheel zoom a
+// resize leaves the scale alone.
+void TestUiGraphView::anOpenedGraphStaysFramedUntilTheViewIsMoved() {
+    const Material before = m_doc->material();
+    Material spread = before;
+    graph::Graph g;
+    QVERIFY(g.addNode("output.material", glm::vec2(1600.0f, 0.0f)));
+    QVERIFY(g.addNode("constant.color", glm::vec2(-1900.0f, 1200.0f)));
+    spread.graph = SharedGraph(std::make_shared<graph::Graph>(g));
+    const QSize docked = m_view->size();
+    m_doc->setMaterial(spread, "spread");
+    const double openedScale = m_view->transform().m11();
+    // The view grows to twice its size: framed again, so the scale grows with it.
+    m_view->resize(docked * 2);
+    QCOMPARE(m_view->size(), docked * 2);
+    for (const QRectF& r : nodeRects())
+        QVERIFY(visibleSceneRect().contains(r));
+    const double grownScale = m_view->transform().m11();
+    QVERIFY2(grownScale > openedScale * 1.5,
+             qPrintable(QStringLiteral("scale %1 -> %2").arg(openedScale).arg(grownScale)));
+    // The artist zooms: the next resize keeps the zoom.
+    QWidget* vp = m_view->viewport();
+    const QPoint centre = vp->rect().center();
+    QWheelEvent wheel(QPointF(centre), QPointF(vp->mapToGlobal(centre)), QPoint(), QPoint(0, 120),
+                      Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(vp, &wheel);
+    const double zoomed = m_view->transform().m11();
+    QVERIFY(zoomed > grownScale);
+    m_view->resize(docked);
+    QCOMPARE(m_view->transform().m11(), zoomed);
     m_doc->setMaterial(before, "");
 }
 

@@ -71,15 +71,15 @@ void GraphView::frameAll() {
 }
 
 void GraphView::frameAllWhenSized() {
+    m_keepFramed = true;
     // A view smaller than a node would zoom out to nothing: wait for the dock's layout.
-    m_framePending = viewport()->width() < 100 || viewport()->height() < 60;
-    if (!m_framePending)
+    if (viewport()->width() >= 100 && viewport()->height() >= 60)
         frameAll();
 }
 
 void GraphView::resizeEvent(QResizeEvent* event) {
     QGraphicsView::resizeEvent(event);
-    if (m_framePending)
+    if (m_keepFramed) // the dock's layout settling, or a resize before the artist moved the view
         frameAllWhenSized();
 }
 
@@ -152,6 +152,7 @@ bool GraphView::event(QEvent* event) {
 }
 
 void GraphView::keyPressEvent(QKeyEvent* event) {
+    m_keepFramed = false;
     if (!isGraphKey(event)) {
         QGraphicsView::keyPressEvent(event);
         return;
@@ -190,6 +191,7 @@ void GraphView::keyPressEvent(QKeyEvent* event) {
 }
 
 void GraphView::wheelEvent(QWheelEvent* event) {
+    m_keepFramed = false;
     const double factor = std::pow(1.0015, event->angleDelta().y());
     const double zoom = transform().m11() * factor;
     if (zoom > 0.1 && zoom < 4.0)
@@ -198,6 +200,7 @@ void GraphView::wheelEvent(QWheelEvent* event) {
 }
 
 void GraphView::mousePressEvent(QMouseEvent* event) {
+    m_keepFramed = false;
     if (event->button() == Qt::MiddleButton) {
         m_panning = true;
         m_panLast = event->position().toPoint();

@@ -27,8 +27,9 @@ public:
     NodePalette* palette() const { return m_palette; }
     /// Fits every node into the view.
     void frameAll();
-    /// frameAll() now if the view has its size, else at its first resize (a graph opened
-    /// before the dock is laid out): a material opened or picked shows its whole graph.
+    /// frameAll() now if the view has its size, and again at each resize until the artist
+    /// zooms, pans, clicks or types in the view: a material opened or picked shows its whole
+    /// graph, also while the dock is still being laid out or is resized right after.
     void frameAllWhenSized();
     /// Opens the node palette; a chosen type is added at scene point @p scenePos.
     void openPalette(QPointF scenePos);
@@ -63,7 +64,7 @@ private:
     bool m_panning = false;
     QPoint m_panLast;
     int m_dragCounter = 0;
-    bool m_framePending = false; ///< frameAllWhenSized() waits for a usable size
+    bool m_keepFramed = false; ///< frameAllWhenSized() until the artist moves the view
 };
 
 } // namespace velvet::ui
