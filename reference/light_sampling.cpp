@@ -70,7 +70,25 @@ glm::vec3 sampleLight(const Context& ctx, const LocalLight& L, const Hit& hit, g
     glm::vec3 Li;
     bool delta = true;
     if (light.type == LightType::Directional) {
+        // A distant disc of the light's angular diameter (Light::sourceAngleDeg; the viewport's
+        // penumbra comes from it): a direction uniform in the cone of half-angle a it subtends.
+        // Its radiance L makes the illuminance facing it the light's intensity E: E = L pi
+        // sin^2 a, and with the pdf 1 / (2 pi (1 - cos a)) a sample carries L / pdf =
+        // E 2 / (1 + cos a). The mean of n.l over the cone is n.c (1 + cos a) / 2, so a surface
+        // that sees the whole disc receives E n.c, as from the delta light the viewport shades
+        // with; a disc of 0 degrees is that delta light.
         l = -L.dir, dist = 1e30f, Li = L.radiance;
+        if (light.sourceAngleDeg > 0.0f) {
+            const float cosMax =
+                std::cos(glm::radians(0.5f * std::min(light.sourceAngleDeg, 90.0f)));
+            const float cosT = 1.0f - rng.uniform() * (1.0f - cosMax);
+            const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)),
+                        phi = 2.0f * kPi * rng.uniform();
+            glm::vec3 t, b;
+            basis(-L.dir, t, b);
+            l = t * (sinT * std::cos(phi)) + b * (sinT * std::sin(phi)) - L.dir * cosT;
+            Li *= 2.0f / (1.0f + cosMax);
+        }
     } else if (light.type == LightType::Point || light.type == LightType::Spot) {
         const glm::vec3 toLight = light.position - hit.p;
         dist = glm::length(toLight);

@@ -55,7 +55,10 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // p95 7.36 to 6.46); and again when the three-point rig's fill and rim began to cast shadows, as
 // the path tracer's do: the fabrics and leather on the ball under the rig fell (satin, crushed
 // velvet and leather now meet the goal there and joined the table), gold's rose (10.74 / 56.88
-// to 11.47 / 57.93: its interreflections, which the viewport lacks, now sit in more shadow).
+// to 11.47 / 57.93: its interreflections, which the viewport lacks, now sit in more shadow);
+// and when the reference drew a directional light as the disc of its angular diameter, as the
+// viewport's penumbra does (leather on the ball under the rig, on the line at this size, moved
+// from 1.24 / 4.55 to 1.24 / 5.22 and is listed).
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 3.97, 10.93},
     {"brushed_aluminium", kSphere, "three-point", 2.29, 7.32},
@@ -76,6 +79,7 @@ const Miss kMisses[] = {
     {"gold", kBall, "environment", 8.36, 35.00},
     {"gold", kBall, "three-point", 11.47, 57.93},
     {"crushed_velvet", kBall, "environment", 2.09, 4.76},
+    {"leather", kBall, "three-point", 1.24, 5.22}, // meets the goal at 48x48 (1.32 / 4.63)
 };
 
 const Miss* knownMiss(const ReferenceTableCase& c) {

@@ -2,7 +2,8 @@
 // furnace (a white Lambertian sphere under a uniform white environment is invisible: every pixel
 // converges to the environment's radiance), determinism (the same seed gives the same image
 // whatever the thread count; another seed another), and Monte Carlo convergence (the error
-// against a 16x-spp image at least halves for every 4x spp).
+// against a 16x-spp image at least halves for every 4x spp), and a directional light drawn as
+// the disc of its angular diameter.
 #include "core/graph/graph.h"
 #include "core/image.h"
 #include "core/material.h"
@@ -102,6 +103,57 @@ private slots:
                 mean += r.image.pixels[(size_t(y) * 24 + x) * size_t(c)];
         mean /= 24.0 * 24.0;
         QVERIFY2(std::abs(mean - 1.0) < 0.02, qPrintable(QString::number(mean)));
+    }
+
+    // A directional light is the disc of its angular diameter (Light::sourceAngleDeg), as the
+    // viewport's penumbra takes it. Known answers for a white Lambertian sphere in the dark under
+    // a light from the side (intensity pi: a pixel reads n.c): where the whole disc is above the
+    // horizon the disc gives what the delta light gives (the mean of n.l over the cone, times
+    // the disc's normalisation, is n.c exactly); past the delta light's terminator, within the
+    // disc's half-angle, the disc still lights the sphere.
+    void directionalLightIsADiscOfItsAngularDiameter() {
+        Scene s = furnaceScene();
+        s.environment.color = glm::vec3(0.0f);
+        Light light;
+        light.type = LightType::Directional;
+        light.direction = glm::vec3(-1.0f, 0.0f, 0.0f); // towards -x: lights the +x half
+        light.intensity = 3.14159265f;
+        light.sourceAngleDeg = 0.0f;
+        s.lights = {light};
+        reference::Options o;
+        o.width = o.height = 32;
+        o.samplesPerPixel = 64;
+        o.maxBounces = 1;
+        const reference::Result delta = renderOrFail(s, o);
+        s.lights[0].sourceAngleDeg = 20.0f; // half-angle 10 degrees: sin 0.17
+        const reference::Result disc = renderOrFail(s, o);
+        QCOMPARE(disc.image.width, 32);
+        const int c = disc.image.channels;
+        int whole = 0, softened = 0, darkWithDisc = 0;
+        double worst = 0.0, sumDelta = 0.0, sumDisc = 0.0;
+        for (size_t i = 0; i < size_t(32 * 32); ++i) {
+            const float a = delta.image.pixels[i * size_t(c)], b = disc.image.pixels[i * size_t(c)];
+            if (a > 0.3f) { // n.c above sin 10 degrees plus a pixel's spread: the whole disc
+                ++whole;
+                worst = std::max(worst, double(std::abs(b - a)));
+                sumDelta += a;
+                sumDisc += b;
+            } else if (a == 0.0f && b > 0.01f) {
+                ++softened; // past the delta's terminator, lit by part of the disc
+            } else if (a > 0.05f && b == 0.0f) {
+                ++darkWithDisc;
+            }
+        }
+        const double ratio = sumDisc / std::max(sumDelta, 1e-9);
+        qInfo("%d pixels see the whole disc (largest difference %.4f, disc / delta %.4f), %d lit "
+              "past the delta's terminator",
+              whole, worst, ratio, softened);
+        QVERIFY(whole >= 80);
+        // Without the disc's normalisation the ratio would be (1 + cos 10 degrees) / 2 = 0.9924.
+        QVERIFY2(std::abs(ratio - 1.0) < 0.003, qPrintable(QString::number(ratio)));
+        QVERIFY2(worst < 0.04, qPrintable(QString::number(worst)));
+        QVERIFY2(softened >= 8, qPrintable(QString::number(softened)));
+        QCOMPARE(darkWithDisc, 0);
     }
 
     // A rough white metal under the same furnace: its BRDF (brdf::evalDirectional) carries
