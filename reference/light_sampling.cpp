@@ -62,6 +62,24 @@ glm::vec3 sampleBrdf(const brdf::Surface& s, glm::vec3 n, glm::vec3 v, Rng& rng)
 }
 
 // ---- Lights ----
+namespace {
+/// Turns @p l, the direction to a light's centre, into a direction uniform in the cone of the
+/// disc the light's source subtends (cos of its half-angle @p cosMax) and returns the factor its
+/// radiance takes, so that a surface facing it receives the light's intensity: E = L pi sin^2 a,
+/// and with the pdf 1 / (2 pi (1 - cos a)) a sample carries L / pdf = E 2 / (1 + cos a). The
+/// mean of n.l over the cone is n.c (1 + cos a) / 2, so a surface that sees the whole disc is lit
+/// as by the point or direction the viewport shades with; only the penumbra differs.
+float discSample(glm::vec3& l, float cosMax, Rng& rng) {
+    const float cosT = 1.0f - rng.uniform() * (1.0f - cosMax);
+    const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)),
+                phi = 2.0f * kPi * rng.uniform();
+    glm::vec3 t, b;
+    basis(l, t, b);
+    l = t * (sinT * std::cos(phi)) + b * (sinT * std::sin(phi)) + l * cosT;
+    return 2.0f / (1.0f + cosMax);
+}
+} // namespace
+
 glm::vec3 sampleLight(const Context& ctx, const LocalLight& L, const Hit& hit, glm::vec3 v,
                       glm::vec3 origin, Rng& rng) {
     const Light& light = *L.light;
@@ -70,25 +88,11 @@ glm::vec3 sampleLight(const Context& ctx, const LocalLight& L, const Hit& hit, g
     glm::vec3 Li;
     bool delta = true;
     if (light.type == LightType::Directional) {
-        // A distant disc of the light's angular diameter (Light::sourceAngleDeg; the viewport's
-        // penumbra comes from it): a direction uniform in the cone of half-angle a it subtends.
-        // Its radiance L makes the illuminance facing it the light's intensity E: E = L pi
-        // sin^2 a, and with the pdf 1 / (2 pi (1 - cos a)) a sample carries L / pdf =
-        // E 2 / (1 + cos a). The mean of n.l over the cone is n.c (1 + cos a) / 2, so a surface
-        // that sees the whole disc receives E n.c, as from the delta light the viewport shades
-        // with; a disc of 0 degrees is that delta light.
+        // The disc of the light's angular diameter (Light::sourceAngleDeg; discSample).
         l = -L.dir, dist = 1e30f, Li = L.radiance;
-        if (light.sourceAngleDeg > 0.0f) {
-            const float cosMax =
-                std::cos(glm::radians(0.5f * std::min(light.sourceAngleDeg, 90.0f)));
-            const float cosT = 1.0f - rng.uniform() * (1.0f - cosMax);
-            const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)),
-                        phi = 2.0f * kPi * rng.uniform();
-            glm::vec3 t, b;
-            basis(-L.dir, t, b);
-            l = t * (sinT * std::cos(phi)) + b * (sinT * std::sin(phi)) - L.dir * cosT;
-            Li *= 2.0f / (1.0f + cosMax);
-        }
+        if (light.sourceAngleDeg > 0.0f)
+            Li *= discSample(
+                l, std::cos(glm::radians(0.5f * std::min(light.sourceAngleDeg, 90.0f))), rng);
     } else if (light.type == LightType::Point || light.type == LightType::Spot) {
         const glm::vec3 toLight = light.position - hit.p;
         dist = glm::length(toLight);
@@ -96,6 +100,13 @@ glm::vec3 sampleLight(const Context& ctx, const LocalLight& L, const Hit& hit, g
         Li = L.radiance * lights::distanceAttenuation(dist, light.range);
         if (light.type == LightType::Spot)
             Li *= lights::spotConeAttenuation(glm::dot(L.dir, -l), L.cosOuter, L.cosInner);
+        // The ball of the light's source radius (Light::sourceRadius, the viewport's penumbra),
+        // seen as the disc it subtends from here; its falloff and cone stay the centre's.
+        if (light.sourceRadius > 0.0f && dist > light.sourceRadius) {
+            const float sinMax = light.sourceRadius / dist;
+            Li *= discSample(l, std::sqrt(1.0f - sinMax * sinMax), rng);
+            dist -= light.sourceRadius; // the shadow ray stops at the ball's near side
+        }
     } else if (light.shape == AreaShape::Sphere) {
         delta = false;
         const glm::vec3 toC = light.position - hit.p;

@@ -105,20 +105,29 @@ private slots:
         QVERIFY2(std::abs(mean - 1.0) < 0.02, qPrintable(QString::number(mean)));
     }
 
-    // A directional light is the disc of its angular diameter (Light::sourceAngleDeg), as the
-    // viewport's penumbra takes it. Known answers for a white Lambertian sphere in the dark under
-    // a light from the side (intensity pi: a pixel reads n.c): where the whole disc is above the
-    // horizon the disc gives what the delta light gives (the mean of n.l over the cone, times
-    // the disc's normalisation, is n.c exactly); past the delta light's terminator, within the
-    // disc's half-angle, the disc still lights the sphere.
+    // A directional light is the disc of its angular diameter (Light::sourceAngleDeg), a point
+    // light the ball of its source radius (Light::sourceRadius), as the viewport's penumbrae take
+    // them. Known answers for a white Lambertian sphere in the dark under a light from the side:
+    // where the whole disc is above the horizon the disc gives what the delta light gives (the
+    // mean of n.l over the cone, times the disc's normalisation, is n.c exactly); past the delta
+    // light's terminator, within the disc's half-angle, the disc still lights the sphere.
+    void directionalLightIsADiscOfItsAngularDiameter_data() {
+        QTest::addColumn<bool>("point");
+        QTest::newRow("directional, 20 degrees") << false;
+        QTest::newRow("point at 3 m, radius 0.6 m") << true;
+    }
     void directionalLightIsADiscOfItsAngularDiameter() {
         Scene s = furnaceScene();
         s.environment.color = glm::vec3(0.0f);
+        QFETCH(bool, point);
         Light light;
-        light.type = LightType::Directional;
+        light.type = point ? LightType::Point : LightType::Directional;
         light.direction = glm::vec3(-1.0f, 0.0f, 0.0f); // towards -x: lights the +x half
-        light.intensity = 3.14159265f;
+        light.position = glm::vec3(3.0f, 0.0f, 0.0f);
+        light.range = 1000.0f;
+        light.intensity = 3.14159265f * (point ? 4.0f : 1.0f); // about n.c at the near side
         light.sourceAngleDeg = 0.0f;
+        light.sourceRadius = 0.0f;
         s.lights = {light};
         reference::Options o;
         o.width = o.height = 32;
@@ -126,19 +135,23 @@ private slots:
         o.maxBounces = 1;
         const reference::Result delta = renderOrFail(s, o);
         s.lights[0].sourceAngleDeg = 20.0f; // half-angle 10 degrees: sin 0.17
+        s.lights[0].sourceRadius = 0.6f;    // from 3 m: sin 0.2
         const reference::Result disc = renderOrFail(s, o);
         QCOMPARE(disc.image.width, 32);
         const int c = disc.image.channels;
         int whole = 0, softened = 0, darkWithDisc = 0;
         double worst = 0.0, sumDelta = 0.0, sumDisc = 0.0;
+        float brightest = 0.0f;
+        for (size_t i = 0; i < size_t(32 * 32); ++i)
+            brightest = std::max(brightest, delta.image.pixels[i * size_t(c)]);
         for (size_t i = 0; i < size_t(32 * 32); ++i) {
             const float a = delta.image.pixels[i * size_t(c)], b = disc.image.pixels[i * size_t(c)];
-            if (a > 0.3f) { // n.c above sin 10 degrees plus a pixel's spread: the whole disc
+            if (a > 0.3f * brightest) { // n.c above the disc's sin plus a pixel's spread
                 ++whole;
                 worst = std::max(worst, double(std::abs(b - a)));
                 sumDelta += a;
                 sumDisc += b;
-            } else if (a == 0.0f && b > 0.01f) {
+            } else if (a == 0.0f && b > 0.002f * brightest) {
                 ++softened; // past the delta's terminator, lit by part of the disc
             } else if (a > 0.05f && b == 0.0f) {
                 ++darkWithDisc;
@@ -148,11 +161,11 @@ private slots:
         qInfo("%d pixels see the whole disc (largest difference %.4f, disc / delta %.4f), %d lit "
               "past the delta's terminator",
               whole, worst, ratio, softened);
-        QVERIFY(whole >= 80);
+        QVERIFY(whole >= 30);
         // Without the disc's normalisation the ratio would be (1 + cos 10 degrees) / 2 = 0.9924.
         QVERIFY2(std::abs(ratio - 1.0) < 0.003, qPrintable(QString::number(ratio)));
         QVERIFY2(worst < 0.04, qPrintable(QString::number(worst)));
-        QVERIFY2(softened >= 8, qPrintable(QString::number(softened)));
+        QVERIFY2(softened >= 6, qPrintable(QString::number(softened)));
         QCOMPARE(darkWithDisc, 0);
     }
 
