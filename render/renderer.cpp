@@ -350,8 +350,10 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.targets.gbuffer().bindTextures();
     // One key for both screen-space passes: it also notes what no key sees (screenPassKey).
     const FrameKey screenKey = d.screenPassKey(fs, block);
+    // Both passes take the face's normal, not the bent one, for the materials that bend theirs.
+    const bool bentNormals = d.frameFeatures(fs).geometricHorizon;
     if (!d.stage.drawOcclusion(d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                               d.frameFeatures(fs).geometricHorizon, screenKey, d.emptyVao, error))
+                               bentNormals, screenKey, d.emptyVao, error))
         return false;
     // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
     // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).
@@ -361,7 +363,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(),
                            d.targets.shadowKey().texture(), d.targets.groundShadowMask().texture(),
                            d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                           screenKey, d.emptyVao, fs.settleShadows);
+                           screenKey, d.emptyVao, fs.settleShadows, bentNormals);
     glViewport(0, 0, fs.width, fs.height);
 
     // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only

@@ -106,6 +106,8 @@ bool ShadowMaskPass::build(std::string* error) {
     const std::vector<std::string> defines[kPassCount] = {
         {"SHADOW_MASK_GROUND", "SHADOW_MASK_SETTLE"},
         {"SHADOW_MASK_GROUND"},
+        {"SHADOW_MASK_SETTLE", "WITH_GEOMETRIC_HORIZON 0"},
+        {"WITH_GEOMETRIC_HORIZON 0"},
         {"SHADOW_MASK_SETTLE"},
         {}};
     for (int p = 0; p < kPassCount; ++p)
@@ -126,7 +128,7 @@ void ShadowMaskPass::draw(Pass pass, int slot, bool settle) {
     // settling, 1 wherever there is a receiver); its lookup pass, drawn at depth 0.5, shades
     // only where the test LESS passes. llvmpipe tests depth before shading, so blocks of settled
     // texels skip the lookup.
-    const bool settlePass = pass == kGroundSettle || pass == kMeshSettle;
+    const bool settlePass = pass == kGroundSettle || pass == kMeshSettle || pass == kMeshSettleBent;
     glDepthFunc(settlePass ? GL_ALWAYS : GL_LESS);
     glUseProgram(program);
     glProgramUniform1i(program, 0, slot);
@@ -154,7 +156,7 @@ void ShadowMaskPass::lastTexels(long long* texels, long long* filtered) const {
 int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slots,
                         const MeshBounds& bounds, bool ground, float groundHeight,
                         const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
-                        bool settle) {
+                        bool settle, bool bentNormals) {
     if (!m_queries[0])
         glCreateQueries(GL_SAMPLES_PASSED, kMaxQueries, m_queries);
     m_queriesUsed = 0;
@@ -215,11 +217,11 @@ int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slo
         const GLboolean key = ground ? GL_FALSE : GL_TRUE; // else the ground's pass wrote it
         glColorMaski(1, key, key, GL_FALSE, GL_FALSE);
         glColorMaski(2, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        draw(kMeshSettle, s, settle);
+        draw(bentNormals ? kMeshSettleBent : kMeshSettle, s, settle);
         if (!ground)
             m_texels += (long long)m.width * m.height;
         glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        draw(kMeshLookup, s, settle);
+        draw(bentNormals ? kMeshLookupBent : kMeshLookup, s, settle);
     }
     glDisable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

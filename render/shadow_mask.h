@@ -75,9 +75,11 @@ public:
     /// the depth test, scissor and blending disabled and every colour channel writable; the
     /// viewport is the mask's.
     /// Without @p settle every texel is filtered (the same masks: the reference of the tests).
+    /// @p bentNormals: some drawn material bends its shading normal; the mesh's passes then
+    /// offset those receivers along the face's normal (from the depth), not the bent one.
     int run(unsigned framebuffer, const std::vector<ShadowSlot>& slots, const MeshBounds& bounds,
             bool ground, float groundHeight, const glm::mat4& viewProj, int width, int height,
-            unsigned emptyVao, bool settle = true);
+            unsigned emptyVao, bool settle = true, bool bentNormals = true);
     /// The last run's texels drawn (the settle passes' scissors) and, of those, the ones its
     /// lookup passes filtered (GL_SAMPLES_PASSED; waits for the GPU).
     void lastTexels(long long* texels, long long* filtered) const;
@@ -86,7 +88,16 @@ private:
     /// shadow_mask.frag's programs: for the ground where each texel's view ray meets it, and
     /// for the mesh's own texels, a settle pass (the texels the depth bounds settle) and the
     /// lookup where they do not.
-    enum Pass { kGroundSettle, kGroundLookup, kMeshSettle, kMeshLookup, kPassCount };
+    /// The mesh's passes twice: without and with the face normal for bent materials.
+    enum Pass {
+        kGroundSettle,
+        kGroundLookup,
+        kMeshSettle,
+        kMeshLookup,
+        kMeshSettleBent,
+        kMeshLookupBent,
+        kPassCount
+    };
     void draw(Pass pass, int slot, bool settle);
 
     ShaderProgram m_programs[kPassCount];

@@ -176,7 +176,7 @@ bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewP
 void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
                            unsigned groundMaskTexture, const Environment& environment,
                            const glm::mat4& viewProj, int width, int height, FrameKey frameKey,
-                           unsigned emptyVao, bool settle) {
+                           unsigned emptyVao, bool settle, bool bentNormals) {
     m_maskTexture = m_keyTexture = m_groundMaskTexture = 0;
     m_maskKept = false;
     if (!hasShadows()) {
@@ -200,14 +200,15 @@ void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned 
             .add(s.sourceSize)
             .add(s.metresPerUv);
     frameKey.add(m_block).add(m_shadows.drawCount()).add(environment.ground).add(m_bounds);
-    frameKey.add(settle).add(framebuffer).add(maskTexture).add(keyTexture).add(groundMaskTexture);
+    frameKey.add(settle).add(bentNormals).add(framebuffer).add(maskTexture).add(keyTexture);
+    frameKey.add(groundMaskTexture);
     if ((m_maskKept = m_maskReuse.reuse(std::move(frameKey))))
         return; // the passes and their timers are the frame's that drew the masks
     m_shadows.bind();
     glQueryCounter(m_queries[4], GL_TIMESTAMP);
     m_maskPasses =
         m_mask.run(framebuffer, m_shadows.slots(), m_bounds, environment.ground != GroundMode::Off,
-                   height0, viewProj, width, height, emptyVao, settle);
+                   height0, viewProj, width, height, emptyVao, settle, bentNormals);
     glQueryCounter(m_queries[5], GL_TIMESTAMP);
     m_shadows.unbind();
 }

@@ -88,11 +88,12 @@ public:
     /// @p frameKey (the camera, the material's normals where it bends them, the targets) and the
     /// stage's own inputs (the lights' slots and the StageBlock, the maps as drawn, the ground,
     /// the bounds) are as they were: after a material value edit, a slider dragged on a shadowed
-    /// stage, the masks are the same texels.
+    /// stage, the masks are the same texels. @p bentNormals: some drawn material bends its
+    /// shading normal (its receivers offset along the face's normal, ShadowMaskPass::run).
     void drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned keyTexture,
                         unsigned groundMaskTexture, const Environment& environment,
                         const glm::mat4& viewProj, int width, int height, FrameKey frameKey,
-                        unsigned emptyVao, bool settle = true);
+                        unsigned emptyVao, bool settle = true, bool bentNormals = true);
     /// Whether the last frame kept the frame before's shadow masks.
     bool lastShadowMaskKept() const { return m_maskKept; }
     /// The pixel rectangle (x, y, width, height) that holds the mesh's bounds seen through

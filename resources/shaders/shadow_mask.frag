@@ -16,7 +16,8 @@
 //                       left unsettled. llvmpipe tests depth before shading, so blocks of settled
 //                       texels skip the lookup.
 // Together they give exactly what the lookup alone would (shadow_sampling.glsl): a settled value
-// does not depend on the noise.
+// does not depend on the noise. The mesh's passes are built twice: WITH_GEOMETRIC_HORIZON 0 when
+// no drawn material bends its normal.
 #include "gbuffer_read.glsl"
 #include "shadow_sampling.glsl"
 
@@ -52,6 +53,14 @@ void main() {
 #endif
     vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
     vec3 n = octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg);
+#if WITH_GEOMETRIC_HORIZON // some drawn material bends its normal (render/shadow_mask.h)
+    // The biases offset the receiver along its surface: the face's normal where a material bends
+    // its shading normal (gbuffer_read.glsl), not the weave's, which tilted threads away from the
+    // light offset into the surface and shadowed it.
+    int recordId = receiver ? materialId : 0;
+    if (receiver && materials[recordId].sheenWeightAnisotropy.w > 0.5)
+        n = geometricNormalFromDepth(pixel, posView, n);
+#endif
 #endif
     // Towards the light as the lighting passes see it: the frame block's direction for a
     // directional light, the way to a local light's centre (light_common.glsl).
