@@ -53,6 +53,16 @@ Image renderLinear(const Scene& scene, int size, render::DebugView view = render
     return drawLinear(r, size, view, path);
 }
 
+/// @p scene's final image with its first light's shadow (which it must cast) and without it.
+struct ShadowedPair {
+    Image with, without;
+};
+ShadowedPair renderWithAndWithoutShadow(const Scene& scene, int size) {
+    Scene unshadowed = scene;
+    unshadowed.lights[0].castShadows = false;
+    return {renderLinear(scene, size), renderLinear(unshadowed, size)};
+}
+
 /// A black environment, an orthographic camera looking down on the origin at 55°.
 Scene stageScene(PreviewMeshKind mesh) {
     Scene scene = test::blackOrthographicScene();
@@ -237,11 +247,8 @@ private slots:
         sun.direction = {-std::cos(e) * 0.8f, -std::sin(e), -std::cos(e) * 0.6f};
         sun.castShadows = true;
         scene.lights = {sun};
-        Scene unshadowed = scene;
-        unshadowed.lights[0].castShadows = false;
         const int size = 96;
-        const Image with = renderLinear(scene, size);
-        const Image without = renderLinear(unshadowed, size);
+        const auto [with, without] = renderWithAndWithoutShadow(scene, size);
         int checked = 0;
         float worst = 1.0f;
         for (int y = 0; y < size; ++y)
@@ -284,11 +291,8 @@ private slots:
         Light light = rig.front(); // the rig's key: it casts the shadow
         QVERIFY(light.castShadows);
         scene.lights = {light};
-        Scene unshadowed = scene;
-        unshadowed.lights[0].castShadows = false;
         const int size = 128;
-        const Image with = renderLinear(scene, size);
-        const Image without = renderLinear(unshadowed, size);
+        const auto [with, without] = renderWithAndWithoutShadow(scene, size);
         const Image position = renderLinear(scene, size, render::DebugView::Position);
         int checked = 0;
         float worst = 1.0f;
