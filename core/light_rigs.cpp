@@ -12,7 +12,8 @@ constexpr std::array kRigs = {
     LightRig{"key", "Key light",
              "One warm directional key light from the upper left; the HDRI fills the shadows"},
     LightRig{"three-point", "Studio three-point",
-             "Warm key, cool fill and a rim light from behind, as in a photo studio"},
+             "Warm key, cool fill and a rim light from behind, as in a photo studio; all three "
+             "cast shadows"},
     LightRig{"softboxes", "Softboxes",
              "Two rectangular area lights left and right and a rim: soft, broad highlights"},
     LightRig{"sun", "Sun", "One strong, slightly warm sun high in the sky"},
