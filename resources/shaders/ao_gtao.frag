@@ -24,19 +24,12 @@ void main() {
     // loop whose count is 0 for the background and where the radius is under a pixel.
     bool background = depth >= 1.0;
     vec3 P = viewPositionAt(pixel);
-    // The horizons bound the visible share of the surface's own hemisphere, so it is measured
-    // about the geometric normal where the material bends its shading normal (a weave, a knit, a
-    // normal map): about the bent one, the part of its hemisphere below the surface counted as
-    // occluded here, and the lighting's geometric horizon (gbuffer_read.glsl) and the material's
-    // occlusion take it out again. XeGTAO likewise takes its normals from the depth.
-    vec3 nWorld = octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg);
-#if WITH_GEOMETRIC_HORIZON // some drawn material bends its normal (render/ao_pass.h)
-    int materialId = readMaterialId(pixel);
-    if (!background && materialId != GROUND_PLAIN_MATERIAL_ID &&
-        materialId != GROUND_CATCHER_MATERIAL_ID &&
-        materials[materialId].sheenWeightAnisotropy.w > 0.5)
-        nWorld = geometricNormalFromDepth(pixel, P, nWorld);
-#endif
+    // The horizons bound the visible share of the surface's own hemisphere: about the face's
+    // normal where a material bends its shading normal (surfaceNormalAt), as XeGTAO takes its
+    // normals from the depth; the lighting's geometric horizon and the material's occlusion
+    // already take out the part of a bent normal's hemisphere below the face.
+    vec3 nWorld = surfaceNormalAt(pixel, background ? -1 : readMaterialId(pixel), P,
+                                  octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg));
     vec3 N = normalize(mat3(frame.viewMatrix) * nWorld);
     bool ortho = frame.cameraPosition.w > 0.5;
     vec3 V = ortho ? vec3(0.0, 0.0, 1.0) : normalize(-P);

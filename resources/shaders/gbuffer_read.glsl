@@ -66,6 +66,24 @@ vec3 geometricNormalFromDepth(ivec2 pixel, vec3 posView, vec3 fallback) {
     return normalize((frame.invViewMatrix * vec4(ngView, 0.0)).xyz);
 }
 
+// Whether material @p m bends its shading normal per pixel (a normal map, a fabric's relief).
+bool bendsShadingNormal(GpuMaterial m) { return m.sheenWeightAnisotropy.w > 0.5; }
+
+// The normal of the surface itself at @p pixel (view position @p posView) for the passes that
+// measure the surface rather than shade it (the occlusion's hemisphere, the shadow mask's
+// biases): the face's, from the depth, where material @p materialId bends its shading normal
+// @p n (the part of a bent normal's hemisphere below the face is no open sky, and an offset
+// along it goes into the surface), else @p n. A @p materialId outside the table (-1: none)
+// gives @p n.
+vec3 surfaceNormalAt(ivec2 pixel, int materialId, vec3 posView, vec3 n) {
+#if WITH_GEOMETRIC_HORIZON
+    if (materialId >= 0 && materialId < materials.length() &&
+        bendsShadingNormal(materials[materialId]))
+        return geometricNormalFromDepth(pixel, posView, n);
+#endif
+    return n;
+}
+
 // How much of a light in direction @p l (unit, towards it) is above the surface's geometric
 // horizon: a normal map bends the shading, not the surface, so light from below it never arrives
 // (the reference path tracer's test, reference/light_sampling.cpp). @p angularRadius: the light's
@@ -162,7 +180,7 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     setIsotropicSingleNormal(p.s, p.n);
     readLobeChannels(pixel, m.terms2.w, int(m.clearcoat.w), p.n, p.s);
 #if WITH_GEOMETRIC_HORIZON
-    p.bentShading = m.sheenWeightAnisotropy.w > 0.5;
+    p.bentShading = bendsShadingNormal(m);
     p.ng = p.bentShading ? geometricNormalFromDepth(pixel, p.posView, p.n) : p.n;
 #else
     p.bentShading = false;

@@ -53,14 +53,10 @@ void main() {
 #endif
     vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
     vec3 n = octDecodeUnorm16(texelFetch(gNormalTex, pixel, 0).rg);
-#if WITH_GEOMETRIC_HORIZON // some drawn material bends its normal (render/shadow_mask.h)
-    // The biases offset the receiver along its surface: the face's normal where a material bends
-    // its shading normal (gbuffer_read.glsl), not the weave's, which tilted threads away from the
-    // light offset into the surface and shadowed it.
-    int recordId = receiver ? materialId : 0;
-    if (receiver && materials[recordId].sheenWeightAnisotropy.w > 0.5)
-        n = geometricNormalFromDepth(pixel, posView, n);
-#endif
+    // The biases offset the receiver along its surface: the face's normal where a material
+    // bends its shading normal (surfaceNormalAt), not the weave's, which tilted threads away from
+    // the light offset into the surface and shadowed it.
+    n = surfaceNormalAt(pixel, receiver ? materialId : -1, posView, n);
 #endif
     // Towards the light as the lighting passes see it: the frame block's direction for a
     // directional light, the way to a local light's centre (light_common.glsl).
