@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -102,6 +103,17 @@ inline Scene shippedDefaultScene() {
     if (!problems.items.empty())
         QTest::qFail("the default scene reported problems", __FILE__, __LINE__);
     return scene;
+}
+
+/// The library preset @p name (resources/presets/NAME.json) of the source tree; nullopt, with
+/// the first problem as a warning, when it does not load.
+inline std::optional<Material> libraryPreset(const std::string& name) {
+    Problems problems;
+    std::optional<Material> m = loadMaterialFile(
+        std::string(VELVET_SOURCE_DIR) + "/resources/presets/" + name + ".json", problems);
+    if (!m && !problems.items.empty())
+        qWarning("%s: %s", name.c_str(), problems.items[0].toString().c_str());
+    return m;
 }
 
 /// The largest difference of two same-sized images' RGB channels, in 1/255 steps.

@@ -97,10 +97,7 @@ private slots:
     }
     void rendersWithinGoldenTolerance() {
         QFETCH(QString, preset);
-        Problems problems;
-        const std::optional<Material> loaded = loadMaterialFile(
-            std::string(VELVET_SOURCE_DIR "/resources/presets/") + preset.toStdString() + ".json",
-            problems);
+        const std::optional<Material> loaded = test::libraryPreset(preset.toStdString());
         QVERIFY(loaded);
         QVERIFY2(!loaded->graph, "a preset without a node graph (see the header)");
         roundTripsRender(*loaded, preset);

@@ -152,10 +152,8 @@ private slots:
     // A fabric bends its normals by its weave, which its values (the weave's scale among them)
     // drive: a value edit draws the occlusion again.
     void drawnAgainAfterAValueEditOfABentNormal() {
-        Problems problems;
-        const std::optional<Material> denim = loadMaterialFile(
-            std::string(VELVET_SOURCE_DIR) + "/resources/presets/denim.json", problems);
-        QVERIFY2(denim, problems.items.empty() ? "" : problems.items[0].toString().c_str());
+        const std::optional<Material> denim = test::libraryPreset("denim");
+        QVERIFY(denim);
         Scene fabric = stage();
         fabric.material = *denim;
         m_rig->renderer->update(fabric, ScenePart::Material);
@@ -171,9 +169,7 @@ private slots:
     // normals): neither the split frame nor the first frame after it keeps the occlusion, and
     // that frame is the one before the split, to the bit.
     void splitFramesDrawItAgain() {
-        Problems problems;
-        const std::optional<Material> denim = loadMaterialFile(
-            std::string(VELVET_SOURCE_DIR) + "/resources/presets/denim.json", problems);
+        const std::optional<Material> denim = test::libraryPreset("denim");
         QVERIFY(denim);
         Image before, after;
         QVERIFY(!draw());

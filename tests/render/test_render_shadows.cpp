@@ -279,9 +279,7 @@ private slots:
     void convexFabricHasNoSelfShadowing() {
         QFETCH(bool, areaLight);
         QFETCH(float, least);
-        Problems problems;
-        const std::optional<Material> denim = loadMaterialFile(
-            std::string(VELVET_SOURCE_DIR) + "/resources/presets/denim.json", problems);
+        const std::optional<Material> denim = test::libraryPreset("denim");
         QVERIFY(denim);
         Scene scene = stageScene(PreviewMeshKind::Sphere);
         scene.material = *denim;
@@ -481,10 +479,8 @@ private slots:
     // screen-space term alone: the occlusion view with the search on over the view with it off
     // (the material's occlusion alone).
     void occlusionIsOneOnAnOpenPlaneWhoseWeaveBendsItsNormal() {
-        Problems problems;
-        const std::optional<Material> denim = loadMaterialFile(
-            std::string(VELVET_SOURCE_DIR) + "/resources/presets/denim.json", problems);
-        QVERIFY2(denim, problems.items.empty() ? "" : problems.items[0].toString().c_str());
+        const std::optional<Material> denim = test::libraryPreset("denim");
+        QVERIFY(denim);
         Scene scene = stageScene(PreviewMeshKind::Plane);
         scene.material = *denim;
         scene.camera.orthographic = false;
