@@ -1,16 +1,20 @@
 #pragma once
 /// @file graph_editor_window.h
 /// The node editor of a widget test's MainWindow in a floating window of its own, large enough
-/// for the material output node, active and focused (test_ui_graph, test_ui_graph_view).
+/// for the material output node, active and focused, and the main window around it
+/// (test_ui_graph, test_ui_graph_view).
 
+#include "ui/document_controller.h"
 #include "ui/graph/graph_panel.h"
 #include "ui/graph/graph_view.h"
 #include "ui/main_window.h"
+#include "ui_test_window.h"
 
 #include <QApplication>
 #include <QDockWidget>
 #include <QString>
 #include <QTest>
+#include <memory>
 
 namespace velvet::test {
 
@@ -32,6 +36,22 @@ inline QString openGraphEditor(ui::MainWindow* window, ui::GraphPanel*& panel) {
     view->setFocus();
     if (!QTest::qWaitFor([view] { return view->hasFocus(); }))
         return QStringLiteral("the graph view did not take the focus");
+    return {};
+}
+
+/// A new main window (no saved layout) shown at 900 x 700 with its first frame, and its node
+/// editor opened (openGraphEditor): the set-up of test_ui_graph and test_ui_graph_view. Empty
+/// when it is up; otherwise what went wrong.
+inline QString openWindowWithGraphEditor(std::unique_ptr<ui::MainWindow>& window,
+                                         ui::DocumentController*& doc, ui::GraphPanel*& panel,
+                                         ui::GraphView*& view) {
+    window = std::make_unique<ui::MainWindow>(/*restoreLayout=*/false);
+    doc = window->controller();
+    if (const QString up = showWithFirstFrame(window.get(), {900, 700}); !up.isEmpty())
+        return up;
+    if (const QString editor = openGraphEditor(window.get(), panel); !editor.isEmpty())
+        return editor;
+    view = panel->view();
     return {};
 }
 

@@ -74,14 +74,9 @@ private:
 };
 
 void TestUiGraph::initTestCase() {
-    m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
-    m_doc = m_window->controller();
-    const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
-    QVERIFY2(up.isEmpty(), qPrintable(up));
     // The node editor gets a window of its own, large enough for the material output node.
-    const QString editor = test::openGraphEditor(m_window.get(), m_panel);
-    QVERIFY2(editor.isEmpty(), qPrintable(editor));
-    m_view = m_panel->view();
+    const QString up = test::openWindowWithGraphEditor(m_window, m_doc, m_panel, m_view);
+    QVERIFY2(up.isEmpty(), qPrintable(up));
 }
 
 void TestUiGraph::cleanupTestCase() {

@@ -57,13 +57,8 @@ private:
 };
 
 void TestUiGraphView::initTestCase() {
-    m_window = std::make_unique<MainWindow>(/*restoreLayout=*/false);
-    m_doc = m_window->controller();
-    const QString up = test::showWithFirstFrame(m_window.get(), {900, 700});
+    const QString up = test::openWindowWithGraphEditor(m_window, m_doc, m_panel, m_view);
     QVERIFY2(up.isEmpty(), qPrintable(up));
-    const QString editor = test::openGraphEditor(m_window.get(), m_panel);
-    QVERIFY2(editor.isEmpty(), qPrintable(editor));
-    m_view = m_panel->view();
 }
 
 void TestUiGraphView::cleanupTestCase() {
