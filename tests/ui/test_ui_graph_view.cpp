@@ -49,6 +49,23 @@ private:
                 rects.push_back(item->sceneBoundingRect());
         return rects;
     }
+    /// How many node items the viewport does not show whole.
+    int nodesOutsideView() const {
+        int n = 0;
+        for (const QRectF& r : nodeRects())
+            n += visibleSceneRect().contains(r) ? 0 : 1;
+        return n;
+    }
+    /// @p base with a graph of three nodes spread far apart (3,500 x 2,500 scene units): larger
+    /// than the view at 1:1.
+    static Material withSpreadGraph(Material base) {
+        graph::Graph g;
+        g.addNode("output.material", glm::vec2(1600.0f, 0.0f));
+        g.addNode("constant.color", glm::vec2(-1900.0f, 1200.0f));
+        g.addNode("constant.float", glm::vec2(-1900.0f, -1300.0f));
+        base.graph = SharedGraph(std::make_shared<graph::Graph>(g));
+        return base;
+    }
 
     std::unique_ptr<MainWindow> m_window;
     DocumentController* m_doc = nullptr;
@@ -75,20 +92,15 @@ void TestUiGraphView::frameAllShowsEveryNode() {
     stack->push(new AddNodeCommand(model, "constant.color", glm::vec2(1500.0f, -900.0f)));
     QVERIFY(model->graph().nodes().size() >= 2);
     const int count = stack->count();
-    const auto outside = [this] {
-        int n = 0;
-        for (const QRectF& r : nodeRects())
-            n += visibleSceneRect().contains(r) ? 0 : 1;
-        return n;
-    };
     m_view->setFocus();
     for (Qt::Key key : {Qt::Key_F, Qt::Key_Home}) {
         m_view->setTransform(QTransform::fromScale(2.0, 2.0));
         m_view->centerOn(4500.0, -4500.0);
-        QCOMPARE(outside(), int(nodeRects().size())); // none visible
+        QCOMPARE(nodesOutsideView(), int(nodeRects().size())); // none visible
         QTest::keyClick(m_view, key);
-        QVERIFY2(outside() == 0,
-                 qPrintable(QStringLiteral("key %1: %2 nodes outside").arg(key).arg(outside())));
+        QVERIFY2(nodesOutsideView() == 0,
+                 qPrintable(
+                     QStringLiteral("key %1: %2 nodes outside").arg(key).arg(nodesOutsideView())));
         QVERIFY(m_view->transform().m11() < 1.0); // zoomed out to fit
         QCOMPARE(stack->count(), count);          // view state, not an edit
     }
@@ -99,23 +111,13 @@ void TestUiGraphView::frameAllShowsEveryNode() {
 // graph, wherever the view was; an edit in the panel leaves the view where the artist put it.
 void TestUiGraphView::anOpenedGraphIsFramed() {
     const Material before = m_doc->material();
-    Material spread = before;
-    graph::Graph g;
-    QVERIFY(g.addNode("output.material", glm::vec2(1600.0f, 0.0f)));
-    QVERIFY(g.addNode("constant.color", glm::vec2(-1900.0f, 1200.0f)));
-    QVERIFY(g.addNode("constant.float", glm::vec2(-1900.0f, -1300.0f)));
-    spread.graph = SharedGraph(std::make_shared<graph::Graph>(g));
-    const auto outside = [this] {
-        int n = 0;
-        for (const QRectF& r : nodeRects())
-            n += visibleSceneRect().contains(r) ? 0 : 1;
-        return n;
-    };
+    const Material spread = withSpreadGraph(before);
     m_view->setTransform(QTransform::fromScale(2.0, 2.0));
     m_view->centerOn(4500.0, -4500.0);
     m_doc->setMaterial(spread, "spread");
     QCOMPARE(int(nodeRects().size()), 3);
-    QVERIFY2(outside() == 0, qPrintable(QStringLiteral("%1 nodes outside").arg(outside())));
+    QVERIFY2(nodesOutsideView() == 0,
+             qPrintable(QStringLiteral("%1 nodes outside").arg(nodesOutsideView())));
     QVERIFY(m_view->transform().m11() < 1.0);
     // The panel's own edit: the view stays.
     const QTransform framed = m_view->transform();
@@ -134,19 +136,14 @@ void TestUiGraphView::anOpenedGraphIsFramed() {
 // resize leaves the scale alone.
 void TestUiGraphView::anOpenedGraphStaysFramedUntilTheViewIsMoved() {
     const Material before = m_doc->material();
-    Material spread = before;
-    graph::Graph g;
-    QVERIFY(g.addNode("output.material", glm::vec2(1600.0f, 0.0f)));
-    QVERIFY(g.addNode("constant.color", glm::vec2(-1900.0f, 1200.0f)));
-    spread.graph = SharedGraph(std::make_shared<graph::Graph>(g));
+    const Material spread = withSpreadGraph(before);
     const QSize docked = m_view->size();
     m_doc->setMaterial(spread, "spread");
     const double openedScale = m_view->transform().m11();
     // The view grows to twice its size: framed again, so the scale grows with it.
     m_view->resize(docked * 2);
     QCOMPARE(m_view->size(), docked * 2);
-    for (const QRectF& r : nodeRects())
-        QVERIFY(visibleSceneRect().contains(r));
+    QCOMPARE(nodesOutsideView(), 0);
     const double grownScale = m_view->transform().m11();
     QVERIFY2(grownScale > openedScale * 1.5,
              qPrintable(QStringLiteral("scale %1 -> %2").arg(openedScale).arg(grownScale)));
