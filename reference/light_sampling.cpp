@@ -63,6 +63,17 @@ glm::vec3 sampleBrdf(const brdf::Surface& s, glm::vec3 n, glm::vec3 v, Rng& rng)
 
 // ---- Lights ----
 namespace {
+/// A direction uniform (by solid angle) in the cone about unit @p axis whose half-angle has the
+/// cosine @p cosMax: the pdf is 1 / (2 pi (1 - cosMax)).
+glm::vec3 uniformInCone(glm::vec3 axis, float cosMax, Rng& rng) {
+    const float cosT = 1.0f - rng.uniform() * (1.0f - cosMax);
+    const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)),
+                phi = 2.0f * kPi * rng.uniform();
+    glm::vec3 t, b;
+    basis(axis, t, b);
+    return t * (sinT * std::cos(phi)) + b * (sinT * std::sin(phi)) + axis * cosT;
+}
+
 /// Turns @p l, the direction to a light's centre, into a direction uniform in the cone of the
 /// disc the light's source subtends (cos of its half-angle @p cosMax) and returns the factor its
 /// radiance takes, so that a surface facing it receives the light's intensity: E = L pi sin^2 a,
@@ -70,12 +81,7 @@ namespace {
 /// mean of n.l over the cone is n.c (1 + cos a) / 2, so a surface that sees the whole disc is lit
 /// as by the point or direction the viewport shades with; only the penumbra differs.
 float discSample(glm::vec3& l, float cosMax, Rng& rng) {
-    const float cosT = 1.0f - rng.uniform() * (1.0f - cosMax);
-    const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)),
-                phi = 2.0f * kPi * rng.uniform();
-    glm::vec3 t, b;
-    basis(l, t, b);
-    l = t * (sinT * std::cos(phi)) + b * (sinT * std::sin(phi)) + l * cosT;
+    l = uniformInCone(l, cosMax, rng);
     return 2.0f / (1.0f + cosMax);
 }
 } // namespace
@@ -115,12 +121,7 @@ glm::vec3 sampleLight(const Context& ctx, const LocalLight& L, const Hit& hit, g
             return glm::vec3(0.0f);
         // Uniform in the cone the sphere subtends (its visible surface, by solid angle).
         const float cosMax = std::sqrt(std::max(0.0f, 1.0f - r * r / (dc * dc)));
-        const float cosT = 1.0f - rng.uniform() * (1.0f - cosMax);
-        const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)),
-                    phi = 2.0f * kPi * rng.uniform();
-        glm::vec3 w = toC / dc, t, b;
-        basis(w, t, b);
-        l = t * (sinT * std::cos(phi)) + b * (sinT * std::sin(phi)) + w * cosT;
+        l = uniformInCone(toC / dc, cosMax, rng);
         const float proj = glm::dot(toC, l);
         dist = proj - std::sqrt(std::max(0.0f, r * r - (dc * dc - proj * proj)));
         pdfSolid = 1.0f / (2.0f * kPi * (1.0f - cosMax));
