@@ -96,9 +96,13 @@ int runFrameBench(bool json, bool quick) {
             fs.camera.reset();
             fs.accumulation = -1;
             fs.jitter = glm::vec2(0.0f);
+            fs.reflectionSamples = 0;
             if (v.change == Change::Refine) { // the editor's still view: one more frame of its mean
                 fs.accumulation = i % 16;
                 fs.jitter = render::progressiveJitter(fs.accumulation);
+                fs.reflectionSamples = render::kRefinementReflectionSamples;
+                fs.reflectionSampleTotal = 16 * render::kRefinementReflectionSamples;
+                fs.reflectionSampleSet = fs.accumulation;
             } else if (v.change == Change::Orbit) {
                 Camera camera = edited.camera;
                 camera.yawDeg += 0.5f * float(i);

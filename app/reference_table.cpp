@@ -87,6 +87,9 @@ bool ReferenceTable::start(std::string* error) {
     return m_impl->renderer->initialize(error);
 }
 
+static_assert(ReferenceTableOptions{}.reflectionSamples == render::kRefinementReflectionSamples,
+              "the table compares the viewport as it stands at rest");
+
 bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOptions& options,
                              ReferenceTableRow& row, std::string* error) {
     row = {};
@@ -118,6 +121,9 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     renderer.finishTextures();
     render::FrameSettings fs;
     fs.width = fs.height = n * ss;
+    fs.reflectionSamples = options.reflectionSamples;
+    fs.reflectionSampleTotal = options.reflectionSamples * ss * ss;
+    fs.reflectionSampleBlock = ss;
     if (!renderer.render(fs, m_impl->target->framebuffer(), error))
         return false;
     const Image frame = boxDownsample(renderer.readLinear(), ss);

@@ -30,8 +30,11 @@ struct ReferenceTableCase {
 struct ReferenceTableOptions {
     int size = 48;       ///< square image side, pixels
     int supersample = 4; ///< viewport samples per pixel side (box-filtered, as the reference's)
-    int samples = 64;    ///< reference samples per pixel
-    int bounces = 4;     ///< reference path vertices after the first hit
+    /// Reflection samples per viewport sample (FrameSettings::reflectionSamples), as the editor's
+    /// viewport draws them at rest; 0: the split sum of an interactive frame.
+    int reflectionSamples = 16; // render::kRefinementReflectionSamples (reference_table.cpp)
+    int samples = 64;           ///< reference samples per pixel
+    int bounces = 4;            ///< reference path vertices after the first hit
     std::uint64_t seed = 1;
     int threads = 0; ///< reference threads; 0: all cores
 };

@@ -77,7 +77,11 @@ IblBlock makeIblBlock(const IblBaker& ibl, const FrameSettings& fs) {
     return {glm::vec4(ibl.specularReady() ? 1.0f : 0.0f, float(std::max(levels - 1, 0)),
                       ibl.dfgReady() ? 1.0f : 0.0f, fs.specularMultiScatter ? 1.0f : 0.0f),
             glm::vec4(kBlurredBackgroundRoughness * float(std::max(levels - 1, 0)), fs.time, 0.0f,
-                      0.0f)};
+                      0.0f),
+            glm::vec4(float(std::max(fs.reflectionSamples, 0)),
+                      float(std::max(fs.reflectionSampleTotal, fs.reflectionSamples)),
+                      float(std::max(fs.reflectionSampleSet, 0)),
+                      float(std::max(fs.reflectionSampleBlock, 1)))};
 }
 
 FrameUniforms::~FrameUniforms() {

@@ -52,6 +52,10 @@ struct LightingFeatures {
     /// (GpuMaterial::sheenWeightAnisotropy.w): the lighting reconstructs the geometric normal to
     /// keep light from below the surface out.
     bool geometricHorizon = true;
+    /// The frame samples its reflections (FrameSettings::reflectionSamples: the viewport at rest,
+    /// a supersampled still); every other frame compiles the sampling out, which llvmpipe would
+    /// otherwise pay for beside the split sum (+5 ms a 1280x720 frame).
+    bool sampledReflections = true;
     /// The baked IBL (prefiltered cube and DFG LUT) is ready: the approximate path compiles out.
     /// Unknown (-1), 0 or 1; the same for the multiple-scattering energy switch.
     int iblBaked = -1;

@@ -56,6 +56,9 @@ constexpr std::array kIblMembers{
                   "multiple-scattering compensation on"),
     VELVET_MEMBER(IblBlock, "vec4", background, "",
                   "x: level of the blurred background, y: time in seconds (FBM), zw unused"),
+    VELVET_MEMBER(IblBlock, "vec4", reflection, "",
+                  "x: reflection samples per pixel this frame (0: split sum), y: over the mean, "
+                  "z: sample set, w: pixels per side of one output pixel"),
 };
 
 // std430 lays out a struct of vec4 / ivec4 members exactly as std140 does.
@@ -109,7 +112,7 @@ static_assert(std140Packed(kFrameMembers, sizeof(FrameBlock)),
 static_assert(std140Packed(kIblMembers, sizeof(IblBlock)),
               "IblBlock: a member is not at its std140 offset");
 static_assert(sizeof(FrameBlock) == 5 * 64 + 16 * 16 + 2 * kMaxDirectionalLights * 16);
-static_assert(sizeof(IblBlock) == 32);
+static_assert(sizeof(IblBlock) == 48);
 static_assert(std140Packed(kMaterialMembers, sizeof(GpuMaterial)),
               "GpuMaterial: a member is not at its std430 offset");
 static_assert(std140Packed(kPostFrameMembers, sizeof(PostFrameBlock)),

@@ -42,6 +42,9 @@ struct FrameBlock {
 struct IblBlock {
     glm::vec4 state;      ///< cube ready, its last level, DFG LUT ready, multiple scattering on
     glm::vec4 background; ///< blurred background level, time (s), unused, unused
+    /// Reflections sampled (FrameSettings::reflectionSamples): per pixel this frame (0: the split
+    /// sum), over the whole mean, the sample set, pixels per side of one output pixel.
+    glm::vec4 reflection;
 };
 
 /// The post chain's per-frame constants (std140, mat4 / vec4 only): the block PostFrame

@@ -237,6 +237,13 @@ RenderJobStatus runRenderJob(const Scene& sceneIn, const RenderJob& job,
     const int ss = job.supersample;
     settings.width *= ss;
     settings.height *= ss;
+    // A supersampled still has the viewport at rest's time to spare: its reflections sampled too,
+    // each of a pixel's samples another rotation of the set (FrameSettings::reflectionSamples).
+    if (ss > 1) {
+        settings.reflectionSamples = kRefinementReflectionSamples;
+        settings.reflectionSampleTotal = kRefinementReflectionSamples * ss * ss;
+        settings.reflectionSampleBlock = ss;
+    }
 
     std::unique_ptr<HeadlessContext> context;
     if (!HeadlessContext::isAnyContextCurrent()) {

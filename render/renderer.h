@@ -167,6 +167,21 @@ struct FrameSettings {
     /// when it is the default framebuffer); Renderer::lastFramePasses() tells. readLinear() is
     /// then empty.
     bool displayOnly = false;
+    /// @name Reflections sampled (common_environment.glsl's sampledReflection)
+    /// 0: an isotropic base reflects the environment by the split sum, one prefiltered lookup
+    /// (every interactive frame). n > 0: by n GGX visible-normal samples per pixel, each read
+    /// from the equirect's mips at its footprint; closer to the path tracer at grazing angles,
+    /// for the frames that have time: the viewport's refinement at rest, supersampled stills.
+    /// The frames of a mean draw different sets (reflectionSampleSet; each pixel also rotates its
+    /// own), and reflectionSampleTotal, the samples the mean will hold, sets their filtering.
+    /// @{
+    int reflectionSamples = 0;
+    int reflectionSampleTotal = 0;
+    int reflectionSampleSet = 0;
+    /// Pixels per side of the frame that are samples of one output pixel (a supersampled
+    /// still's factor; 1 for a frame of the progressive mean): they draw consecutive sets.
+    int reflectionSampleBlock = 1;
+    /// @}
     /// @name Progressive anti-aliasing (render/progressive_accumulation.h)
     /// @{
     /// The projection offset by this many pixels (x right, y up; progressiveJitter), so the
@@ -179,6 +194,12 @@ struct FrameSettings {
     int accumulation = -1;
     /// @}
 };
+
+/// Reflection samples per pixel that each frame of a progressive mean and each sample of a
+/// supersampled still draws (FrameSettings::reflectionSamples): the mean of 16 such frames holds
+/// the 256 with which the glossy metals met the path tracer (BENCHMARKS.md, "Reflections sampled
+/// at rest").
+inline constexpr int kRefinementReflectionSamples = 16;
 
 /// What the last frame drew after the G-buffer (Renderer::lastFramePasses).
 struct FramePasses {

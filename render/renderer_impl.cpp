@@ -269,6 +269,7 @@ bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& 
                            (d.chain && postChainReadsTime(scene.post)); // grain, static
     if (!readsTime)
         keyed.background.y = 0.0f;
+    keyed.reflection = glm::vec4(0.0f); // the background reads no reflection
     FrameKey key;
     key.add(b).add(keyed).add(d.framebuffer).add(targetFbo).add(fs.width).add(fs.height);
     key.add(fs.exposureEv).add(d.background->id()).add(d.chain).add(d.source.key);

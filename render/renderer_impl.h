@@ -245,6 +245,7 @@ struct Renderer::Impl {
                                scene.environment.ambientOcclusion, true, fs.specularMultiScatter);
         f.shadowMask = stage.hasShadows();
         f.localShadows = stage.shadowsLocalLight(scene.lights);
+        f.sampledReflections = fs.reflectionSamples > 0;
         return f;
     }
 

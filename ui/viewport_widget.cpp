@@ -419,6 +419,10 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
     if (refined && settings.renderScale == 1.0f && displayOnly) {
         settings.accumulation = m_progressiveIndex;
         settings.jitter = render::progressiveJitter(m_progressiveIndex);
+        // The reflections sampled, each frame another set (FrameSettings::reflectionSamples).
+        settings.reflectionSamples = render::kRefinementReflectionSamples;
+        settings.reflectionSampleTotal = render::kRefinementReflectionSamples * kProgressiveSamples;
+        settings.reflectionSampleSet = m_progressiveIndex;
     }
 
     QElapsedTimer timer;
@@ -433,6 +437,7 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
             restartProgressive();
             settings.accumulation = -1;
             settings.jitter = glm::vec2(0.0f);
+            settings.reflectionSamples = 0;
         }
     }
     if (!showMean && !m_renderer->render(settings, fbo, &error)) {

@@ -262,6 +262,129 @@ vec3 sweptSpecular(SweptReflection sw, vec3 f0, vec2 dfg) {
     return (f0 * (sw.radiance - sw.grazing) + sw.grazing) * multipleScatteringGain(f0, dfg);
 }
 
+// ---- The reflected environment light sampled (the viewport at rest and supersampled stills) ----
+// The split sum's one lookup (reflectedRadiance) assumes n = v = r; at grazing angles the true lobe
+// is narrow across the plane of incidence and shifted, which no single isotropic lookup can hold:
+// glossy metals missed the reference path tracer by twice issue 15's goal, and a brute-force
+// integral met it (BENCHMARKS.md, "What keeps the glossy metals from the goal"). Frames with time
+// to spare (FrameSettings::reflectionSamples) estimate the integral instead: GGX half vectors
+// drawn from the distribution of visible normals, each reflection read from the equirect's mip
+// chain at its sample's footprint (filtered importance sampling), the frames of a progressive mean
+// or the samples of a supersampled pixel each drawing the next block of one stratified sequence.
+
+// Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), listing 1: a half
+// vector with density G1(v) max(0, v.h) D(h) / n.v, in the tangent frame of vt (z = n), for an
+// isotropic width alpha and uniform numbers u.
+vec3 sampleGgxVisibleNormal(vec3 vt, float alpha, vec2 u) {
+    vec3 vh = normalize(vec3(alpha * vt.xy, vt.z));
+    float lensq = dot(vh.xy, vh.xy);
+    vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
+    vec3 t2 = cross(vh, t1);
+    float r = sqrt(u.x), phi = 2.0 * PI * u.y;
+    float p1 = r * cos(phi), p2 = r * sin(phi);
+    float blend = 0.5 * (1.0 + vh.z);
+    p2 = (1.0 - blend) * sqrt(max(1.0 - p1 * p1, 0.0)) + blend * p2;
+    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(1.0 - p1 * p1 - p2 * p2, 0.0)) * vh;
+    return normalize(vec3(alpha * nh.xy, max(nh.z, 0.0)));
+}
+
+// Smith's Lambda for GGX (Heitz 2014, eq. 72) at cos(theta) = c.
+float smithLambdaGgx(float c, float alpha) {
+    float c2 = max(c * c, 1e-8);
+    return 0.5 * (sqrt(1.0 + alpha * alpha * (1.0 - c2) / c2) - 1.0);
+}
+
+// The samples this frame draws per pixel (0: the split sum). WITH_SAMPLED_REFLECTIONS 0
+// (render/lighting_features.h) compiles the sampling out of the frames that draw none.
+#ifndef WITH_SAMPLED_REFLECTIONS
+#define WITH_SAMPLED_REFLECTIONS 1
+#endif
+// Rougher lobes keep the split sum: their shape hardly narrows at grazing angles, and the cube's
+// GGX prefilter is exact where the equirect's box-filtered mips, which a wide lobe's samples read
+// at high levels, blur unevenly towards the poles (crimson velvet, roughness 0.8: mean ΔE2000
+// 1.38 with the split sum, 1.45 sampled; BENCHMARKS.md, "Reflections sampled at rest"). A pixel
+// past it runs none of the loop, so a rough material's refinement costs what it did.
+#define SAMPLED_REFLECTION_MAX_ROUGHNESS 0.7
+int reflectionSamplesThisFrame() { return WITH_SAMPLED_REFLECTIONS != 0 ? int(ibl.reflection.x) : 0; }
+
+// Point j of the two-dimensional Sobol sequence (van der Corput and Sobol's second dimension,
+// Kollig & Keller 2002, "Efficient Multidimensional Sampling", section 3), scrambled by XOR with
+// a per-pixel word (a random digit scramble, which keeps the nets). Every aligned block of 2^m
+// points is a (0, m, 2)-net, so each frame's block is stratified on its own and the mean's
+// blocks together form one finer net: the mean converges as one large stratified set, where
+// blocks of independently rotated points converge only as fast as their count.
+vec2 reflectionSample(uint j, uvec2 scramble) {
+    uint y = 0u;
+    for (uint v = 1u << 31u, k = j; k != 0u; k >>= 1u, v ^= v >> 1u)
+        if ((k & 1u) != 0u)
+            y ^= v;
+    return vec2(bitfieldReverse(j) ^ scramble.x, y ^ scramble.y) * 2.3283064365386963e-10;
+}
+
+// The isotropic GGX lobe's reflected environment light by ibl.reflection.x samples per pixel.
+// With visible normals the estimator f n.l / pdf is F G2(v, l) / G1(v), G2 from the material's
+// chosen visibility term (glTF's separable Smith by default, as the reference's BRDF and the
+// split sum's DFG table have it), kept as the two Schlick
+// moments of SweptReflection so the caller mixes the dielectric's and the metal's Fresnel and
+// adds the split sum's multiple-scattering energy (sweptSpecular). Each sample reads the mip
+// level where a texel covers its share 1 / (N pdf) of the sphere, N the samples of the whole
+// mean (Colbert & Krivanek 2007, "GPU-Based Importance Sampling", GPU Gems 3 ch. 20, eq. 13;
+// an equirect texel spans (2 pi / W)(pi / H) sin(theta) steradians), half a level blurrier: their
+// +1 blurred copper's highlights more than the stratified samples need, +0 let the lamp's noise
+// through (48x48 table: copper under the HDRI 1.50 / 1.24 / 1.28 mean ΔE2000 at +1 / +0.5 / +0).
+// A sample below the face's plane (@p ng; n where nothing bends the normal) brings no light, as
+// in the path tracer: exact where the split sum fades its one reflection by the horizon.
+SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 v, float NdotV, float perceptualRoughness,
+                                  int visibilityTerm, vec2 pixel) {
+    float alpha = perceptualRoughness * perceptualRoughness;
+    int count = reflectionSamplesThisFrame();
+    float total = max(ibl.reflection.y, float(count));
+    // The tangent frame's x along the plane of incidence (isotropic: any azimuth will do).
+    vec3 across = v - n * NdotV;
+    float acrossLength = length(across);
+    vec3 t = acrossLength > 1e-4 ? across / acrossLength
+                                 : normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n)
+                                                              : vec3(1.0, 0.0, 0.0));
+    vec3 b = cross(n, t);
+    vec3 vt = vec3(acrossLength, 0.0, NdotV);
+    // The samples of one output pixel (a frame of the mean, or a still's ss x ss samples of a
+    // pixel) take consecutive blocks of one scrambled sequence (reflectionSample).
+    uint block = uint(max(ibl.reflection.w, 1.0));
+    uvec2 outputPixel = uvec2(pixel) / block, sub = uvec2(pixel) % block;
+    uint set = uint(ibl.reflection.z) * block * block + sub.y * block + sub.x;
+    uvec2 scramble = pcg2d(outputPixel);
+    float width = frame.post.z;
+    float texelSolidAngle = 4.0 * PI * PI / (width * width); // (2 pi / W)(pi / (W / 2)), sin(theta) aside
+    float lambdaV = smithLambdaGgx(NdotV, alpha);
+    float a2 = alpha * alpha;
+    SweptReflection sum = SweptReflection(vec3(0.0), vec3(0.0));
+    for (int i = 0; i < count; ++i) {
+        vec2 u = reflectionSample(set * uint(count) + uint(i), scramble);
+        vec3 ht = sampleGgxVisibleNormal(vt, alpha, u);
+        vec3 h = t * ht.x + b * ht.y + n * ht.z;
+        vec3 l = reflect(-v, h);
+        float NdotL = dot(n, l);
+        if (NdotL <= 0.0 || dot(ng, l) <= 0.0)
+            continue;
+        float VdotH = max(dot(v, h), 1e-4);
+        float d = ht.z * ht.z * (a2 - 1.0) + 1.0;
+        float D = a2 / (PI * d * d);
+        float pdf = D / (4.0 * NdotV * (1.0 + lambdaV)); // G1(v) D / (4 n.v)
+        float sinTheta = sqrt(max(1.0 - l.y * l.y, 1e-4)); // the equirect's pole is world +Y
+        float lod = 0.5 * log2(1.0 / (total * pdf * texelSolidAngle * sinTheta)) + 0.5;
+        // G2 / G1(v) = V 4 (n.l)(n.v) (1 + Lambda(v)), V the material's chosen visibility.
+        float masking = visibility(visibilityTerm, NdotL, NdotV, ht.z, VdotH, alpha) * 4.0 * NdotL *
+                        NdotV * (1.0 + lambdaV);
+        vec3 light = environmentRadiance(l, clamp(lod, 0.0, frame.envParams.w)) * masking;
+        float c = 1.0 - VdotH, c2 = c * c;
+        sum.radiance += light;
+        sum.grazing += light * (c2 * c2 * c);
+    }
+    sum.radiance /= float(max(count, 1));
+    sum.grazing /= float(max(count, 1));
+    return sum;
+}
+
 // Where image-based light's sheen looks the environment up (lighting.frag). The Charlie lobe
 // (Estevez & Kulla 2017) with the Neubelt-Pettineo visibility is not centred on the reflection
 // direction: its n.l-weighted mean direction lies on the viewer's side of n, tilted towards v by

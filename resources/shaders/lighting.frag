@@ -184,8 +184,21 @@ void main() {
     // grazing angles (reflectedRadiance); an anisotropic base's sweep along its stretch, which
     // weighs its own Fresnel, masking and energy (anisotropicReflection).
     vec3 specular;
+    bool sampled = false;
     if (usesAnisotropy(s)) {
         SweptReflection sw = anisotropicReflection(s, n, v, NdotV, rough);
+        specular = mix(s.specularWeight * sweptSpecular(sw, dielectricF0(s), ab),
+                       sweptSpecular(sw, s.baseColor, ab), s.metallic);
+    } else if (reflectionSamplesThisFrame() > 0 && rough <= SAMPLED_REFLECTION_MAX_ROUGHNESS) {
+        // A frame with time to spare (the viewport at rest, a supersampled still): the lobe
+        // sampled, its shape at grazing angles its own (sampledReflection).
+#if WITH_GEOMETRIC_HORIZON
+        vec3 face = p.bentShading ? p.ng : n;
+#else
+        vec3 face = n;
+#endif
+        SweptReflection sw = sampledReflection(n, face, v, NdotV, rough, s.terms.y, gl_FragCoord.xy);
+        sampled = true;
         specular = mix(s.specularWeight * sweptSpecular(sw, dielectricF0(s), ab),
                        sweptSpecular(sw, s.baseColor, ab), s.metallic);
     } else {
@@ -196,7 +209,7 @@ void main() {
     // out as it sinks (Russell 2016, "Horizon Occlusion for Normal Mapped Reflections"; Filament's
     // specular horizon occlusion). Measured against the reference: BENCHMARKS.md, "Light from
     // below the surface".
-    if (p.bentShading) {
+    if (p.bentShading && !sampled) { // a sampled lobe drops its samples below the face itself
         float horizon = saturate(1.0 + dot(r, p.ng));
         specular *= horizon * horizon;
     }

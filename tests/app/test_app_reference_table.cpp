@@ -58,18 +58,17 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // to 11.47 / 57.93: its interreflections, which the viewport lacks, now sit in more shadow);
 // and when the reference drew a directional light as the disc of its angular diameter, as the
 // viewport's penumbra does (leather on the ball under the rig, on the line at this size, moved
-// from 1.24 / 4.55 to 1.24 / 5.22 and is listed).
+// from 1.24 / 4.55 to 1.24 / 5.22 and is listed); and on 2026-12-07 when the table began to
+// compare the viewport as it stands at rest, its glossy reflections sampled
+// (FrameSettings::reflectionSamples): copper and gold on the sphere and crushed velvet on the
+// sphere under the HDRI now meet the goal (copper 2.63 / 8.12 to 1.39 / 4.77 under the HDRI) and
+// left the list, so the test fails if the sampling goes.
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 3.97, 10.93},
     {"brushed_aluminium", kSphere, "three-point", 2.29, 7.32},
-    {"copper", kSphere, "environment", 2.63, 8.12},
-    {"copper", kSphere, "three-point", 1.76, 5.78},
     {"ceramic", kSphere, "environment", 2.00, 4.30},
     {"cotton", kSphere, "environment", 2.56, 5.85},
-    {"crushed_velvet", kSphere, "environment", 2.06, 5.97},
     {"denim", kSphere, "three-point", 2.51, 5.99},
-    {"gold", kSphere, "environment", 3.20, 9.37},
-    {"gold", kSphere, "three-point", 2.35, 7.14},
     {"terry", kSphere, "environment", 2.71, 5.80},
     {"tweed", kSphere, "environment", 2.64, 5.77},
     {"tweed", kSphere, "three-point", 2.80, 6.65},
