@@ -147,6 +147,29 @@ inline Scene blackOrthographicScene() {
 
 /// The directional light the known-answer tests compare with the CPU twins (from the upper left,
 /// in front of the sphere, warm).
+/// A white material without sheen or coat: @p metallic 1 a white metal (F0 = 1), 0 a white
+/// dielectric whose specular weight may be 0 (a pure Lambertian or Burley surface).
+inline Material whiteMaterial(float metallic, float roughness, float specularWeight = 1.0f) {
+    Material m;
+    m.setColor(ParamId::BaseColor, glm::vec3(1.0f));
+    m.setScalar(ParamId::Metallic, metallic);
+    m.setScalar(ParamId::Roughness, roughness);
+    m.setScalar(ParamId::SpecularWeight, specularWeight);
+    m.setScalar(ParamId::SheenWeight, 0.0f);
+    m.setScalar(ParamId::ClearcoatWeight, 0.0f);
+    return m;
+}
+
+/// No lights, and a uniform environment of @p color (a white furnace for white).
+inline Scene uniformEnvironmentScene(glm::vec3 color) {
+    Scene scene;
+    scene.lights.clear();
+    scene.environment.hdri.clear();
+    scene.environment.color = color;
+    scene.environment.intensity = 1.0f;
+    return scene;
+}
+
 inline Light analyticKeyLight() {
     Light light;
     light.type = LightType::Directional;

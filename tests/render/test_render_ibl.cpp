@@ -87,26 +87,6 @@ std::string writeTestEnvironment(const QString& dir) {
     return path;
 }
 
-Material whiteMaterial(float metallic, float roughness, float specularWeight) {
-    Material m;
-    m.setColor(ParamId::BaseColor, glm::vec3(1.0f));
-    m.setScalar(ParamId::Metallic, metallic);
-    m.setScalar(ParamId::Roughness, roughness);
-    m.setScalar(ParamId::SpecularWeight, specularWeight);
-    m.setScalar(ParamId::SheenWeight, 0.0f);
-    m.setScalar(ParamId::ClearcoatWeight, 0.0f);
-    return m;
-}
-
-Scene uniformScene(glm::vec3 color) {
-    Scene scene;
-    scene.lights.clear();
-    scene.environment.hdri.clear();
-    scene.environment.color = color;
-    scene.environment.intensity = 1.0f;
-    return scene;
-}
-
 } // namespace
 
 class TestRenderIbl : public QObject {
@@ -242,8 +222,8 @@ private slots:
     // single-scattering split sum loses on rough surfaces is reported (not hidden), with and
     // without Fdez-Agüera 2019's multiple-scattering compensation; with it the furnace is white.
     void whiteFurnace() {
-        Scene scene = uniformScene(glm::vec3(1.0f));
-        scene.material = whiteMaterial(0.0f, 0.5f, 0.0f);
+        Scene scene = test::uniformEnvironmentScene(glm::vec3(1.0f));
+        scene.material = test::whiteMaterial(0.0f, 0.5f, 0.0f);
         const Frame lambert = renderScene(scene, 96);
         int count = 0;
         double worst = 0.0;
@@ -260,7 +240,7 @@ private slots:
         QVERIFY2(worst <= 0.02, qPrintable(QString::number(worst)));
 
         for (float rough : {0.25f, 0.5f, 0.75f, 1.0f}) {
-            scene.material = whiteMaterial(1.0f, rough, 1.0f);
+            scene.material = test::whiteMaterial(1.0f, rough, 1.0f);
             render::FrameSettings fs;
             fs.specularMultiScatter = false;
             const double single = sphereMean(renderScene(scene, 64, fs));
@@ -277,7 +257,7 @@ private slots:
             QVERIFY2(std::abs(multi - 1.0) <= 0.02, qPrintable(QString::number(multi)));
         }
         // A white dielectric with its specular on: diffuse takes what the specular leaves.
-        scene.material = whiteMaterial(0.0f, 0.8f, 1.0f);
+        scene.material = test::whiteMaterial(0.0f, 0.8f, 1.0f);
         const double dielectric = sphereMean(renderScene(scene, 64));
         qInfo("white furnace, white dielectric with specular, roughness 0.8: %.4f", dielectric);
         QVERIFY(std::abs(dielectric - 1.0) <= 0.02);
@@ -300,7 +280,7 @@ private slots:
         fs.width = fs.height = size;
         double worstLambertOverall = 0.0;
         for (float rough : {0.0f, 0.5f, 1.0f}) {
-            scene.material = whiteMaterial(0.0f, rough, 0.0f);
+            scene.material = test::whiteMaterial(0.0f, rough, 0.0f);
             scene.material.setChoice(ParamId::Diffuse, int(Diffuse::Burley));
             Image image, normals;
             std::string error;
@@ -356,7 +336,7 @@ private slots:
         scene.camera.orthographic = true;
         scene.camera.yawDeg = 0.0f;
         scene.camera.pitchDeg = 0.0f;
-        scene.material = whiteMaterial(1.0f, 0.15f, 1.0f);
+        scene.material = test::whiteMaterial(1.0f, 0.15f, 1.0f);
         const int size = 96;
         const Frame a = renderScene(scene, size);
         scene.environment.rotationDeg = 180.0f;

@@ -23,16 +23,6 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-Material whiteMetal(float roughness) {
-    Material m;
-    m.setColor(ParamId::BaseColor, glm::vec3(1.0f));
-    m.setScalar(ParamId::Metallic, 1.0f);
-    m.setScalar(ParamId::Roughness, roughness);
-    m.setScalar(ParamId::SheenWeight, 0.0f);
-    m.setScalar(ParamId::ClearcoatWeight, 0.0f);
-    return m;
-}
-
 /// A dim sky with a bright soft lamp up and behind the sphere (as the camera sees it), where the
 /// sphere's upper rim reflects it at grazing angles.
 float lampRadiance(glm::vec3 d) {
@@ -117,12 +107,9 @@ private slots:
     // angle, so its weights and the multiple-scattering gain are normalised alike (256 samples:
     // each pixel within 3 %, the mean within 2 %).
     void sampledReflectionKeepsTheFurnaceWhite() {
-        Scene scene;
-        scene.lights.clear();
-        scene.environment.hdri.clear();
-        scene.environment.color = glm::vec3(1.0f);
+        Scene scene = test::uniformEnvironmentScene(glm::vec3(1.0f));
         for (float roughness : {0.2f, 0.5f, 0.9f}) {
-            scene.material = whiteMetal(roughness);
+            scene.material = test::whiteMaterial(1.0f, roughness);
             render::FrameSettings fs;
             const Rendered split = renderSphere(scene, 48, fs);
             fs.reflectionSamples = 256;
@@ -163,7 +150,7 @@ private slots:
         scene.camera.yawDeg = 0.0f;
         scene.camera.pitchDeg = 0.0f;
         const float roughness = 0.3f, alpha = roughness * roughness;
-        scene.material = whiteMetal(roughness);
+        scene.material = test::whiteMaterial(1.0f, roughness);
         render::FrameSettings fs;
         fs.specularMultiScatter = false; // single scattering, as the integral below
         const Rendered splitSum = renderSphere(scene, 64, fs);

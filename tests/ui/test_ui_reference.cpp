@@ -10,6 +10,7 @@
 #include "ui/reference/reference_job.h"
 #include "ui/reference/reference_panel.h"
 #include "ui/viewport_widget.h"
+#include "ui_test_util.h"
 #include "ui_test_window.h"
 
 #include <QAction>
@@ -291,12 +292,7 @@ private slots:
         ReferencePanel* panel = m_window->referencePanel();
         auto* refine = m_window->findChild<QAction*>(QStringLiteral("progressiveAntialiasAction"));
         QVERIFY(panel && refine && refine->isChecked());
-        Material copper;
-        copper.setColor(ParamId::BaseColor, glm::vec3(0.95f, 0.64f, 0.54f));
-        copper.setScalar(ParamId::Metallic, 1.0f);
-        copper.setScalar(ParamId::Roughness, 0.25f);
-        copper.setScalar(ParamId::SheenWeight, 0.0f);
-        m_window->controller()->setMaterial(copper, "copper");
+        m_window->controller()->setMaterial(test::glossyCopper(), "copper");
         QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
         QVERIFY(QTest::qWaitFor([&] { return panel->active(); }));
         const auto meanAfterRestart = [&] {

@@ -205,12 +205,7 @@ void TestUiViewportRefine::aGlossyMetalSettlesToItsSampledReflections() {
     // reflectionSamples) where the plain frame takes the split sum's one lookup: for a glossy
     // metal the settled mean differs from the plain frame over the sphere's whole grazing ring,
     // not only on the silhouette as for the rough velvet above (under 5 % of the pixels there).
-    Material copper;
-    copper.setColor(ParamId::BaseColor, glm::vec3(0.95f, 0.64f, 0.54f));
-    copper.setScalar(ParamId::Metallic, 1.0f);
-    copper.setScalar(ParamId::Roughness, 0.25f);
-    copper.setScalar(ParamId::SheenWeight, 0.0f);
-    m_window->controller()->setMaterial(copper, "copper");
+    m_window->controller()->setMaterial(test::glossyCopper(), "copper");
     ViewportWidget* viewport = m_window->viewport();
     QVERIFY(QTest::qWaitFor([&] { return viewport->progressiveSamples() == 0; }, kFrameTimeoutMs));
     QVERIFY(QTest::qWaitFor(

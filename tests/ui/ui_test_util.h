@@ -2,6 +2,7 @@
 // Shared helpers of the widget tests (run under xvfb-run): pixels read from a grabbed viewport
 // and where a user grabs a slider; bringing the main window up is ui_test_window.h's.
 
+#include "core/material.h"
 #include "ui_test_window.h"
 
 #include <QColor>
@@ -19,6 +20,17 @@
 #include <cmath>
 
 namespace velvet::test {
+
+/// A glossy copper (roughness 0.25, no sheen): a material whose reflections the viewport samples
+/// at rest (FrameSettings::reflectionSamples).
+inline Material glossyCopper() {
+    Material copper;
+    copper.setColor(ParamId::BaseColor, glm::vec3(0.95f, 0.64f, 0.54f));
+    copper.setScalar(ParamId::Metallic, 1.0f);
+    copper.setScalar(ParamId::Roughness, 0.25f);
+    copper.setScalar(ParamId::SheenWeight, 0.0f);
+    return copper;
+}
 
 /// Mean colour of a 5x5 block around the centre (on the preview mesh), in 0..255 units.
 inline QVector<double> centrePixel(const QImage& image) {
