@@ -242,6 +242,8 @@ bool isLightView(DebugView view) {
 std::string renderInterfaceGlsl() {
     std::string s = "// Generated from render/render_interface.cpp; do not edit.\n";
     s += "#define MAX_LIGHTS " + std::to_string(kMaxDirectionalLights) + "\n";
+    s += "#define SAMPLED_REFLECTION_MAX_ROUGHNESS " +
+         std::to_string(kSampledReflectionMaxRoughness) + "\n";
     s += block("FrameBlock", binding::kFrameUbo, "frame", kFrameMembers);
     s += block("IblBlock", binding::kIblUbo, "ibl", kIblMembers);
     for (size_t i = 0; i < kDebugViewNames.size(); ++i)

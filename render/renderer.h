@@ -200,6 +200,10 @@ struct FrameSettings {
 /// the 256 with which the glossy metals met the path tracer (BENCHMARKS.md, "Reflections sampled
 /// at rest").
 inline constexpr int kRefinementReflectionSamples = 16;
+/// The roughest isotropic lobe whose reflections are sampled (rougher ones keep the split sum:
+/// their shape hardly changes at grazing angles, and the cube's GGX prefilter beats the
+/// equirect's box-filtered mips; common_environment.glsl, SAMPLED_REFLECTION_MAX_ROUGHNESS).
+inline constexpr float kSampledReflectionMaxRoughness = 0.7f;
 
 /// What the last frame drew after the G-buffer (Renderer::lastFramePasses).
 struct FramePasses {

@@ -229,6 +229,14 @@ struct Renderer::Impl {
         texturesB.reset();
         texturesBRefs = {};
     }
+    /// Whether @p m may have a lobe glossy enough for sampled reflections
+    /// (kSampledReflectionMaxRoughness): its roughness, or one that varies per pixel (a roughness
+    /// texture, a graph, which may drive it).
+    static bool mayReflectSampled(const Material& m) {
+        return m.scalar(ParamId::Roughness) <= kSampledReflectionMaxRoughness ||
+               !m.texture(TextureSlot::MetallicRoughness).empty() ||
+               !m.texture(TextureSlot::SpecRoughMetal).empty() || bool(m.graph);
+    }
     /// The features of the records this frame draws (A, B when split, the ground when shown) with
     /// the lights' shadows, the occlusion switch and the bake. While the environment bakes the
     /// generic program draws (no variant is built for the few frames of a bake).
@@ -245,7 +253,10 @@ struct Renderer::Impl {
                                scene.environment.ambientOcclusion, true, fs.specularMultiScatter);
         f.shadowMask = stage.hasShadows();
         f.localShadows = stage.shadowsLocalLight(scene.lights);
-        f.sampledReflections = fs.reflectionSamples > 0;
+        // Only where a lobe may be glossy enough: a rough velvet's refinement compiles nothing.
+        f.sampledReflections = fs.reflectionSamples > 0 &&
+                               (mayReflectSampled(scene.material) ||
+                                (fs.splitMaterial && mayReflectSampled(*fs.splitMaterial)));
         return f;
     }
 

@@ -303,8 +303,9 @@ float smithLambdaGgx(float c, float alpha) {
 // GGX prefilter is exact where the equirect's box-filtered mips, which a wide lobe's samples read
 // at high levels, blur unevenly towards the poles (crimson velvet, roughness 0.8: mean ΔE2000
 // 1.38 with the split sum, 1.45 sampled; BENCHMARKS.md, "Reflections sampled at rest"). A pixel
-// past it runs none of the loop, so a rough material's refinement costs what it did.
-#define SAMPLED_REFLECTION_MAX_ROUGHNESS 0.7
+// past it runs none of the loop, so a rough material's refinement costs what it did
+// (SAMPLED_REFLECTION_MAX_ROUGHNESS, render::kSampledReflectionMaxRoughness, generated into
+// render_interface.glsl; a frame whose materials are all rougher compiles the sampling out).
 int reflectionSamplesThisFrame() { return WITH_SAMPLED_REFLECTIONS != 0 ? int(ibl.reflection.x) : 0; }
 
 // Point j of the two-dimensional Sobol sequence (van der Corput and Sobol's second dimension,

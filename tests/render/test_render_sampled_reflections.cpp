@@ -108,7 +108,7 @@ private slots:
     // each pixel within 3 %, the mean within 2 %).
     void sampledReflectionKeepsTheFurnaceWhite() {
         Scene scene = test::uniformEnvironmentScene(glm::vec3(1.0f));
-        for (float roughness : {0.2f, 0.5f, 0.9f}) {
+        for (float roughness : {0.1f, 0.35f, 0.7f}) { // up to kSampledReflectionMaxRoughness
             scene.material = test::whiteMaterial(1.0f, roughness);
             render::FrameSettings fs;
             const Rendered split = renderSphere(scene, 48, fs);
@@ -126,7 +126,7 @@ private slots:
                             std::max(worstSplit, std::abs(mean3(split.color.rgba(x, y)) - 1.0));
                         ++count;
                     }
-            qInfo("furnace, white metal roughness %.1f, sampled: %d pixels, mean %.4f, worst "
+            qInfo("furnace, white metal roughness %.2f, sampled: %d pixels, mean %.4f, worst "
                   "|value - 1| %.4f (split sum %.4f)",
                   roughness, count, sum / count, worst, worstSplit);
             QVERIFY(count > 900);
@@ -183,6 +183,43 @@ private slots:
         QVERIFY2(errSampled < 0.05, qPrintable(QString::number(errSampled)));
         QVERIFY2(errSampled * 2.0 < errSplit,
                  qPrintable(QString::number(errSampled) + " " + QString::number(errSplit)));
+    }
+
+    // Only a frame whose material may be glossy enough compiles the sampling in
+    // (LightingFeatures::sampledReflections, kSampledReflectionMaxRoughness): a rough velvet's
+    // refinement frames draw with its interactive program and compile nothing; a glossy metal's
+    // first one builds its sampled program once, and its next ones reuse it.
+    void onlyAGlossyMaterialCompilesTheSampling() {
+        test::OffscreenRenderer r;
+        const std::string started = r.start(32);
+        QVERIFY2(started.empty(), started.c_str());
+        Scene scene = test::shippedDefaultScene(); // the crimson velvet, roughness 0.8
+        QVERIFY(scene.material.scalar(ParamId::Roughness) > render::kSampledReflectionMaxRoughness);
+        r.renderer->setScene(scene);
+        r.renderer->finishEnvironment();
+        render::FrameSettings fs;
+        fs.width = fs.height = 32;
+        std::string error;
+        const auto drawCompiles = [&](int samples) {
+            fs.reflectionSamples = samples;
+            const int before = r.renderer->shaderCompileCount();
+            if (!r.renderer->render(fs, r.target->framebuffer(), &error))
+                qFatal("render failed: %s", error.c_str());
+            return r.renderer->shaderCompileCount() - before;
+        };
+        drawCompiles(0);
+        drawCompiles(0); // the specialised interactive program is built
+        QCOMPARE(drawCompiles(0), 0);
+        QCOMPARE(drawCompiles(render::kRefinementReflectionSamples), 0);
+        scene.material = test::whiteMaterial(1.0f, 0.3f);
+        r.renderer->update(scene, ScenePart::Material);
+        drawCompiles(0);
+        drawCompiles(0);
+        QCOMPARE(drawCompiles(0), 0);
+        QVERIFY(drawCompiles(render::kRefinementReflectionSamples) > 0);
+        QCOMPARE(drawCompiles(render::kRefinementReflectionSamples), 0);
+        QCOMPARE(drawCompiles(0), 0);
+        r.stop();
     }
 };
 
