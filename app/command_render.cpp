@@ -77,7 +77,8 @@ const std::vector<OptionSpec> kOptions{
     {"fps", 0, true, "N", "the video's frame rate, 1 to 240 (default 30)"},
     {"supersample", 0, true, "N",
      "anti-aliasing: N x N samples a pixel, 1 to 4 (default 1), each image drawn N times larger "
-     "each way and box-filtered down (about N^2 the frame time)"},
+     "each way and box-filtered down (about N^2 the frame time); from 2, glossy reflections are "
+     "sampled as in the editor's view at rest (more time for glossy materials)"},
     {"help", 'h', false, "", "this text"},
 };
 
