@@ -273,9 +273,9 @@ vec3 sweptSpecular(SweptReflection sw, vec3 f0, vec2 dfg) {
 // or the samples of a supersampled pixel each drawing the next block of one stratified sequence.
 
 // Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), listing 1: a half
-// vector with density G1(v) max(0, v.h) D(h) / n.v, in the tangent frame of vt (z = n), for an
-// isotropic width alpha and uniform numbers u.
-vec3 sampleGgxVisibleNormal(vec3 vt, float alpha, vec2 u) {
+// vector with density G1(v) max(0, v.h) D(h) / n.v, in the lobe's frame (x along the width
+// alpha.x, y along alpha.y, z = n), for the view vt in that frame and uniform numbers u.
+vec3 sampleGgxVisibleNormal(vec3 vt, vec2 alpha, vec2 u) {
     vec3 vh = normalize(vec3(alpha * vt.xy, vt.z));
     float lensq = dot(vh.xy, vh.xy);
     vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
@@ -288,10 +288,12 @@ vec3 sampleGgxVisibleNormal(vec3 vt, float alpha, vec2 u) {
     return normalize(vec3(alpha * nh.xy, max(nh.z, 0.0)));
 }
 
-// Smith's Lambda for GGX (Heitz 2014, eq. 72) at cos(theta) = c.
-float smithLambdaGgx(float c, float alpha) {
-    float c2 = max(c * c, 1e-8);
-    return 0.5 * (sqrt(1.0 + alpha * alpha * (1.0 - c2) / c2) - 1.0);
+// Smith's Lambda for the (anisotropic) GGX (Heitz 2014, eq. 72 and section 5.3) of the
+// direction w in the lobe's frame.
+float smithLambdaGgx(vec3 w, vec2 alpha) {
+    float z2 = max(w.z * w.z, 1e-8);
+    return 0.5 * (sqrt(1.0 + (alpha.x * alpha.x * w.x * w.x + alpha.y * alpha.y * w.y * w.y) / z2) -
+                  1.0);
 }
 
 // The samples this frame draws per pixel (0: the split sum). WITH_SAMPLED_REFLECTIONS 0
@@ -322,7 +324,9 @@ vec2 reflectionSample(uint j, uvec2 scramble) {
     return vec2(bitfieldReverse(j) ^ scramble.x, y ^ scramble.y) * 2.3283064365386963e-10;
 }
 
-// The isotropic GGX lobe's reflected environment light by ibl.reflection.x samples per pixel.
+// The GGX lobe's reflected environment light by ibl.reflection.x samples per pixel, in the frame
+// (t, n x t, n) whose widths are alpha (equal for an isotropic lobe; alpha_t, alpha_b for a
+// KHR_materials_anisotropy one, which the sweep, anisotropicReflection, draws otherwise).
 // With visible normals the estimator f n.l / pdf is F G2(v, l) / G1(v), G2 from the material's
 // chosen visibility term (glTF's separable Smith by default, as the reference's BRDF and the
 // split sum's DFG table have it), kept as the two Schlick
@@ -335,19 +339,12 @@ vec2 reflectionSample(uint j, uvec2 scramble) {
 // through (48x48 table: copper under the HDRI 1.50 / 1.24 / 1.28 mean ΔE2000 at +1 / +0.5 / +0).
 // A sample below the face's plane (@p ng; n where nothing bends the normal) brings no light, as
 // in the path tracer: exact where the split sum fades its one reflection by the horizon.
-SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 v, float NdotV, float perceptualRoughness,
+SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, vec2 alpha,
                                   int visibilityTerm, vec2 pixel) {
-    float alpha = perceptualRoughness * perceptualRoughness;
     int count = reflectionSamplesThisFrame();
     float total = max(ibl.reflection.y, float(count));
-    // The tangent frame's x along the plane of incidence (isotropic: any azimuth will do).
-    vec3 across = v - n * NdotV;
-    float acrossLength = length(across);
-    vec3 t = acrossLength > 1e-4 ? across / acrossLength
-                                 : normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n)
-                                                              : vec3(1.0, 0.0, 0.0));
     vec3 b = cross(n, t);
-    vec3 vt = vec3(acrossLength, 0.0, NdotV);
+    vec3 vt = vec3(dot(v, t), dot(v, b), NdotV);
     // The samples of one output pixel (a frame of the mean, or a still's ss x ss samples of a
     // pixel) take consecutive blocks of one scrambled sequence (reflectionSample).
     uint block = uint(max(ibl.reflection.w, 1.0));
@@ -356,8 +353,7 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 v, float NdotV, float pe
     uvec2 scramble = pcg2d(outputPixel);
     float width = frame.post.z;
     float texelSolidAngle = 4.0 * PI * PI / (width * width); // (2 pi / W)(pi / (W / 2)), sin(theta) aside
-    float lambdaV = smithLambdaGgx(NdotV, alpha);
-    float a2 = alpha * alpha;
+    float lambdaV = smithLambdaGgx(vt, alpha);
     SweptReflection sum = SweptReflection(vec3(0.0), vec3(0.0));
     for (int i = 0; i < count; ++i) {
         vec2 u = reflectionSample(set * uint(count) + uint(i), scramble);
@@ -368,14 +364,17 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 v, float NdotV, float pe
         if (NdotL <= 0.0 || dot(ng, l) <= 0.0)
             continue;
         float VdotH = max(dot(v, h), 1e-4);
-        float d = ht.z * ht.z * (a2 - 1.0) + 1.0;
-        float D = a2 / (PI * d * d);
+        float D = distributionGGXAnisotropic(ht.z, ht.x, ht.y, alpha.x, alpha.y); // GGX when equal
         float pdf = D / (4.0 * NdotV * (1.0 + lambdaV)); // G1(v) D / (4 n.v)
         float sinTheta = sqrt(max(1.0 - l.y * l.y, 1e-4)); // the equirect's pole is world +Y
         float lod = 0.5 * log2(1.0 / (total * pdf * texelSolidAngle * sinTheta)) + 0.5;
-        // G2 / G1(v) = V 4 (n.l)(n.v) (1 + Lambda(v)), V the material's chosen visibility.
-        float masking = visibility(visibilityTerm, NdotL, NdotV, ht.z, VdotH, alpha) * 4.0 * NdotL *
-                        NdotV * (1.0 + lambdaV);
+        // G2 / G1(v) = V 4 (n.l)(n.v) (1 + Lambda(v)): V the material's chosen visibility, or for
+        // a stretched lobe the anisotropic Smith term (the extension's, as direct light has it).
+        float V = alpha.x != alpha.y
+                      ? visibilitySmithGGXCorrelatedAnisotropic(NdotL, NdotV, vt.x, vt.y, dot(t, l),
+                                                                dot(b, l), alpha.x, alpha.y)
+                      : visibility(visibilityTerm, NdotL, NdotV, ht.z, VdotH, alpha.x);
+        float masking = V * 4.0 * NdotL * NdotV * (1.0 + lambdaV);
         vec3 light = environmentRadiance(l, clamp(lod, 0.0, frame.envParams.w)) * masking;
         float c = 1.0 - VdotH, c2 = c * c;
         sum.radiance += light;
@@ -384,6 +383,15 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 v, float NdotV, float pe
     sum.radiance /= float(max(count, 1));
     sum.grazing /= float(max(count, 1));
     return sum;
+}
+
+// The isotropic lobe's frame: x along the plane of incidence (any azimuth would do).
+vec3 incidencePlaneTangent(vec3 n, vec3 v, float NdotV) {
+    vec3 across = v - n * NdotV;
+    float len = length(across);
+    return len > 1e-4 ? across / len
+                      : normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n)
+                                                   : vec3(1.0, 0.0, 0.0));
 }
 
 // Where image-based light's sheen looks the environment up (lighting.frag). The Charlie lobe
