@@ -272,20 +272,27 @@ vec3 sweptSpecular(SweptReflection sw, vec3 f0, vec2 dfg) {
 // chain at its sample's footprint (filtered importance sampling), the frames of a progressive mean
 // or the samples of a supersampled pixel each drawing the next block of one stratified sequence.
 
-// Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), listing 1: a half
-// vector with density G1(v) max(0, v.h) D(h) / n.v, in the lobe's frame (x along the width
-// alpha.x, y along alpha.y, z = n), for the view vt in that frame and uniform numbers u.
-vec3 sampleGgxVisibleNormal(vec3 vt, vec2 alpha, vec2 u) {
+// Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), listing 1, split
+// in two: the view's hemisphere configuration (vh and the frame about it), the same for every
+// sample of a pixel, then a half vector with density G1(v) max(0, v.h) D(h) / n.v for uniform
+// numbers u, in the lobe's frame (x along the width alpha.x, y along alpha.y, z = n).
+struct VisibleNormals {
+    vec3 vh, t1, t2;
+    vec2 alpha;
+};
+VisibleNormals visibleNormalsOf(vec3 vt, vec2 alpha) {
     vec3 vh = normalize(vec3(alpha * vt.xy, vt.z));
     float lensq = dot(vh.xy, vh.xy);
     vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
-    vec3 t2 = cross(vh, t1);
+    return VisibleNormals(vh, t1, cross(vh, t1), alpha);
+}
+vec3 sampleGgxVisibleNormal(VisibleNormals g, vec2 u) {
     float r = sqrt(u.x), phi = 2.0 * PI * u.y;
     float p1 = r * cos(phi), p2 = r * sin(phi);
-    float blend = 0.5 * (1.0 + vh.z);
+    float blend = 0.5 * (1.0 + g.vh.z);
     p2 = (1.0 - blend) * sqrt(max(1.0 - p1 * p1, 0.0)) + blend * p2;
-    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(1.0 - p1 * p1 - p2 * p2, 0.0)) * vh;
-    return normalize(vec3(alpha * nh.xy, max(nh.z, 0.0)));
+    vec3 nh = p1 * g.t1 + p2 * g.t2 + sqrt(max(1.0 - p1 * p1 - p2 * p2, 0.0)) * g.vh;
+    return normalize(vec3(g.alpha * nh.xy, max(nh.z, 0.0)));
 }
 
 // Smith's Lambda for the (anisotropic) GGX (Heitz 2014, eq. 72 and section 5.3) of the
@@ -329,9 +336,9 @@ vec2 reflectionSample(uint j, uvec2 scramble) {
 // KHR_materials_anisotropy one, which the sweep, anisotropicReflection, draws otherwise).
 // With visible normals the estimator f n.l / pdf is F G2(v, l) / G1(v), G2 from the material's
 // chosen visibility term (glTF's separable Smith by default, as the reference's BRDF and the
-// split sum's DFG table have it), kept as the two Schlick
-// moments of SweptReflection so the caller mixes the dielectric's and the metal's Fresnel and
-// adds the split sum's multiple-scattering energy (sweptSpecular). Each sample reads the mip
+// split sum's DFG table have it), kept as the two Schlick moments of SweptReflection so the
+// caller mixes the dielectric's and the metal's Fresnel and adds the split sum's
+// multiple-scattering energy (sweptSpecular). Each sample reads the mip
 // level where a texel covers its share 1 / (N pdf) of the sphere, N the samples of the whole
 // mean (Colbert & Krivanek 2007, "GPU-Based Importance Sampling", GPU Gems 3 ch. 20, eq. 13;
 // an equirect texel spans (2 pi / W)(pi / H) sin(theta) steradians), half a level blurrier: their
@@ -354,10 +361,11 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
     float width = frame.post.z;
     float texelSolidAngle = 4.0 * PI * PI / (width * width); // (2 pi / W)(pi / (W / 2)), sin(theta) aside
     float lambdaV = smithLambdaGgx(vt, alpha);
+    VisibleNormals visible = visibleNormalsOf(vt, alpha);
     SweptReflection sum = SweptReflection(vec3(0.0), vec3(0.0));
     for (int i = 0; i < count; ++i) {
         vec2 u = reflectionSample(set * uint(count) + uint(i), scramble);
-        vec3 ht = sampleGgxVisibleNormal(vt, alpha, u);
+        vec3 ht = sampleGgxVisibleNormal(visible, u);
         vec3 h = t * ht.x + b * ht.y + n * ht.z;
         vec3 l = reflect(-v, h);
         float NdotL = dot(n, l);

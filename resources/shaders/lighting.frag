@@ -187,20 +187,22 @@ void main() {
     // A frame with time to spare (the viewport at rest, a supersampled still) samples a glossy
     // lobe, whose shape at grazing angles and stretch are then its own (sampledReflection).
     bool sampled = reflectionSamplesThisFrame() > 0 && rough <= SAMPLED_REFLECTION_MAX_ROUGHNESS;
-    if (sampled) {
+    if (sampled || usesAnisotropy(s)) {
+        SweptReflection sw;
+        if (sampled) {
 #if WITH_GEOMETRIC_HORIZON
-        vec3 face = p.bentShading ? p.ng : n;
+            vec3 face = p.bentShading ? p.ng : n;
 #else
-        vec3 face = n;
+            vec3 face = n;
 #endif
-        bool stretched = usesAnisotropy(s);
-        vec3 t = stretched ? s.anisotropyDirection : incidencePlaneTangent(n, v, NdotV);
-        vec2 alpha = stretched ? anisotropicAlphas(rough, s.anisotropyStrength) : vec2(rough * rough);
-        SweptReflection sw = sampledReflection(n, face, t, v, NdotV, alpha, s.terms.y, gl_FragCoord.xy);
-        specular = mix(s.specularWeight * sweptSpecular(sw, dielectricF0(s), ab),
-                       sweptSpecular(sw, s.baseColor, ab), s.metallic);
-    } else if (usesAnisotropy(s)) {
-        SweptReflection sw = anisotropicReflection(s, n, v, NdotV, rough);
+            bool stretched = usesAnisotropy(s);
+            vec3 t = stretched ? s.anisotropyDirection : incidencePlaneTangent(n, v, NdotV);
+            vec2 alpha =
+                stretched ? anisotropicAlphas(rough, s.anisotropyStrength) : vec2(rough * rough);
+            sw = sampledReflection(n, face, t, v, NdotV, alpha, s.terms.y, gl_FragCoord.xy);
+        } else {
+            sw = anisotropicReflection(s, n, v, NdotV, rough);
+        }
         specular = mix(s.specularWeight * sweptSpecular(sw, dielectricF0(s), ab),
                        sweptSpecular(sw, s.baseColor, ab), s.metallic);
     } else {
