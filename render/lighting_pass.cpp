@@ -1,5 +1,6 @@
 #include "render/lighting_pass.h"
 
+#include "render/background_dome.h"
 #include "render/background_downsample.h"
 
 #include <algorithm>
@@ -184,6 +185,17 @@ const ShaderProgram* LightingPass::downsampledBackground(BackgroundMode backgrou
         background = BackgroundMode::Sharp;
     return specialised(Variant(kBackground + modeIndex(background)),
                        std::vector<std::string>{"BACKGROUND_DOWNSAMPLE " + std::to_string(factor)},
+                       mayBuild, &inlinePost);
+}
+
+const ShaderProgram* LightingPass::equirectBackground(BackgroundMode background,
+                                                      bool prefilteredReady,
+                                                      const InlinePost& inlinePost, bool mayBuild) {
+    if (background == BackgroundMode::Blurred && !prefilteredReady)
+        background = BackgroundMode::Sharp;
+    return specialised(Variant(kBackground + modeIndex(background)),
+                       std::vector<std::string>{"BACKGROUND_EQUIRECT " +
+                                                std::to_string(BackgroundDome::kCacheScale)},
                        mayBuild, &inlinePost);
 }
 

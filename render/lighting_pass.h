@@ -67,6 +67,11 @@ public:
     const ShaderProgram* downsampledBackground(BackgroundMode background, bool prefilteredReady,
                                                int factor, const InlinePost& inlinePost,
                                                bool mayBuild);
+    /// The background of inlinePrograms() built to draw its dome's equirect cache
+    /// (lighting.frag's BACKGROUND_EQUIRECT; render/background_dome.h), under the same rules;
+    /// null when not available.
+    const ShaderProgram* equirectBackground(BackgroundMode background, bool prefilteredReady,
+                                            const InlinePost& inlinePost, bool mayBuild);
     /// The surfaces, from @p program (surfaceProgram()). With @p emission the geometry pass's
     /// emission is kept: result = surface + emission x alpha (lighting.frag's header), the
     /// target's alpha staying 1; without it the surfaces replace the black (no blend to pay).
@@ -125,7 +130,7 @@ private:
         std::unique_ptr<ShaderProgram> program;
         long lastUse = 0;
     };
-    static constexpr size_t kMaxSpecialised = 12;
+    static constexpr size_t kMaxSpecialised = 14;
     std::map<std::tuple<int, std::vector<std::string>, std::string>, Specialised> m_specialised;
     long m_useClock = 0;
     bool m_lastSpecialised = false, m_lastDeferred = false;

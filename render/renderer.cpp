@@ -81,6 +81,7 @@ bool Renderer::reloadShaders(std::string* error) {
 void Renderer::setColorManagement(std::shared_ptr<const ColorManagement> colorManagement) {
     Impl& d = *m_impl;
     d.backgroundReuse.invalidate();
+    d.backgroundDome.invalidate();    // the display's config
     d.stage.invalidateScreenPasses(); // the textures are taken again
     d.colorManagement = std::move(colorManagement);
     d.display.setColorManagement(d.colorManagement);
@@ -103,6 +104,10 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     // (a texture slot's cut-out, the mesh, the environment: render/frame_reuse.h).
     if (touches(parts, ~ScenePart::MaterialValues))
         d.backgroundReuse.invalidate();
+    // The dome's cache keys the environment's and the display's values but not the post chain's
+    // parameters (uniforms) nor an HDRI file replaced under the same name.
+    if (touches(parts, ScenePart::Environment | ScenePart::PostChain))
+        d.backgroundDome.invalidate();
     // The occlusion and the shadow mask read the depth and the normals: the mesh, the textures
     // and the graph move them without their keys seeing it (the camera, the ground, the lights
     // and the material's values they see).
@@ -385,11 +390,15 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     if (inlined) { // the background and the surfaces cover every pixel: no clear
         // After a value edit the background's pixels are already right (frame_reuse.h).
         const bool keep = d.keepsBackground(fs, block, iblBlock, inlineDisplay, targetFbo);
+        if (inlineDisplay.cacheBackground)
+            inlineDisplay.cacheKey = d.backgroundCacheKey(fs, block, iblBlock, inlineDisplay);
         d.drawInlineDisplay(inlineDisplay, keep);
         d.passes.fullScreen += keep ? 1 : 2;
         d.passes.backgroundKept = keep;
         d.passes.backgroundDownsample =
-            !keep && inlineDisplay.smallBackground ? inlineDisplay.downsample : 1;
+            !keep && inlineDisplay.smallBackground && !d.passes.backgroundDome
+                ? inlineDisplay.downsample
+                : 1;
     } else {
         d.backgroundReuse.invalidate(); // the display target is not drawn: nothing to keep
         if (!d.drawLitPasses(fs, block, emission, *surfaceProgram, error))

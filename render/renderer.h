@@ -222,6 +222,10 @@ struct FramePasses {
     /// How many times smaller each way the inline frame drew its background before upsampling
     /// it (render/background_downsample.h); 1: full size (or kept, or not inline).
     int backgroundDownsample = 1;
+    /// The inline frame drew its HDRI background as a dome from the picture's cache
+    /// (render/background_dome.h), and whether it drew that cache this frame.
+    bool backgroundDome = false;
+    bool backgroundCacheDrawn = false;
     /// G-buffer colour targets cleared and written: the lobe-channel targets only when a drawn
     /// material has a lobe map (or a split frame's B may have one).
     int gbufferTargets = 0;

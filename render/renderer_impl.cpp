@@ -227,6 +227,19 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
         out.smallBackground =
             lighting.downsampledBackground(stageBackground(), ibl.specularReady(), out.downsample,
                                            out.source, mayBuildSpecialised());
+    // The HDRI's dome (render/background_dome.h): where the smaller picture would do, under a
+    // perspective camera, with a display step of the colour alone and a cache of the HDRI's
+    // size that the frame magnifies.
+    out.cacheBackground = nullptr;
+    if (out.smallBackground && b.cameraPosition.w < 0.5f && pixelsPerTexel >= 1.0f &&
+        backgroundDomeApplies(stageBackground(), out.chain ? &scene.post : nullptr) &&
+        environment->width * BackgroundDome::kCacheScale <= 4096 &&
+        environment->height * BackgroundDome::kCacheScale <= 2048 && environment->height > 0) {
+        out.cacheBackground = lighting.equirectBackground(stageBackground(), ibl.specularReady(),
+                                                          out.source, mayBuildSpecialised());
+        out.cacheWidth = environment->width * BackgroundDome::kCacheScale;
+        out.cacheHeight = environment->height * BackgroundDome::kCacheScale;
+    }
     out.width = fs.width;
     out.height = fs.height;
     // The surfaces' pass shades only where the mesh is (its depth test), but llvmpipe still
@@ -278,22 +291,57 @@ bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& 
     return backgroundReuse.reuse(std::move(key)) && steady;
 }
 
+FrameKey Renderer::Impl::backgroundCacheKey(const FrameSettings& fs, const FrameBlock& b,
+                                            const IblBlock& ibl, const InlineDisplay& d) {
+    // keepsBackground()'s key without the camera's pose and the lights (the dome turns the
+    // picture with the view), nor the time (no effect that reads it applies).
+    FrameBlock keyedFrame = b;
+    keyedFrame.viewMatrix = keyedFrame.projMatrix = keyedFrame.invProjMatrix =
+        keyedFrame.invViewMatrix = keyedFrame.viewProjMatrix = glm::mat4(0.0f);
+    keyedFrame.cameraPosition = keyedFrame.viewport = glm::vec4(0.0f);
+    for (glm::vec4& v : keyedFrame.envSh)
+        v = glm::vec4(0.0f);
+    for (int i = 0; i < kMaxDirectionalLights; ++i)
+        keyedFrame.lightDirection[i] = keyedFrame.lightRadiance[i] = glm::vec4(0.0f);
+    keyedFrame.modes.x = 0;   // the directional lights' count
+    keyedFrame.post.y = 0.0f; // the camera's distance
+    IblBlock keyedIbl = ibl;
+    keyedIbl.background.y = 0.0f;
+    keyedIbl.reflection = glm::vec4(0.0f);
+    FrameKey key;
+    key.add(keyedFrame).add(keyedIbl).add(environment->texture).add(environment->key);
+    key.add(fs.exposureEv).add(d.cacheBackground->id()).add(d.chain).add(d.source.key);
+    key.add(fs.display).add(fs.displayView).add(fs.look);
+    return key;
+}
+
 void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d, bool keepBackground) {
-    // The programs the display step's inputs are bound on (the small background's too).
-    const unsigned small = d.smallBackground ? d.smallBackground->id() : 0u;
-    const std::vector<unsigned> programs =
-        small ? std::vector<unsigned>{d.background->id(), d.surfaces->id(), small}
-              : std::vector<unsigned>{d.background->id(), d.surfaces->id()};
+    // The programs the display step's inputs are bound on (the smaller background's and the
+    // dome cache's too).
+    std::vector<unsigned> programs{d.background->id(), d.surfaces->id()};
+    if (d.smallBackground)
+        programs.push_back(d.smallBackground->id());
+    if (d.cacheBackground)
+        programs.push_back(d.cacheBackground->id());
     if (d.chain)
         post.bindInline(scene.post, d.inputs, programs);
     else
         display.bindInline(programs);
     if (!keepBackground) {
-        std::string error; // the small target could not be made: the full-size pass instead
-        if (!d.smallBackground ||
-            !backgroundDownsample.draw(*d.smallBackground, d.downsample, d.framebuffer, d.width,
-                                       d.height, &error))
+        // The dome where its cache's key held since the last frame; else the smaller picture
+        // upsampled; the full-size pass where their targets cannot be made.
+        std::string error;
+        bool cacheDrawn = false;
+        if (d.cacheBackground && backgroundDome.wants(d.cacheKey) &&
+            backgroundDome.draw(*d.cacheBackground, d.cacheWidth, d.cacheHeight, d.cacheKey,
+                                d.framebuffer, d.width, d.height, &cacheDrawn, &error)) {
+            passes.backgroundDome = true;
+            passes.backgroundCacheDrawn = cacheDrawn;
+        } else if (!d.smallBackground ||
+                   !backgroundDownsample.draw(*d.smallBackground, d.downsample, d.framebuffer,
+                                              d.width, d.height, &error)) {
             lighting.drawBackground(*d.background);
+        }
     }
     if (d.scissored) {
         glEnable(GL_SCISSOR_TEST);

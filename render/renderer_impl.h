@@ -8,6 +8,7 @@
 #include "core/color_management.h"
 #include "core/post_effects.h"
 #include "core/texture_cache.h"
+#include "render/background_dome.h"
 #include "render/background_downsample.h"
 #include "render/display_output.h"
 #include "render/environment_map.h"
@@ -107,6 +108,7 @@ struct Renderer::Impl {
     /// (render/frame_reuse.h); uploadedBytes is the texture bytes uploaded as of that frame.
     FrameReuse backgroundReuse;
     BackgroundDownsample backgroundDownsample; ///< the inline background at a quarter size
+    BackgroundDome backgroundDome;             ///< the inline HDRI background from its cache
     std::uint64_t uploadedBytes = 0;
     /// The texture bytes uploaded as of the last frame's screen-space passes (a normal map
     /// arriving changes the normals the occlusion and the shadow mask read).
@@ -175,6 +177,8 @@ struct Renderer::Impl {
         if (!lighting.build(&message, keepGoing))
             errors += (errors.empty() ? "" : "\n") + message;
         if (!backgroundDownsample.build(&message))
+            errors += (errors.empty() ? "" : "\n") + message;
+        if (!backgroundDome.build(&message))
             errors += (errors.empty() ? "" : "\n") + message;
         if (!accumulation.build(&message))
             errors += (errors.empty() ? "" : "\n") + message;
@@ -336,6 +340,11 @@ struct Renderer::Impl {
         /// when the picture and the display step allow it; else null.
         const ShaderProgram* smallBackground = nullptr;
         int downsample = 1; ///< its factor (backgroundDownsampleFactor)
+        /// The HDRI's dome (render/background_dome.h) when it applies: its cache's program, size
+        /// and key (what the picture depends on, the camera's pose excluded); else null.
+        const ShaderProgram* cacheBackground = nullptr;
+        int cacheWidth = 0, cacheHeight = 0;
+        FrameKey cacheKey;
         const ShaderProgram* surfaces = nullptr;
         unsigned framebuffer = 0;
         int width = 0, height = 0;
@@ -363,6 +372,9 @@ struct Renderer::Impl {
     /// Whether this inline frame may keep the last one's background pixels (frame_reuse.h).
     bool keepsBackground(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
                          const InlineDisplay& d, unsigned targetFbo);
+    /// The key of the dome's cache (InlineDisplay::cacheKey) for this frame.
+    FrameKey backgroundCacheKey(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
+                                const InlineDisplay& d);
     /// Draws the background (unless @p keepBackground) and the surfaces with the inline
     /// programs into out.framebuffer.
     void drawInlineDisplay(const InlineDisplay& d, bool keepBackground);

@@ -6,7 +6,8 @@
 // Built in variants (render/renderer.cpp, one program each, so that a pixel pays only for the
 // code of its own variant; llvmpipe runs both sides of every branch):
 //   LIGHTING_BACKGROUND     the background only; drawn where the G-buffer depth is the far plane
-//                           (or, with BACKGROUND_DOWNSAMPLE, everywhere in a smaller target)
+//                           (or, with BACKGROUND_DOWNSAMPLE, everywhere in a smaller target;
+//                           with BACKGROUND_EQUIRECT, its dome's cache)
 //   LIGHTING_LOBE_VIEWS     surfaces, the lobe views and lights per pixel
 //   LIGHTING_GBUFFER_VIEWS  surfaces, the G-buffer views (albedo .. material id)
 //   LIGHTING_CATCHER        the shadow-catching ground only, per BACKGROUND_MODE (docs/shadows.md)
@@ -64,11 +65,26 @@ const float BACKGROUND_SCALE = float(BACKGROUND_DOWNSAMPLE);
 #else
 const float BACKGROUND_SCALE = 1.0;
 #endif
+#if defined(BACKGROUND_EQUIRECT)
+// BACKGROUND_EQUIRECT n: the background's cache for its dome (render/background_dome.h), n x n
+// texels per texel of the environment's equirect: the display value in the direction at the texel's
+// centre (the inverse of equirectUv, then of toEnvironment), which the display step must not
+// vary by the pixel's position (the caller's rule).
+void main() {
+    vec2 uv = gl_FragCoord.xy / (float(BACKGROUND_EQUIRECT) * vec2(textureSize(uEnvironment, 0)));
+    float theta = PI * uv.y, phi = 2.0 * PI * (uv.x - 0.5);
+    vec3 e = vec3(sin(phi) * sin(theta), cos(theta), -cos(phi) * sin(theta));
+    float c = frame.envParams.x, s = frame.envParams.y;
+    vec3 dir = vec3(c * e.x + s * e.z, e.y, -s * e.x + c * e.z);
+    outColor = finalColorAt(backgroundRadiance(dir, uv), 1.0, ivec2(gl_FragCoord.xy));
+}
+#else
 void main() {
     vec2 fragCoord = gl_FragCoord.xy * BACKGROUND_SCALE;
     vec2 ndcXY = fragCoord * frame.viewport.zw * 2.0 - 1.0;
     outColor = finalColorAt(background(ndcXY), 1.0, ivec2(fragCoord));
 }
+#endif
 #elif defined(LIGHTING_CATCHER)
 // The shadow catcher's pixels only (stage_shading.glsl): the background times how much of the
 // light the ground receives. Every other pixel is discarded first, so it costs them nothing.

@@ -127,6 +127,19 @@ inline int maxDifference(const Image& a, const Image& b) {
     return worst;
 }
 
+/// How many pixels of two same-sized images differ by at least @p steps 255ths in a channel.
+inline int differingPixels(const Image& a, const Image& b, int steps = 1) {
+    int count = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            bool differs = false;
+            for (int k = 0; k < 3; ++k)
+                differs |= std::lround(std::abs(a.at(x, y)[k] - b.at(x, y)[k]) * 255.0f) >= steps;
+            count += differs;
+        }
+    return count;
+}
+
 /// Whether two images are the same size and the same pixels, bit for bit.
 inline bool samePixels(const Image& a, const Image& b) {
     return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
