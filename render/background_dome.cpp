@@ -100,14 +100,6 @@ bool BackgroundDome::build(std::string* error) {
     return true;
 }
 
-bool BackgroundDome::wants(const FrameKey& key) {
-    const bool stable =
-        (m_cacheValid && key == m_cacheKey) || (m_haveWanted && key == m_lastWanted);
-    m_lastWanted = key;
-    m_haveWanted = true;
-    return stable;
-}
-
 bool BackgroundDome::draw(const ShaderProgram& cacheProgram, int cacheWidth, int cacheHeight,
                           const FrameKey& key, unsigned displayFramebuffer, int width, int height,
                           bool* cacheDrawn, std::string* error) {

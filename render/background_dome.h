@@ -18,10 +18,10 @@
 /// bends a direction by about a^3 / 20 radians (0.0025 of a texel of the 1024-wide HDRIs at 64
 /// segments).
 /// The cache is drawn again only when what it shows changes (its key: the environment, its
-/// rotation and intensity, the background mode, the exposure and the display step), and only in
-/// the second frame with a new key: while a slider drags the exposure every frame, the smaller
-/// background pass (render/background_downsample.h) draws instead, which shades fewer than half as
-/// many texels as the cache.
+/// rotation and intensity, the background mode, the exposure and the display step): a dragged
+/// exposure draws it every frame (524k texels for the 1024-wide HDRIs, about twice the smaller
+/// picture's, render/background_downsample.h), so that a frame's picture never depends on the
+/// frames before it. The frames at rest keep the smaller picture (renderer_impl.cpp).
 
 #include "core/post_chain.h"
 #include "core/scene.h"
@@ -48,9 +48,6 @@ public:
     bool build(std::string* error);
     int compileCount() const { return m_compileCount; }
 
-    /// Whether the cache for @p key is drawn, or may be drawn this frame: @p key was also the
-    /// last frame's (see the header). Remembers @p key.
-    bool wants(const FrameKey& key);
     /// Draws the dome into @p displayFramebuffer (@p width x @p height), every pixel: the
     /// surfaces' pass draws the mesh's pixels over it. Draws the cache first, @p cacheWidth x
     /// @p cacheHeight texels of @p cacheProgram (the display step's inputs already bound), unless
@@ -62,16 +59,14 @@ public:
               bool* cacheDrawn, std::string* error);
     /// Something the key cannot see changed (a post chain's values, the colour management, the
     /// shaders): the next draw draws the cache again.
-    /// Like a new key, it is drawn from the second frame after (while a slider drags a post
-    /// effect's parameter, the smaller background draws).
-    void invalidate() { m_cacheValid = m_haveWanted = false; }
+    void invalidate() { m_cacheValid = false; }
 
 private:
     ShaderProgram m_program;
     ColorTarget m_cache;
     unsigned m_cacheGeneration = 0;
-    FrameKey m_cacheKey, m_lastWanted;
-    bool m_cacheValid = false, m_haveWanted = false;
+    FrameKey m_cacheKey;
+    bool m_cacheValid = false;
     unsigned m_vao = 0, m_vbo = 0, m_ibo = 0;
     int m_indexCount = 0;
     int m_compileCount = 0;

@@ -2,6 +2,7 @@
 
 #include "render/ocio_gpu.h"
 
+#include <algorithm>
 #include <epoxy/gl.h>
 
 namespace velvet::render {
@@ -38,6 +39,7 @@ bool DisplayEncoding::select(const GpuDisplayTransform& encoding, std::string* e
         return true;
     GLint maxUnits = 0;
     glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &maxUnits);
+    maxUnits = std::min(maxUnits, GLint(binding::kIblIrradianceTex)); // the units above are taken
     if (binding::kDisplayLutTexFirst + int(encoding.textures.size()) > maxUnits) {
         if (error)
             *error = "the display encoding needs " + std::to_string(encoding.textures.size()) +

@@ -3,8 +3,8 @@
 /// Render-private: the image-based-lighting bake. An environment (render/environment_map.h) is
 /// turned into a radiance cubemap and a GGX-prefiltered specular mip chain (Karis 2013, "Real
 /// Shading in Unreal Engine 4", with the PDF-based source mip selection of Colbert & Krivanek
-/// 2007), in slices of bounded time so that a window never freezes; diffuse irradiance stays the
-/// environment's SH9 (Ramamoorthi & Hanrahan 2001, exact for the cosine lobe to 1 %). Also owns
+/// 2007), in slices of bounded time so that a window never freezes; diffuse irradiance is
+/// render/irradiance_map.h's cube (the SH9 until it exists). Also owns
 /// the lookup tables: the split-sum DFG LUT (made once on the GPU, in slices, then cached on disk
 /// under $XDG_CACHE_HOME/velvet) and the sheen albedo tables of every sheen model (core/brdf.h).
 ///

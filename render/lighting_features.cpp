@@ -56,6 +56,7 @@ std::vector<std::string> LightingFeatures::defines() const {
     without("WITH_OCCLUSION", occlusion);
     without("WITH_GEOMETRIC_HORIZON", geometricHorizon);
     without("WITH_SAMPLED_REFLECTIONS", sampledReflections);
+    without("WITH_IRRADIANCE_MAP", irradianceMap);
     fixed("FIXED_IBL_BAKED", iblBaked);
     fixed("FIXED_MULTIPLE_SCATTERING", multipleScattering);
     return out;

@@ -56,6 +56,8 @@ struct LightingFeatures {
     /// a supersampled still); every other frame compiles the sampling out, which llvmpipe would
     /// otherwise pay for beside the split sum (+5 ms a 1280x720 frame).
     bool sampledReflections = true;
+    /// The environment's irradiance cube (render/irradiance_map.h) is ready: the SH9 compiles out.
+    bool irradianceMap = true;
     /// The baked IBL (prefiltered cube and DFG LUT) is ready: the approximate path compiles out.
     /// Unknown (-1), 0 or 1; the same for the multiple-scattering energy switch.
     int iblBaked = -1;

@@ -271,6 +271,9 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
         makeFrameBlock(d.scene, fs.camera ? *fs.camera : d.scene.camera, *d.environment, fs);
     d.stage.annotate(block, d.scene.lights); // which directional lights have shadow maps
     d.uniforms.bindFrame(block);
+    // The environment's integrated irradiance (render/irradiance_map.h): once per environment,
+    // before anything binds the units it borrows.
+    d.irradiance.update(*d.environment);
     d.stage.beginFrame(d.scene, fs.width, fs.height);
     d.materials.bind();
 
@@ -382,6 +385,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glBindTextureUnit(binding::kSheenLutTex, d.ibl.sheenLut());
     glBindTextureUnit(binding::kIblSpecularTex, d.ibl.specularCube());
     glBindTextureUnit(binding::kIblDfgTex, d.ibl.dfgLut());
+    glBindTextureUnit(binding::kIblIrradianceTex, d.irradiance.texture());
     const IblBlock iblBlock = makeIblBlock(d.ibl, fs);
     d.uniforms.bindIbl(iblBlock);
     d.stage.bind();
@@ -448,7 +452,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     glDepthMask(GL_TRUE);
     for (GLuint unit :
          {0u, 1u, 2u, 3u, GLuint(binding::kEnvironmentTex), GLuint(binding::kSheenLutTex),
-          GLuint(binding::kHdrTex), GLuint(binding::kIblSpecularTex), GLuint(binding::kIblDfgTex)})
+          GLuint(binding::kHdrTex), GLuint(binding::kIblSpecularTex), GLuint(binding::kIblDfgTex),
+          GLuint(binding::kIblIrradianceTex)})
         glBindTextureUnit(unit, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, targetFbo);
 
@@ -521,6 +526,10 @@ void Renderer::finishGraph() {
 
 bool Renderer::parallelShaderCompile() const {
     return m_impl->parallelShaderCompile;
+}
+
+int Renderer::irradianceIntegrations() const {
+    return m_impl->irradiance.integrations();
 }
 
 int Renderer::shaderCompileCount() const {

@@ -386,6 +386,8 @@ public:
     /// a new OCIO display/view/look adds one, a new display encoding one tone-map program (and
     /// one per fused chain pass that tone maps), exposure none).
     int shaderCompileCount() const;
+    /// Environments whose irradiance cube the frames at rest integrated (render/irradiance_map.h).
+    int irradianceIntegrations() const;
     /// The post-chain runner: its render-target pool and per-step timings (tests, bench).
     PostChainRenderer& postChain();
     FrameTimings lastTimings() const;

@@ -229,9 +229,11 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
                                            out.source, mayBuildSpecialised());
     // The HDRI's dome (render/background_dome.h): where the smaller picture would do, under a
     // perspective camera, with a display step of the colour alone and a cache of the HDRI's
-    // size that the frame magnifies.
+    // size that the frame magnifies; and in a frame without time to spare: the view at rest
+    // (sampled reflections) keeps the smaller picture, which is closer to the full-size pass.
     out.cacheBackground = nullptr;
-    if (out.smallBackground && b.cameraPosition.w < 0.5f && pixelsPerTexel >= 1.0f &&
+    if (out.smallBackground && fs.reflectionSamples == 0 && b.cameraPosition.w < 0.5f &&
+        pixelsPerTexel >= 1.0f &&
         backgroundDomeApplies(stageBackground(), out.chain ? &scene.post : nullptr) &&
         environment->width * BackgroundDome::kCacheScale <= 4096 &&
         environment->height * BackgroundDome::kCacheScale <= 2048 && environment->height > 0) {
@@ -328,11 +330,11 @@ void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d, bool keepBackgrou
     else
         display.bindInline(programs);
     if (!keepBackground) {
-        // The dome where its cache's key held since the last frame; else the smaller picture
-        // upsampled; the full-size pass where their targets cannot be made.
+        // The dome where it applies; else the smaller picture upsampled; the full-size pass
+        // where their targets cannot be made.
         std::string error;
         bool cacheDrawn = false;
-        if (d.cacheBackground && backgroundDome.wants(d.cacheKey) &&
+        if (d.cacheBackground &&
             backgroundDome.draw(*d.cacheBackground, d.cacheWidth, d.cacheHeight, d.cacheKey,
                                 d.framebuffer, d.width, d.height, &cacheDrawn, &error)) {
             passes.backgroundDome = true;

@@ -18,6 +18,7 @@
 #include "render/geometry_pass.h"
 #include "render/gl_util.h"
 #include "render/ibl_bake.h"
+#include "render/irradiance_map.h"
 #include "render/light_passes.h"
 #include "render/lighting_pass.h"
 #include "render/lobe_channels.h"
@@ -136,7 +137,8 @@ struct Renderer::Impl {
                                  message);
     }
     EnvironmentCache environments;
-    IblBaker ibl; ///< prefiltered cube, DFG LUT, sheen tables
+    IblBaker ibl;             ///< prefiltered cube, DFG LUT, sheen tables
+    IrradianceMap irradiance; ///< the environment's irradiance for the frames at rest
     unsigned emptyVao = 0;
     unsigned queries[4] = {}; // GL query names
     unsigned lightsQuery = 0; ///< between the full-screen lighting pass and the local lights
@@ -179,6 +181,8 @@ struct Renderer::Impl {
         if (!backgroundDownsample.build(&message))
             errors += (errors.empty() ? "" : "\n") + message;
         if (!backgroundDome.build(&message))
+            errors += (errors.empty() ? "" : "\n") + message;
+        if (!irradiance.build(&message))
             errors += (errors.empty() ? "" : "\n") + message;
         if (!accumulation.build(&message))
             errors += (errors.empty() ? "" : "\n") + message;
@@ -258,6 +262,7 @@ struct Renderer::Impl {
         f.shadowMask = stage.hasShadows();
         f.localShadows = stage.shadowsLocalLight(scene.lights);
         // Only where a lobe may be glossy enough: a rough velvet's refinement compiles nothing.
+        f.irradianceMap = irradiance.texture() != 0;
         f.sampledReflections = fs.reflectionSamples > 0 &&
                                (mayReflectSampled(scene.material) ||
                                 (fs.splitMaterial && mayReflectSampled(*fs.splitMaterial)));

@@ -36,6 +36,7 @@ std::string bindingsGlsl() {
       << "#define BINDING_IBL_UBO " << binding::kIblUbo << "\n"
       << "#define BINDING_IBL_SPECULAR_TEX " << binding::kIblSpecularTex << "\n"
       << "#define BINDING_IBL_DFG_TEX " << binding::kIblDfgTex << "\n"
+      << "#define BINDING_IBL_IRRADIANCE_TEX " << binding::kIblIrradianceTex << "\n"
       << "#define BINDING_DISPLAY_LUT_TEX_FIRST " << binding::kDisplayLutTexFirst << "\n"
       << "#define BINDING_MATERIAL_TEX_FIRST " << binding::kMaterialTexFirst << "\n"
       << "#define MAX_MATERIALS " << kMaxMaterials << "\n"

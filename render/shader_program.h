@@ -25,6 +25,9 @@ inline constexpr int kHdrTex = 6;
 inline constexpr int kIblUbo = 3;
 inline constexpr int kIblSpecularTex = 8;
 inline constexpr int kIblDfgTex = 9;
+/// The irradiance cube of the frames at rest (render/irradiance_map.h): the unit below the
+/// material textures', which the OCIO LUTs from kDisplayLutTexFirst must stay below.
+inline constexpr int kIblIrradianceTex = 39;
 /// Units kDisplayLutTexFirst.. hold the LUT textures of the OCIO display transform (as many as
 /// OCIO asks for, display_transform.cpp checks them against GL_MAX_TEXTURE_IMAGE_UNITS).
 inline constexpr int kDisplayLutTexFirst = 16;

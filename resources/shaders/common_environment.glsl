@@ -35,11 +35,23 @@ vec3 environmentRadiance(vec3 d, float lod) {
     return textureLod(uEnvironment, uv, lod).rgb * frame.envParams.z + frame.ambientRadiance.rgb;
 }
 
+// The irradiance integrated over the environment into a small cube (render/irradiance_map.h):
+// the SH9 below rings and smears a studio HDRI's few small lamps (a tenth off beside a lamp).
+// WITH_IRRADIANCE_MAP 0 (render/lighting_features.h: no cube yet) reads the SH9.
+#ifndef WITH_IRRADIANCE_MAP
+#define WITH_IRRADIANCE_MAP 1
+#endif
+layout(binding = BINDING_IBL_IRRADIANCE_TEX) uniform samplerCube uIrradianceCube;
+
 // Ramamoorthi & Hanrahan 2001, "An Efficient Representation for Irradiance Environment Maps"
 // E(n) / pi, so that a uniform radiance L gives L. Mirrors evalIrradianceOverPi() in
 // core/spherical_harmonics.cpp; frame.envSh already carries the intensity.
 vec3 irradianceOverPi(vec3 nWorld) {
     vec3 n = toEnvironment(nWorld);
+#if WITH_IRRADIANCE_MAP
+    return textureLod(uIrradianceCube, n, 0.0).rgb * frame.envParams.z +
+               frame.ambientRadiance.rgb;
+#endif
     vec3 e = frame.envSh[0].rgb * 0.282095;
     e += (2.0 / 3.0) * 0.488603 * (frame.envSh[1].rgb * n.y + frame.envSh[2].rgb * n.z +
                                    frame.envSh[3].rgb * n.x);

@@ -4,6 +4,7 @@
 #include "core/document_io.h"
 #include "core/post_effects.h"
 #include "core/scene.h"
+#include "core/spherical_harmonics.h"
 #include "render/headless_context.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -114,6 +116,26 @@ inline std::optional<Material> libraryPreset(const std::string& name) {
     if (!m && !problems.items.empty())
         qWarning("%s: %s", name.c_str(), problems.items[0].toString().c_str());
     return m;
+}
+
+/// A dim sky with a bright soft lamp up and behind the sphere (as the camera sees it), where the
+/// sphere's upper rim reflects it at grazing angles.
+inline float lampRadiance(glm::vec3 d) {
+    const glm::vec3 lamp = glm::normalize(glm::vec3(0.0f, 1.0f, -1.0f));
+    return 0.05f + 0.3f * std::max(d.y, 0.0f) +
+           6.0f * std::exp(-12.0f * (1.0f - glm::dot(d, lamp)));
+}
+
+inline Image lampEnvironment() {
+    Image img(512, 256, 3);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const float l = lampRadiance(
+                equirectDirection((float(x) + 0.5f) / img.width, (float(y) + 0.5f) / img.height));
+            float* p = img.at(x, y);
+            p[0] = p[1] = p[2] = l;
+        }
+    return img;
 }
 
 /// The largest difference of two same-sized images' RGB channels, in 1/255 steps.

@@ -23,26 +23,6 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-/// A dim sky with a bright soft lamp up and behind the sphere (as the camera sees it), where the
-/// sphere's upper rim reflects it at grazing angles.
-float lampRadiance(glm::vec3 d) {
-    const glm::vec3 lamp = glm::normalize(glm::vec3(0.0f, 1.0f, -1.0f));
-    return 0.05f + 0.3f * std::max(d.y, 0.0f) +
-           6.0f * std::exp(-12.0f * (1.0f - glm::dot(d, lamp)));
-}
-
-Image lampEnvironment() {
-    Image img(512, 256, 3);
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) {
-            const float l = lampRadiance(
-                equirectDirection((float(x) + 0.5f) / img.width, (float(y) + 0.5f) / img.height));
-            float* p = img.at(x, y);
-            p[0] = p[1] = p[2] = l;
-        }
-    return img;
-}
-
 /// The lobe's reflected light for F = 1, single scattering: 4096 GGX half vectors per pixel,
 /// each weighted by f n.l / pdf = V 4 (n.l)(v.h) / (n.h) (glTF's separable Smith, the default
 /// visibility term).
@@ -61,7 +41,7 @@ float bruteForceReflection(glm::vec3 n, glm::vec3 v, float alpha) {
             continue;
         const float VdotH = std::max(glm::dot(v, h), 1e-4f);
         sum += double(brdf::visibilitySmithGGXSeparable(NdotL, NdotV, alpha) * 4.0f * NdotL *
-                      VdotH / std::max(ht.z, 1e-4f) * lampRadiance(l));
+                      VdotH / std::max(ht.z, 1e-4f) * test::lampRadiance(l));
     }
     return float(sum / kSamples);
 }
@@ -142,7 +122,8 @@ private slots:
     void sampledReflectionMatchesTheLobeIntegralAtGrazingAngles() {
         std::string error;
         const std::string envPath = (m_dir.path() + "/lamp.exr").toStdString();
-        QVERIFY2(writeImage(envPath, lampEnvironment(), PixelFormat::Float, &error), error.c_str());
+        QVERIFY2(writeImage(envPath, test::lampEnvironment(), PixelFormat::Float, &error),
+                 error.c_str());
         Scene scene;
         scene.lights.clear();
         scene.environment.hdri = envPath;
