@@ -138,6 +138,24 @@ inline Image lampEnvironment() {
     return img;
 }
 
+/// A frame's linear image and the same frame's normal view (DebugView::Normal, no reflection
+/// samples): the known-answer tests read each pixel's normal from the second.
+struct ImageWithNormals {
+    Image color, normal;
+};
+inline ImageWithNormals renderWithNormals(const Scene& scene, render::FrameSettings fs) {
+    ImageWithNormals r;
+    std::string error;
+    Problems problems;
+    if (!render::renderSceneOffscreen(scene, fs, &r.color, nullptr, &error, &problems))
+        qFatal("render failed: %s", error.c_str());
+    fs.view = render::DebugView::Normal;
+    fs.reflectionSamples = 0;
+    if (!render::renderSceneOffscreen(scene, fs, &r.normal, nullptr, &error, &problems))
+        qFatal("render failed: %s", error.c_str());
+    return r;
+}
+
 /// The largest difference of two same-sized images' RGB channels, in 1/255 steps.
 inline int maxDifference(const Image& a, const Image& b) {
     int worst = 0;

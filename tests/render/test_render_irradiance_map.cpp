@@ -36,21 +36,10 @@ float integratedIrradianceOverPi(glm::vec3 n, const Image& env) {
 
 /// A white Lambertian sphere (no specular lobe), orthographic, seen from the front: each pixel
 /// is its albedo times E(n) / pi; its normal from the normal view.
-struct Rendered {
-    Image color, normal;
-};
-Rendered renderWhiteSphere(const Scene& scene, int size) {
+test::ImageWithNormals renderWhiteSphere(const Scene& scene, int size) {
     render::FrameSettings fs;
     fs.width = fs.height = size;
-    Rendered r;
-    std::string error;
-    Problems problems;
-    if (!render::renderSceneOffscreen(scene, fs, &r.color, nullptr, &error, &problems))
-        qFatal("render failed: %s", error.c_str());
-    fs.view = render::DebugView::Normal;
-    if (!render::renderSceneOffscreen(scene, fs, &r.normal, nullptr, &error, &problems))
-        qFatal("render failed: %s", error.c_str());
-    return r;
+    return test::renderWithNormals(scene, fs);
 }
 
 Scene whiteSphereScene() {
@@ -87,7 +76,7 @@ private slots:
         QVERIFY2(writeImage(path, env, PixelFormat::Float, &error), error.c_str());
         Scene scene = whiteSphereScene();
         scene.environment.hdri = path;
-        const Rendered rest = renderWhiteSphere(scene, 48);
+        const test::ImageWithNormals rest = renderWhiteSphere(scene, 48);
         const SH9 sh = projectEquirect(env);
         double errRest = 0.0, errSh = 0.0, worstRest = 0.0;
         int count = 0;
@@ -121,7 +110,7 @@ private slots:
     void aUniformEnvironmentStaysExact() {
         Scene scene = whiteSphereScene();
         scene.environment.color = glm::vec3(0.7f);
-        const Rendered rest = renderWhiteSphere(scene, 32);
+        const test::ImageWithNormals rest = renderWhiteSphere(scene, 32);
         double worst = 0.0;
         int count = 0;
         for (int y = 0; y < 32; ++y)

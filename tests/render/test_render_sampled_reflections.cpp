@@ -46,22 +46,11 @@ float bruteForceReflection(glm::vec3 n, glm::vec3 v, float alpha) {
     return float(sum / kSamples);
 }
 
-struct Rendered {
-    Image color, normal;
-};
+using Rendered = test::ImageWithNormals;
 
 Rendered renderSphere(const Scene& scene, int size, render::FrameSettings fs) {
     fs.width = fs.height = size;
-    Rendered r;
-    std::string error;
-    Problems problems;
-    if (!render::renderSceneOffscreen(scene, fs, &r.color, nullptr, &error, &problems))
-        qFatal("render failed: %s", error.c_str());
-    fs.view = render::DebugView::Normal;
-    fs.reflectionSamples = 0;
-    if (!render::renderSceneOffscreen(scene, fs, &r.normal, nullptr, &error, &problems))
-        qFatal("render failed: %s", error.c_str());
-    return r;
+    return test::renderWithNormals(scene, fs);
 }
 
 float mean3(glm::vec4 c) {
