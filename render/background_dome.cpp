@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstddef>
+#include <cstdint>
 #include <epoxy/gl.h>
-#include <glm/vec3.hpp>
 #include <vector>
 
 namespace velvet::render {
@@ -14,16 +13,13 @@ namespace {
 // the 1024-wide HDRIs' true equirect mapping (background_dome.h).
 constexpr int kLongitudes = 64, kLatitudes = 32;
 
-struct DomeVertex {
-    glm::vec3 environmentDirection; ///< in the environment's frame (before its rotation)
-    float u, v;                     ///< the equirect coordinates of that direction
-};
-
-/// The latitude-longitude sphere in the environment's frame, with the equirect coordinates of
-/// common_environment.glsl's equirectUv (u = 0.5 at -Z, v = 0 at +Y). The seam's column is
-/// doubled (u 0 and 1) and each pole's vertex repeated per column at that column's middle, so
-/// that no triangle interpolates across the wrap.
-void domeMesh(std::vector<DomeVertex>& vertices, std::vector<unsigned>& indices) {
+/// The latitude-longitude sphere in the environment's frame (MeshData::position: a direction
+/// before the environment's rotation), with the equirect coordinates of common_environment.glsl's
+/// equirectUv in MeshData::uv (u = 0.5 at -Z, v = 0 at +Y). The seam's column is doubled (u 0 and
+/// 1) and each pole's vertex repeated per column at that column's middle, so that no triangle
+/// interpolates across the wrap.
+MeshData domeMesh() {
+    MeshData mesh;
     const float pi = 3.14159265358979f;
     for (int row = 0; row <= kLatitudes; ++row) {
         const float v = float(row) / float(kLatitudes);
@@ -31,11 +27,14 @@ void domeMesh(std::vector<DomeVertex>& vertices, std::vector<unsigned>& indices)
             const bool pole = row == 0 || row == kLatitudes;
             const float u = (float(column) + (pole ? 0.5f : 0.0f)) / float(kLongitudes);
             const float theta = pi * v, phi = 2.0f * pi * (u - 0.5f);
-            vertices.push_back({glm::vec3(std::sin(phi) * std::sin(theta), std::cos(theta),
-                                          -std::cos(phi) * std::sin(theta)),
-                                u, v});
+            Vertex vertex{};
+            vertex.position = glm::vec3(std::sin(phi) * std::sin(theta), std::cos(theta),
+                                        -std::cos(phi) * std::sin(theta));
+            vertex.uv = glm::vec2(u, v);
+            mesh.vertices.push_back(vertex);
         }
     }
+    std::vector<std::uint32_t>& indices = mesh.indices;
     const unsigned stride = kLongitudes + 1;
     for (unsigned row = 0; row < unsigned(kLatitudes); ++row)
         for (unsigned column = 0; column < unsigned(kLongitudes); ++column) {
@@ -49,6 +48,7 @@ void domeMesh(std::vector<DomeVertex>& vertices, std::vector<unsigned>& indices)
             else
                 indices.insert(indices.end(), {a, c, b, b, c, d});
         }
+    return mesh;
 }
 
 } // namespace
@@ -63,40 +63,13 @@ bool backgroundDomeApplies(BackgroundMode mode, const PostChain* chain) {
            });
 }
 
-BackgroundDome::~BackgroundDome() {
-    if (m_vao)
-        glDeleteVertexArrays(1, &m_vao);
-    if (m_vbo)
-        glDeleteBuffers(1, &m_vbo);
-    if (m_ibo)
-        glDeleteBuffers(1, &m_ibo);
-}
-
 bool BackgroundDome::build(std::string* error) {
     if (!m_program.build("background_dome.vert", "background_dome.frag", {}, error))
         return false;
     ++m_compileCount;
     m_cacheValid = false;
-    if (m_vao)
-        return true;
-    std::vector<DomeVertex> vertices;
-    std::vector<unsigned> indices;
-    domeMesh(vertices, indices);
-    glCreateBuffers(1, &m_vbo);
-    glNamedBufferStorage(m_vbo, GLsizeiptr(vertices.size() * sizeof(DomeVertex)), vertices.data(),
-                         0);
-    glCreateBuffers(1, &m_ibo);
-    glNamedBufferStorage(m_ibo, GLsizeiptr(indices.size() * sizeof(unsigned)), indices.data(), 0);
-    glCreateVertexArrays(1, &m_vao);
-    glVertexArrayVertexBuffer(m_vao, 0, m_vbo, 0, sizeof(DomeVertex));
-    glVertexArrayElementBuffer(m_vao, m_ibo);
-    glEnableVertexArrayAttrib(m_vao, 0);
-    glVertexArrayAttribFormat(m_vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(m_vao, 0, 0);
-    glEnableVertexArrayAttrib(m_vao, 1);
-    glVertexArrayAttribFormat(m_vao, 1, 2, GL_FLOAT, GL_FALSE, GLuint(offsetof(DomeVertex, u)));
-    glVertexArrayAttribBinding(m_vao, 1, 0);
-    m_indexCount = int(indices.size());
+    if (m_mesh.empty())
+        m_mesh.upload(domeMesh());
     return true;
 }
 
@@ -130,11 +103,7 @@ bool BackgroundDome::draw(const ShaderProgram& cacheProgram, int cacheWidth, int
     glViewport(0, 0, width, height);
     glBindTextureUnit(binding::kHdrTex, m_cache.texture());
     glUseProgram(m_program.id());
-    GLint vao = 0;
-    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
-    glBindVertexArray(m_vao);
-    glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
-    glBindVertexArray(GLuint(vao));
+    m_mesh.draw();
     glBindTextureUnit(binding::kHdrTex, 0);
     return true;
 }

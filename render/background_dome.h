@@ -27,6 +27,7 @@
 #include "core/scene.h"
 #include "render/frame_reuse.h"
 #include "render/gbuffer.h"
+#include "render/gpu_mesh.h"
 #include "render/shader_program.h"
 
 #include <string>
@@ -43,7 +44,6 @@ class BackgroundDome {
 public:
     /// Cache texels per environment texel each way (background_dome.h).
     static constexpr int kCacheScale = 1;
-    ~BackgroundDome();
     /// The dome's program and its mesh. False + message.
     bool build(std::string* error);
     int compileCount() const { return m_compileCount; }
@@ -51,9 +51,10 @@ public:
     /// Draws the dome into @p displayFramebuffer (@p width x @p height), every pixel: the
     /// surfaces' pass draws the mesh's pixels over it. Draws the cache first, @p cacheWidth x
     /// @p cacheHeight texels of @p cacheProgram (the display step's inputs already bound), unless
-    /// it already holds @p key. Expects the frame block bound; leaves the depth test off and the
-    /// framebuffer and viewport at the display target's. @p cacheDrawn: whether it drew the
-    /// cache. False + message when the cache cannot be made (nothing drawn).
+    /// it already holds @p key. Expects the frame block bound; leaves the depth test off, the
+    /// framebuffer and viewport at the display target's and the dome's vertex array bound. @p
+    /// cacheDrawn: whether it drew the cache. False + message when the cache cannot be made
+    /// (nothing drawn).
     bool draw(const ShaderProgram& cacheProgram, int cacheWidth, int cacheHeight,
               const FrameKey& key, unsigned displayFramebuffer, int width, int height,
               bool* cacheDrawn, std::string* error);
@@ -67,8 +68,7 @@ private:
     unsigned m_cacheGeneration = 0;
     FrameKey m_cacheKey;
     bool m_cacheValid = false;
-    unsigned m_vao = 0, m_vbo = 0, m_ibo = 0;
-    int m_indexCount = 0;
+    GpuMesh m_mesh; ///< background_dome.cpp's domeMesh()
     int m_compileCount = 0;
 };
 

@@ -14,13 +14,14 @@ bool IrradianceMap::build(std::string* error) {
     if (!m_program.build("irradiance_map.comp", {}, {}, error))
         return false;
     ++m_compileCount;
-    m_key.clear();
+    m_texture = 0;
     return true;
 }
 
 void IrradianceMap::update(const GpuEnvironment& environment) {
-    const std::string key = environment.key + '\n' + std::to_string(environment.texture);
-    if (key == m_key || environment.texture == 0 || environment.width <= 0)
+    // Once a frame: compared, not concatenated.
+    if ((environment.texture == m_texture && environment.key == m_key) ||
+        environment.texture == 0 || environment.width <= 0)
         return;
     if (!m_cube) {
         glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &m_cube);
@@ -49,7 +50,8 @@ void IrradianceMap::update(const GpuEnvironment& environment) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindTextureUnit(0, 0);
-    m_key = key;
+    m_key = environment.key;
+    m_texture = environment.texture;
     ++m_integrations;
 }
 

@@ -40,12 +40,13 @@ public:
     /// Environments integrated since construction (tests: once per environment).
     int integrations() const { return m_integrations; }
     /// The shaders changed: the next update() integrates again.
-    void invalidate() { m_key.clear(); }
+    void invalidate() { m_texture = 0; }
 
 private:
     ComputeProgram m_program;
     unsigned m_cube = 0;
-    std::string m_key;
+    std::string m_key;      ///< GpuEnvironment::key of the environment integrated
+    unsigned m_texture = 0; ///< its texture (0: none yet, or invalidated)
     int m_compileCount = 0, m_integrations = 0;
 };
 

@@ -394,7 +394,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     if (inlined) { // the background and the surfaces cover every pixel: no clear
         // After a value edit the background's pixels are already right (frame_reuse.h).
         const bool keep = d.keepsBackground(fs, block, iblBlock, inlineDisplay, targetFbo);
-        if (inlineDisplay.cacheBackground)
+        if (inlineDisplay.cacheBackground && !keep) // only a drawn background reads it
             inlineDisplay.cacheKey = d.backgroundCacheKey(fs, block, iblBlock, inlineDisplay);
         d.drawInlineDisplay(inlineDisplay, keep);
         d.passes.fullScreen += keep ? 1 : 2;

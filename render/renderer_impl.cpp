@@ -339,6 +339,7 @@ void Renderer::Impl::drawInlineDisplay(const InlineDisplay& d, bool keepBackgrou
                                 d.framebuffer, d.width, d.height, &cacheDrawn, &error)) {
             passes.backgroundDome = true;
             passes.backgroundCacheDrawn = cacheDrawn;
+            glBindVertexArray(emptyVao); // the surfaces' full-screen triangle
         } else if (!d.smallBackground ||
                    !backgroundDownsample.draw(*d.smallBackground, d.downsample, d.framebuffer,
                                               d.width, d.height, &error)) {

@@ -138,7 +138,7 @@ struct Renderer::Impl {
     }
     EnvironmentCache environments;
     IblBaker ibl;             ///< prefiltered cube, DFG LUT, sheen tables
-    IrradianceMap irradiance; ///< the environment's irradiance for the frames at rest
+    IrradianceMap irradiance; ///< the environment's irradiance, every frame's
     unsigned emptyVao = 0;
     unsigned queries[4] = {}; // GL query names
     unsigned lightsQuery = 0; ///< between the full-screen lighting pass and the local lights
@@ -261,8 +261,8 @@ struct Renderer::Impl {
                                scene.environment.ambientOcclusion, true, fs.specularMultiScatter);
         f.shadowMask = stage.hasShadows();
         f.localShadows = stage.shadowsLocalLight(scene.lights);
-        // Only where a lobe may be glossy enough: a rough velvet's refinement compiles nothing.
         f.irradianceMap = irradiance.texture() != 0;
+        // Only where a lobe may be glossy enough: a rough velvet's refinement compiles nothing.
         f.sampledReflections = fs.reflectionSamples > 0 &&
                                (mayReflectSampled(scene.material) ||
                                 (fs.splitMaterial && mayReflectSampled(*fs.splitMaterial)));

@@ -6,8 +6,9 @@
 // without a depth test and the surfaces' pass draws the mesh over it.
 #include "common_frame.glsl"
 
+// GpuMesh's attributes: the position is the direction, the uv its equirect coordinates.
 layout(location = 0) in vec3 aEnvironmentDirection;
-layout(location = 1) in vec2 aUv;
+layout(location = 3) in vec2 aUv;
 layout(location = 0) out vec2 vUv;
 
 void main() {

@@ -9,6 +9,7 @@
 #include "render/offscreen.h"
 #include "render/renderer.h"
 
+#include <QTemporaryDir>
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
@@ -136,6 +137,16 @@ inline Image lampEnvironment() {
             p[0] = p[1] = p[2] = l;
         }
     return img;
+}
+
+/// A test's start in its own cache (XDG_CACHE_HOME under @p dir: the IBL and DFG caches) with the
+/// process's headless context; the message why not, or empty.
+inline std::string startWithCacheIn(const QTemporaryDir& dir) {
+    if (!dir.isValid())
+        return "no temporary folder";
+    qputenv("XDG_CACHE_HOME", (dir.path() + "/cache").toUtf8());
+    std::string error;
+    return headlessContext(&error) ? std::string() : error;
 }
 
 /// A frame's linear image and the same frame's normal view (DebugView::Normal, no reflection

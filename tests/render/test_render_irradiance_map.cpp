@@ -59,10 +59,8 @@ class TestRenderIrradianceMap : public QObject {
 
 private slots:
     void initTestCase() {
-        QVERIFY(m_dir.isValid());
-        qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-        std::string error;
-        QVERIFY2(test::headlessContext(&error), error.c_str());
+        const std::string error = test::startWithCacheIn(m_dir);
+        QVERIFY2(error.empty(), error.c_str());
     }
 
     // A bright soft lamp over a dim sky (test::lampEnvironment): every fourth pixel of the sphere

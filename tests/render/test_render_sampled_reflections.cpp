@@ -65,10 +65,8 @@ class TestRenderSampledReflections : public QObject {
 
 private slots:
     void initTestCase() {
-        QVERIFY(m_dir.isValid());
-        qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-        std::string error;
-        QVERIFY2(test::headlessContext(&error), error.c_str());
+        const std::string error = test::startWithCacheIn(m_dir);
+        QVERIFY2(error.empty(), error.c_str());
     }
 
     // Under a uniform white environment a white metal reflects all the light (the split sum's
