@@ -178,6 +178,12 @@ bool stageFigures(int width, int height, int frames,
     figures.emplace_back("shadow_map_pass_ms", stage.shadowMapMs);
     figures.emplace_back("occlusion_pass_ms", stage.occlusionMs);
     figures.emplace_back("shadow_mask_pass_ms", stage.shadowMaskMs);
+    figures.emplace_back("stage_frame_shadow_at_rest_resolution_ms", stage.frameShadowRestMs);
+    figures.emplace_back("stage_frame_shadow_ao_at_rest_resolution_ms", stage.frameStageRestMs);
+    figures.emplace_back("stage_shadow_overhead_at_rest_resolution", stage.shadowRestOverhead);
+    figures.emplace_back("stage_shadow_ao_overhead_at_rest_resolution", stage.stageRestOverhead);
+    figures.emplace_back("shadow_mask_pass_at_rest_resolution_ms", stage.shadowMaskRestMs);
+    figures.emplace_back("occlusion_pass_at_rest_resolution_ms", stage.occlusionRestMs);
     figures.emplace_back("stage_frame_off_cpu_ms", stage.cpuOffMs);
     figures.emplace_back("stage_frame_shadow_cpu_ms", stage.cpuShadowMs);
     figures.emplace_back("stage_frame_shadow_ao_cpu_ms", stage.cpuStageMs);

@@ -58,9 +58,10 @@ bool OcclusionPass::build(std::string* error) {
     return true;
 }
 
-bool OcclusionPass::run(int width, int height, const PixelRect& texels, bool geometricNormals,
-                        FrameKey key, unsigned emptyVao, bool* kept, std::string* error) {
-    const int w = halfSize(width), h = halfSize(height);
+bool OcclusionPass::run(int width, int height, int downsample, const PixelRect& texels,
+                        bool geometricNormals, FrameKey key, unsigned emptyVao, bool* kept,
+                        std::string* error) {
+    const int w = maskSize(width, downsample), h = maskSize(height, downsample);
     key.add(w).add(h).add(texels).add(geometricNormals);
     *kept = m_reuse.reuse(std::move(key)) && m_blurred.width() == w && m_blurred.height() == h;
     if (*kept)

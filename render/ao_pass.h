@@ -1,7 +1,8 @@
 #pragma once
 /// @file ao_pass.h
-/// Render-private: screen-space ambient occlusion (GTAO, ao_gtao.frag) at half resolution after
-/// the geometry pass, then a depth-aware 4x4 blur (ao_blur.frag); the lighting pass reads the
+/// Render-private: screen-space ambient occlusion (GTAO, ao_gtao.frag) at half resolution (a
+/// quarter while the camera moves: the stage's downsample, render/stage_interface.h) after the
+/// geometry pass, then a depth-aware 4x4 blur (ao_blur.frag); the lighting pass reads the
 /// result at stage_binding::kOcclusionTex with a depth-aware upsample (stage_shading.glsl) and
 /// multiplies the environment's light by it and the material's occlusion map.
 /// The search integrates the visible share of the hemisphere about the surface's geometric
@@ -37,21 +38,22 @@ class OcclusionPass {
 public:
     bool build(std::string* error);
     int compileCount() const { return m_compileCount; }
-    /// The half-resolution size for a @p width x @p height frame.
-    static int halfSize(int fullSize) { return (fullSize + 1) / 2; }
     /// The blurred texels the upsample of @p frameRect's pixels (occlusionRect()) reads in a
-    /// @p width x @p height frame: those run() draws, every other one is exactly 1.
-    static PixelRect texelRect(const PixelRect& frameRect, int width, int height) {
-        return maskRect(frameRect, halfSize(width), halfSize(height));
+    /// @p width x @p height frame at @p downsample: those run() draws, every other one is
+    /// exactly 1.
+    static PixelRect texelRect(const PixelRect& frameRect, int width, int height, int downsample) {
+        return maskRect(frameRect, maskSize(width, downsample), maskSize(height, downsample),
+                        downsample);
     }
-    /// Runs both passes for a @p width x @p height frame over @p texels (texelRect()), with the
+    /// Runs both passes for a @p width x @p height frame at @p downsample (its targets
+    /// maskSize() texels each way) over @p texels (texelRect()), with the
     /// geometric normal for the materials that bend theirs when @p geometricNormals, unless
     /// @p key (every byte the result depends on that can change without invalidate()) is the last
     /// run's: then the targets already hold the result and @p kept is set. Expects the frame and
-    /// stage blocks and the G-buffer's textures bound. Leaves the viewport at the half size and
-    /// the scissor test off.
-    bool run(int width, int height, const PixelRect& texels, bool geometricNormals, FrameKey key,
-             unsigned emptyVao, bool* kept, std::string* error);
+    /// stage blocks and the G-buffer's textures bound. Leaves the viewport at the targets' size
+    /// and the scissor test off.
+    bool run(int width, int height, int downsample, const PixelRect& texels, bool geometricNormals,
+             FrameKey key, unsigned emptyVao, bool* kept, std::string* error);
     /// Something the key cannot see changed (the mesh, a texture, the shaders): the next run draws.
     void invalidate() { m_reuse.invalidate(); }
     /// The blurred occlusion at stage_binding::kOcclusionTex.

@@ -2,6 +2,7 @@
 
 #include "render/gbuffer_layout.h"
 #include "render/gl_util.h"
+#include "render/shadow_mask.h"
 
 #include <epoxy/gl.h>
 #include <vector>
@@ -100,12 +101,13 @@ unsigned FrameTargets::litFramebuffer() {
     return m_litFbo;
 }
 
-unsigned FrameTargets::shadowMaskFramebuffer(std::string* error) {
+unsigned FrameTargets::shadowMaskFramebuffer(int downsample, std::string* error) {
     // One byte per shadow slot (kMaxShadowLights = 4 channels): the lighting passes read every
-    // slot's visibility in one fetch. At half the frame's size (rounded up): texel t is the
-    // lookup at pixel 2t, upsampled where it is read (shadow_mask.glsl) by its key beside it,
-    // that pixel's view depth and material id.
-    const int width = (m_hdr.width() + 1) / 2, height = (m_hdr.height() + 1) / 2;
+    // slot's visibility in one fetch. At the stage's downsample D of the frame's size (rounded
+    // up): texel t is the lookup at pixel D t, upsampled where it is read (shadow_mask.glsl) by
+    // its key beside it, that pixel's view depth and material id.
+    const int width = maskSize(m_hdr.width(), downsample);
+    const int height = maskSize(m_hdr.height(), downsample);
     if (!m_shadowMask.resize(width, height, GL_RGBA8, error) ||
         !m_shadowKey.resize(width, height, GL_RG32F, error) ||
         !m_groundShadowMask.resize(width, height, GL_RGBA8, error))

@@ -44,14 +44,14 @@ public:
     unsigned displayFramebuffer(unsigned internalFormat, std::string* error);
     const ColorTarget& display() const { return m_display; }
 
-    /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): at half the frame's size
-    /// (rounded up), the mask (RGBA8, attachment 0) and its key (RG32F: each texel's pixel's view
-    /// depth and material id, attachment 1) and the ground's mask (RGBA8, attachment 2: each
-    /// texel's visibility where its pixel's view ray meets the ground, read with bilinear
-    /// filtering by the shadow catcher), with a 16-bit depth buffer that marks the texels
-    /// the mask's settle pass left for the lookup (render/shadow_mask.h), allocated the first
-    /// time a frame has a shadowed light. 0 + message when incomplete.
-    unsigned shadowMaskFramebuffer(std::string* error);
+    /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): at the stage's
+    /// @p downsample of the frame's size (maskSize()), the mask (RGBA8, attachment 0) and its key
+    /// (RG32F: each texel's pixel's view depth and material id, attachment 1) and the ground's mask
+    /// (RGBA8, attachment 2: each texel's visibility where its pixel's view ray meets the ground,
+    /// read with bilinear filtering by the shadow catcher), with a 16-bit depth buffer that marks
+    /// the texels the mask's settle pass left for the lookup (render/shadow_mask.h), allocated the
+    /// first time a frame has a shadowed light. 0 + message when incomplete.
+    unsigned shadowMaskFramebuffer(int downsample, std::string* error);
 
     const GBuffer& gbuffer() const { return m_gbuffer; }
     const ColorTarget& hdr() const { return m_hdr; }

@@ -274,7 +274,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // The environment's integrated irradiance (render/irradiance_map.h): once per environment,
     // before anything binds the units it borrows.
     d.irradiance.update(*d.environment);
-    d.stage.beginFrame(d.scene, fs.width, fs.height);
+    d.stage.beginFrame(d.scene, fs.width, fs.height,
+                       fs.navigating ? kNavigatingStageDownsample : kStageDownsample);
     d.materials.bind();
 
     // Known state: a host (Qt) may leave anything bound or enabled.
@@ -354,7 +355,7 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.warnSpecialisationFailures();
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
-    // Screen-space occlusion of the G-buffer, at half resolution (off: nothing runs).
+    // Screen-space occlusion of the G-buffer, at the stage's downsample (off: nothing runs).
     d.targets.gbuffer().bindTextures();
     // One key for both screen-space passes: it also notes what no key sees (screenPassKey).
     const FrameKey screenKey = d.screenPassKey(fs, block);
@@ -366,7 +367,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
     // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).
     unsigned maskFbo = 0;
-    if (d.stage.hasShadows() && !(maskFbo = d.targets.shadowMaskFramebuffer(error)))
+    if (d.stage.hasShadows() &&
+        !(maskFbo = d.targets.shadowMaskFramebuffer(d.stage.downsample(), error)))
         return false;
     d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(),
                            d.targets.shadowKey().texture(), d.targets.groundShadowMask().texture(),

@@ -108,6 +108,13 @@ struct FrameSettings {
     /// surfaces.
     bool specularMultiScatter = true;
     /// @}
+    /// The frame is one of a camera move (the editor's orbit, pan or dolly while the mouse drags):
+    /// the look-dev stage draws its shadow masks and occlusion at a quarter of the frame's size
+    /// each way instead of half (render/stage_interface.h's kNavigatingStageDownsample), as DCC
+    /// viewports lower their resolution while navigating; the frames at rest draw them at half
+    /// again (BENCHMARKS.md, "The stage at a quarter while the camera moves"). Stills, turntables
+    /// and the refinement never set it.
+    bool navigating = false;
     /// Lets the maps' depth bounds settle shadow-mask texels without filtering them
     /// (render/shadow_depth_bounds.h). The result is the same either way; off filters every
     /// texel: the reference the settled mask is tested against, and the bench's "before".

@@ -90,15 +90,16 @@ PixelRect intersection(const PixelRect& a, const PixelRect& b) {
     return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
 }
 
-PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight) {
-    // Texel t stands for pixel 2t, and a pixel of the rectangle blends the texels either side of
+PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight, int downsample) {
+    // Texel t stands for pixel D t, and a pixel of the rectangle blends the texels either side of
     // it (shadow_mask.glsl): from the texel at or below its first pixel to the one above its last.
     if (frameRect.width <= 0 || frameRect.height <= 0)
         return {};
-    const int x0 = std::clamp(frameRect.x / 2, 0, maskWidth);
-    const int y0 = std::clamp(frameRect.y / 2, 0, maskHeight);
-    const int x1 = std::clamp((frameRect.x + frameRect.width - 1) / 2 + 2, 0, maskWidth);
-    const int y1 = std::clamp((frameRect.y + frameRect.height - 1) / 2 + 2, 0, maskHeight);
+    const int d = std::max(downsample, 1);
+    const int x0 = std::clamp(frameRect.x / d, 0, maskWidth);
+    const int y0 = std::clamp(frameRect.y / d, 0, maskHeight);
+    const int x1 = std::clamp((frameRect.x + frameRect.width - 1) / d + 2, 0, maskWidth);
+    const int y1 = std::clamp((frameRect.y + frameRect.height - 1) / d + 2, 0, maskHeight);
     return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
 }
 
@@ -155,14 +156,14 @@ void ShadowMaskPass::lastTexels(long long* texels, long long* filtered) const {
 
 int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slots,
                         const MeshBounds& bounds, bool ground, float groundHeight,
-                        const glm::mat4& viewProj, int width, int height, unsigned emptyVao,
-                        bool settle, bool bentNormals) {
+                        const glm::mat4& viewProj, int width, int height, int downsample,
+                        unsigned emptyVao, bool settle, bool bentNormals) {
     if (!m_queries[0])
         glCreateQueries(GL_SAMPLES_PASSED, kMaxQueries, m_queries);
     m_queriesUsed = 0;
     m_texels = 0;
-    // The masks are at half the frame's size: texel t looks up pixel 2t (shadow_mask.frag).
-    const int maskWidth = (width + 1) / 2, maskHeight = (height + 1) / 2;
+    // Texel t looks up pixel D t (shadow_mask.frag), D the downsample.
+    const int maskWidth = maskSize(width, downsample), maskHeight = maskSize(height, downsample);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, maskWidth, maskHeight);
     glDisable(GL_BLEND);
@@ -183,13 +184,13 @@ int ShadowMaskPass::run(unsigned framebuffer, const std::vector<ShadowSlot>& slo
     // Where the mesh's own texels can be: its bounds on screen.
     const PixelRect meshRect =
         maskRect(shadowReceiverRect({}, bounds, false, 0.0f, viewProj, width, height), maskWidth,
-                 maskHeight);
+                 maskHeight, downsample);
     int drawn = 0;
     const int count = std::min(int(slots.size()), kMaxShadowLights);
     for (int s = 0; s < count; ++s) {
         const PixelRect r = maskRect(shadowReceiverRect(slots[size_t(s)], bounds, ground,
                                                         groundHeight, viewProj, width, height),
-                                     maskWidth, maskHeight);
+                                     maskWidth, maskHeight, downsample);
         if (r.width <= 0 || r.height <= 0)
             continue;
         glScissor(r.x, r.y, r.width, r.height);

@@ -52,9 +52,16 @@ PixelRect shadowReceiverRect(const ShadowSlot& slot, const MeshBounds& bounds, b
 /// The pixels both @p a and @p b hold (empty: width or height 0).
 PixelRect intersection(const PixelRect& a, const PixelRect& b);
 
-/// The texels of a half-resolution mask (@p maskWidth x @p maskHeight; texel t stands for pixel
-/// 2t) that the pixels of @p frameRect read when they upsample it. Pure: test_render_shadow_mask.
-PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight);
+/// The texels of a mask at @p downsample (@p maskWidth x @p maskHeight; texel t stands for pixel
+/// downsample x t: render/stage_interface.h's kStageDownsample, kNavigatingStageDownsample) that
+/// the pixels of @p frameRect read when they upsample it. Pure: test_render_shadow_mask.
+PixelRect maskRect(const PixelRect& frameRect, int maskWidth, int maskHeight,
+                   int downsample = kStageDownsample);
+
+/// The size of a mask at @p downsample for a frame @p fullSize pixels wide (or high), rounded up.
+constexpr int maskSize(int fullSize, int downsample) {
+    return (fullSize + downsample - 1) / downsample;
+}
 
 class ShadowMaskPass {
 public:
@@ -77,9 +84,10 @@ public:
     /// Without @p settle every texel is filtered (the same masks: the reference of the tests).
     /// @p bentNormals: some drawn material bends its shading normal; the mesh's passes then
     /// offset those receivers along the face's normal (from the depth), not the bent one.
+    /// @p downsample: the masks' (maskSize()), the StageBlock's counts.y.
     int run(unsigned framebuffer, const std::vector<ShadowSlot>& slots, const MeshBounds& bounds,
             bool ground, float groundHeight, const glm::mat4& viewProj, int width, int height,
-            unsigned emptyVao, bool settle = true, bool bentNormals = true);
+            int downsample, unsigned emptyVao, bool settle = true, bool bentNormals = true);
     /// The last run's texels drawn (the settle passes' scissors) and, of those, the ones its
     /// lookup passes filtered (GL_SAMPLES_PASSED; waits for the GPU).
     void lastTexels(long long* texels, long long* filtered) const;

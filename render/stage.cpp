@@ -111,7 +111,7 @@ void Stage::drawShadows(const GpuMesh& mesh) {
     glQueryCounter(m_queries[1], GL_TIMESTAMP);
 }
 
-void Stage::beginFrame(const Scene& scene, int width, int height) {
+void Stage::beginFrame(const Scene& scene, int width, int height, int downsample) {
     StageBlock b{};
     m_shadows.fill(b, scene.lights);
     const Environment& env = scene.environment;
@@ -121,9 +121,10 @@ void Stage::beginFrame(const Scene& scene, int width, int height) {
     b.ground = glm::vec4(height0, float(int(env.ground)), kFadeStart * r, kFadeEnd * r);
     b.meshSphere = glm::vec4(sphere.center, r);
     b.groundSquare = glm::vec4(sphere.center.x, 0.0f, sphere.center.z, groundHalfSize(r));
+    b.counts.y = std::max(downsample, 1);
     b.occlusion =
         glm::vec4(env.ambientOcclusion ? 1.0f : 0.0f, std::max(env.occlusionRadius, 0.0f),
-                  float(OcclusionPass::halfSize(width)), float(OcclusionPass::halfSize(height)));
+                  float(maskSize(width, b.counts.y)), float(maskSize(height, b.counts.y)));
     glNamedBufferSubData(m_ubo, 0, sizeof(StageBlock), &b);
     glBindBufferBase(GL_UNIFORM_BUFFER, stage_binding::kStageUbo, m_ubo);
     m_block = b;
@@ -165,8 +166,14 @@ bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewP
     // The stage's part of the key: what the ground's depth and the search depend on.
     frameKey.add(environment.ground).add(environment.occlusionRadius).add(m_bounds);
     glQueryCounter(m_queries[2], GL_TIMESTAMP);
-    if (!m_occlusion.run(width, height, OcclusionPass::texelRect(near, width, height), bentNormals,
-                         std::move(frameKey), emptyVao, &m_occlusionKept, error))
+    const int d = downsample();
+    const PixelRect texels = OcclusionPass::texelRect(near, width, height, d);
+    m_block.occlusionTexels =
+        glm::ivec4(texels.x, texels.y, texels.x + texels.width, texels.y + texels.height);
+    glNamedBufferSubData(m_ubo, offsetof(StageBlock, occlusionTexels), sizeof(glm::ivec4),
+                         &m_block.occlusionTexels);
+    if (!m_occlusion.run(width, height, d, texels, bentNormals, std::move(frameKey), emptyVao,
+                         &m_occlusionKept, error))
         return false;
     glQueryCounter(m_queries[3], GL_TIMESTAMP);
     m_occlusionTimed = !m_occlusionKept;
@@ -208,7 +215,7 @@ void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned 
     glQueryCounter(m_queries[4], GL_TIMESTAMP);
     m_maskPasses =
         m_mask.run(framebuffer, m_shadows.slots(), m_bounds, environment.ground != GroundMode::Off,
-                   height0, viewProj, width, height, emptyVao, settle, bentNormals);
+                   height0, viewProj, width, height, downsample(), emptyVao, settle, bentNormals);
     glQueryCounter(m_queries[5], GL_TIMESTAMP);
     m_shadows.unbind();
 }

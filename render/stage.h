@@ -55,8 +55,12 @@ public:
 
     /// Before the geometry pass: the shadow maps, when the lights or the mesh changed (timed).
     void drawShadows(const GpuMesh& mesh);
-    /// The frame's StageBlock, uploaded and bound at stage_binding::kStageUbo.
-    void beginFrame(const Scene& scene, int width, int height);
+    /// The frame's StageBlock, uploaded and bound at stage_binding::kStageUbo; @p downsample is
+    /// the masks' and the occlusion's (kStageDownsample, or kNavigatingStageDownsample in a frame
+    /// drawn while the camera moves).
+    void beginFrame(const Scene& scene, int width, int height, int downsample);
+    /// The downsample beginFrame() took.
+    int downsample() const { return m_block.counts.y; }
     /// After the geometry pass, into its (still bound) framebuffer: the ground, if any.
     void drawGround(const Environment& environment);
     /// After the ground: the occlusion term, if on, over the pixels near the mesh seen through

@@ -48,7 +48,11 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     fs.height = height;
     // Every frame a step of an orbit (the camera's yaw), so none keeps the last frame's
     // occlusion (render/ao_pass.h) but the value edits', which keep the camera where it was.
+    // The orbit's frames are the editor's while the mouse drags (FrameSettings::navigating: the
+    // stage at a quarter); the same frames at half (the stage's resolution at rest) are timed
+    // beside them, and the value edit is a slider's, at rest.
     Camera camera = lit.camera;
+    fs.navigating = true;
     const auto frame = [&](const Scene& scene, ScenePart parts, double* wallMs,
                            double* cpuMs = nullptr) {
         camera.yawDeg += 0.5f;
@@ -77,7 +81,8 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     // switch redraws the shadow map, so the second is timed (an orbit's frame).
     report.occlusionKeptFrames = 0;
     std::vector<double> offMs, shadowMs, fullMs, valueEditMs, mapMs, maskMs, occlusionMs, offCpu,
-        shadowCpu, fullCpu, unsettledCpu, texels, filteredShare;
+        shadowCpu, fullCpu, unsettledCpu, texels, filteredShare, shadowRestMs, fullRestMs,
+        maskRestMs, occlusionRestMs;
     for (int i = 0; i < frames; ++i) {
         double ms = 0.0, cpu = 0.0;
         if (!frame(off, ScenePart::Lights | ScenePart::Environment, nullptr) ||
@@ -110,6 +115,18 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
         fullMs.push_back(ms);
         fullCpu.push_back(cpu);
         occlusionMs.push_back(renderer.lastTimings().occlusionMs);
+        // The same orbit steps with the stage at its resolution at rest.
+        fs.navigating = false;
+        if (!frame(shadow, ScenePart::Lights | ScenePart::Environment, nullptr) ||
+            !frame(shadow, ScenePart::None, &ms))
+            return false;
+        shadowRestMs.push_back(ms);
+        maskRestMs.push_back(renderer.lastTimings().shadowMaskMs);
+        if (!frame(full, ScenePart::Lights | ScenePart::Environment, nullptr) ||
+            !frame(full, ScenePart::None, &ms))
+            return false;
+        fullRestMs.push_back(ms);
+        occlusionRestMs.push_back(renderer.lastTimings().occlusionMs);
         // A value edit: the base colour, the camera where the last frame left it.
         Scene edited = full;
         edited.material.setColor(ParamId::BaseColor, glm::vec3(0.2f + 0.05f * float(i % 2)));
@@ -118,6 +135,7 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
             return false;
         valueEditMs.push_back(ms);
         report.occlusionKeptFrames += renderer.lastTimings().occlusionKept ? 1 : 0;
+        fs.navigating = true;
     }
     report.frameOffMs = median(offMs);
     report.frameShadowMs = median(shadowMs);
@@ -136,6 +154,12 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     report.cpuShadowUnsettledMs = median(unsettledCpu);
     report.cpuShadowUnsettledOverhead =
         report.cpuShadowUnsettledMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
+    report.frameShadowRestMs = median(shadowRestMs);
+    report.frameStageRestMs = median(fullRestMs);
+    report.shadowRestOverhead = report.frameShadowRestMs / std::max(report.frameOffMs, 1e-6) - 1.0;
+    report.stageRestOverhead = report.frameStageRestMs / std::max(report.frameOffMs, 1e-6) - 1.0;
+    report.shadowMaskRestMs = median(maskRestMs);
+    report.occlusionRestMs = median(occlusionRestMs);
     report.shadowMaskTexels = median(texels);
     report.shadowMaskFilteredShare = median(filteredShare);
     return true;

@@ -12,6 +12,7 @@ struct StageBenchReport {
     double frameOffMs = 0;    ///< wall clock: no shadow, no occlusion (the ground drawn)
     double frameShadowMs = 0; ///< one shadowed directional light (maps cached, as an orbit)
     double frameStageMs = 0;  ///< shadows and ambient occlusion (every timed frame an orbit step)
+    /// (The three orbit frames are drawn as the editor draws them while the camera moves.)
     /// Shadows and occlusion in a frame after a material value edit (the base colour), which
     /// keeps the last frame's occlusion (render/ao_pass.h); and the frames that kept it.
     double frameStageValueEditMs = 0;
@@ -31,6 +32,12 @@ struct StageBenchReport {
     double cpuShadowUnsettledMs = 0, cpuShadowUnsettledOverhead = 0;
     /// The shadowed frame's shadow-mask texels and the share of them the lookup filtered.
     double shadowMaskTexels = 0, shadowMaskFilteredShare = 0;
+    /// The orbit frames above are the editor's while the camera moves (FrameSettings::navigating:
+    /// the masks and the occlusion at a quarter); these are the same frames with the stage at
+    /// its resolution at rest (half), their overheads over frameOffMs and their passes' GPU time.
+    double frameShadowRestMs = 0, frameStageRestMs = 0;
+    double shadowRestOverhead = 0, stageRestOverhead = 0;
+    double shadowMaskRestMs = 0, occlusionRestMs = 0;
 };
 
 /// Median of @p frames frames each; needs a current context. False + message on failure.

@@ -18,7 +18,8 @@ static_assert(offsetof(StageBlock, meshSphere) == 208 * kMaxShadowLights + 16);
 static_assert(offsetof(StageBlock, occlusion) == 208 * kMaxShadowLights + 32);
 static_assert(offsetof(StageBlock, counts) == 208 * kMaxShadowLights + 48);
 static_assert(offsetof(StageBlock, groundSquare) == 208 * kMaxShadowLights + 64);
-static_assert(sizeof(StageBlock) == 208 * kMaxShadowLights + 80);
+static_assert(offsetof(StageBlock, occlusionTexels) == 208 * kMaxShadowLights + 80);
+static_assert(sizeof(StageBlock) == 208 * kMaxShadowLights + 96);
 
 std::string stageInterfaceGlsl() {
     const std::string n = std::to_string(kMaxShadowLights);
@@ -59,9 +60,10 @@ std::string stageInterfaceGlsl() {
          "]; // direction travelled, w cos outer (-2: none)\n"
          "    vec4 ground; // height, mode, fade start, fade end\n"
          "    vec4 meshSphere; // centre, radius\n"
-         "    vec4 occlusion; // on, radius, half width, half height\n"
-         "    ivec4 counts; // shadow slots\n"
+         "    vec4 occlusion; // on, radius, width, height (texels)\n"
+         "    ivec4 counts; // shadow slots, downsample (pixels per texel each way)\n"
          "    vec4 groundSquare; // centre x, unused, centre z, half size\n"
+         "    ivec4 occlusionTexels; // the texels the occlusion drew: x0, y0, x1, y1 (exclusive)\n"
          "} stage;\n";
     return s;
 }

@@ -17,6 +17,14 @@ namespace velvet::render {
 inline constexpr int kMaxShadowLights = 4;
 inline constexpr int kShadowMapSize = 2048;
 
+/// Full-resolution pixels per texel, each way, of the screen-space shadow masks and the
+/// occlusion (render/shadow_mask.h, render/ao_pass.h): half the frame's size in a frame at rest,
+/// a quarter in a frame drawn while the camera moves (FrameSettings::navigating), as DCC
+/// viewports lower their resolution while navigating (BENCHMARKS.md, "The stage at a quarter
+/// while the camera moves").
+inline constexpr int kStageDownsample = 2;
+inline constexpr int kNavigatingStageDownsample = 4;
+
 /// Material ids of the ground in the G-buffer (ids 0 and 1 are the scene's material and the A/B
 /// split's): the plain ground has its own record in the material table; the shadow catcher's
 /// pixels show the background, darkened (lighting.frag).
@@ -63,13 +71,19 @@ struct StageBlock {
     glm::vec4 ground;
     /// xyz the mesh's bounding-sphere centre, w its radius
     glm::vec4 meshSphere;
-    /// x: occlusion on, y: radius (m), z: half-resolution width, w: height
+    /// x: occlusion on, y: radius (m), z: its target's width, w: height (texels)
     glm::vec4 occlusion;
-    /// x: shadow slots in use, yzw unused
+    /// x: shadow slots in use; y: the frame's stage downsample (kStageDownsample or
+    /// kNavigatingStageDownsample: the masks' and the occlusion's texel t stands for pixel y t);
+    /// zw unused
     glm::ivec4 counts;
     /// The ground's square (stage.cpp): x, z its centre, w its half size (m); y unused. The
     /// shadow lookups test a light under the floor against it (shadow_sampling.glsl).
     glm::vec4 groundSquare;
+    /// The occlusion's texels its passes drew (render/ao_pass.h's texelRect()): x0, y0, x1, y1
+    /// (exclusive). Every other texel is exactly 1, so a pixel that reads none of these skips the
+    /// upsample (stage_shading.glsl).
+    glm::ivec4 occlusionTexels;
 };
 
 /// The GLSL text of "stage_interface.glsl".

@@ -163,6 +163,8 @@ bool ViewportWidget::mouseRelease(QMouseEvent* event) {
     if (ends) {
         m_drag = Drag::None;
         m_flyTimer->stop();
+        if (m_lastNavigating) // its stage was drawn coarser: the view at rest draws it again
+            requestFrame();
         event->accept();
         return true;
     }

@@ -406,6 +406,11 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
     settings.splitPosition = m_splitPosition;
     settings.splitSwapped = m_splitSwapped;
     settings.renderScale = m_interacting && m_reducedEnabled ? m_reducedScale : 1.0f;
+    // The camera moving under a drag or the fly keys: the stage's screen-space passes coarser
+    // (a reduced frame is coarse already). mouseRelease() draws the view at rest again.
+    const bool cameraDrag = m_drag == Drag::Orbit || m_drag == Drag::Pan || m_drag == Drag::Look;
+    settings.navigating =
+        (cameraDrag || m_flyTimer->isActive()) && settings.renderScale == 1.0f && !grab;
     settings.time = float(animationTime());
     settings.displayOnly = displayOnly;
     // A refinement frame (viewport_progressive.cpp). A grab draws the plain frame, or with
@@ -464,6 +469,7 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
     }
     ++m_frameCount;
     m_lastRenderScale = settings.renderScale;
+    m_lastNavigating = settings.navigating;
     // A structural graph edit compiles on the driver's threads; the renderer adopts the new
     // program at a later frame, so keep frames coming (a short pause each: polling, not spinning).
     if (m_renderer->graphPending())

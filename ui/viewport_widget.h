@@ -114,6 +114,10 @@ public:
     float reducedScale() const { return m_reducedScale; }
     /// The render scale of the last frame drawn (1 at full size).
     float lastRenderScale() const { return m_lastRenderScale; }
+    /// Whether the last frame was drawn as the camera moved (an orbit, pan or look drag, or
+    /// fly keys) at full size: its look-dev stage's shadow masks and occlusion at a quarter
+    /// (FrameSettings::navigating); the release of the drag draws the view at rest again.
+    bool lastFrameNavigating() const { return m_lastNavigating; }
     /// @}
     /// @name Progressive anti-aliasing at rest (render/progressive_accumulation.h)
     /// kProgressiveDelayMs after the last change, a still view — nothing dragged, animating,
@@ -293,6 +297,7 @@ private:
     float m_reducedScale = 0.5f;
     bool m_interacting = false; ///< the next frame is reduced
     float m_lastRenderScale = 1.0f;
+    bool m_lastNavigating = false;
     QElapsedTimer m_lastInteraction;
     QTimer* m_refineTimer;
     bool m_animationPaused = false;

@@ -1,5 +1,6 @@
 #version 450 core
-// Screen-space ambient occlusion at half resolution: GTAO (Jimenez et al. 2016, "Practical
+// Screen-space ambient occlusion at half resolution (a quarter while the camera moves: texel t
+// stands for pixel D t, D = stage.counts.y): GTAO (Jimenez et al. 2016, "Practical
 // Real-Time Strategies for Accurate Indirect Occlusion"), the horizon search on both sides of
 // two slices per pixel and the slice's cosine-weighted visibility integrated in closed form with
 // the projected normal (as Intel's XeGTAO). Writes r: visibility in [0, 1] (1 on an open plane),
@@ -16,8 +17,8 @@ const int SLICES = 2;
 const int STEPS = 3;
 
 void main() {
-    ivec2 halfPixel = ivec2(gl_FragCoord.xy);
-    ivec2 pixel = min(halfPixel * 2, ivec2(frame.viewport.xy) - 1);
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel = min(texel * stage.counts.y, ivec2(frame.viewport.xy) - 1);
     float depth = texelFetch(gDepthTex, pixel, 0).r;
     // The background: nothing to occlude. llvmpipe runs both sides of an `if` (and past a
     // `return`) but leaves a loop once no pixel of its block is in it, so the work below is a
@@ -45,7 +46,7 @@ void main() {
     int slices = background || !nearMesh || radiusPixels < 1.0 ? 0 : SLICES;
     radiusPixels = min(radiusPixels, 0.25 * frame.viewport.y);
     // A 4x4 pattern of slice rotations and step offsets, which the blur averages away.
-    int cell = (halfPixel.x & 3) + 4 * (halfPixel.y & 3);
+    int cell = (texel.x & 3) + 4 * (texel.y & 3);
     float rotation = (float((cell * 7) & 15) + 0.5) / 16.0 * PI / float(SLICES);
     float jitter = float((cell * 11 + 5) & 15) / 16.0;
     float falloffFrom = 0.6 * radius;

@@ -1,7 +1,7 @@
 #version 450 core
 // The screen-space shadow masks (render/shadow_mask.h, docs/shadows.md), at half the frame's
-// resolution: shadow slot uSlot's visibility for mask texel t, looked up for pixel 2t, written to
-// channel uSlot (the other channels are masked off by glColorMaski). The receiver is
+// resolution (a quarter while the camera moves): shadow slot uSlot's visibility for mask texel t,
+// looked up for pixel D t (D = stage.counts.y, the stage's downsample), written to channel uSlot (the other channels are masked off by glColorMaski). The receiver is
 //   SHADOW_MASK_GROUND  the ground where the pixel's view ray meets it (behind the mesh too): the
 //                       ground's mask, which the shadow catcher filters bilinearly, and the mask
 //                       (the mesh's texels are overwritten by the mesh's passes)
@@ -28,7 +28,7 @@ layout(location = 1) out vec2 outKey;        // the texel's pixel: view depth, m
 layout(location = 2) out vec4 outGroundMask; // SHADOW_MASK_GROUND
 
 void main() {
-    ivec2 pixel = min(ivec2(gl_FragCoord.xy) * 2, ivec2(frame.viewport.xy) - 1);
+    ivec2 pixel = min(ivec2(gl_FragCoord.xy) * stage.counts.y, ivec2(frame.viewport.xy) - 1);
     float depth = texelFetch(gDepthTex, pixel, 0).r;
     int materialId = readMaterialId(pixel);
     vec2 centre = vec2(pixel) + 0.5;

@@ -15,8 +15,9 @@ layout(binding = BINDING_SHADOW_KEY_TEX) uniform sampler2D uShadowKey;
 layout(binding = BINDING_GROUND_SHADOW_MASK_TEX) uniform sampler2D uGroundShadowMask;
 
 // Every slot's visibility at @p pixel, whose view depth is @p viewDepth and material id
-// @p materialId, from the half-resolution mask: texel t holds the lookup at pixel 2t, so an even
-// pixel reads its own texel and the others blend the two or four around them, each weighed by its
+// @p materialId, from the mask at the stage's downsample D (stage.counts.y: 2, or 4 while the
+// camera moves): texel t holds the lookup at pixel D t, so such a pixel reads its own texel and
+// the others blend the two or four around them, each weighed by its
 // key (a joint bilateral upsample, Kopf et al. 2007, as the occlusion term's in
 // stage_shading.glsl): a texel of another material (the ground beside the mesh) or another depth
 // (across a silhouette) drops out; where none is alike, the same material nearest in depth wins,
@@ -24,8 +25,9 @@ layout(binding = BINDING_GROUND_SHADOW_MASK_TEX) uniform sampler2D uGroundShadow
 // per pixel and pass the result on.
 vec4 shadowMaskAll(ivec2 pixel, float viewDepth, int materialId) {
     ivec2 last = textureSize(uShadowMask, 0) - 1;
-    ivec2 b = pixel >> 1;
-    vec2 f = vec2(pixel & 1) * 0.5;
+    int D = stage.counts.y;
+    ivec2 b = pixel / D;
+    vec2 f = vec2(pixel - b * D) / float(D);
     // textureGather's texels around the corner b + 1: (0,1), (1,1), (1,0), (0,0) from b; the
     // key's edges clamp (render/frame_targets.cpp).
     vec2 cornerUv = (vec2(b) + 1.0) / vec2(last + 1);
@@ -68,14 +70,15 @@ vec4 surfaceShadowMask(ivec2 pixel, float viewDepth, int materialId) {
 #endif
 }
 
-// Every slot's visibility on the ground seen at @p pixel, from the ground's half-resolution mask
-// (shadow_mask.frag's SHADOW_MASK_GROUND): it holds the ground behind the mesh too, so it is smooth
-// across the mesh's silhouettes and one bilinear fetch upsamples it (texel t is pixel 2t, so
-// pixel p sits at texel p / 2). Compiled out without a shadow slot (WITH_SHADOW_MASK 0).
+// Every slot's visibility on the ground seen at @p pixel, from the ground's mask at the stage's
+// downsample D (shadow_mask.frag's SHADOW_MASK_GROUND): it holds the ground behind the mesh too,
+// so it is smooth across the mesh's silhouettes and one bilinear fetch upsamples it (texel t is
+// pixel D t, so pixel p sits at texel p / D). Compiled out without a shadow slot
+// (WITH_SHADOW_MASK 0).
 vec4 groundShadowMask(ivec2 pixel) {
 #if WITH_SHADOW_MASK
     vec2 size = vec2(textureSize(uGroundShadowMask, 0));
-    return textureLod(uGroundShadowMask, (vec2(pixel) * 0.5 + 0.5) / size, 0.0);
+    return textureLod(uGroundShadowMask, (vec2(pixel) / float(stage.counts.y) + 0.5) / size, 0.0);
 #else
     return vec4(1.0);
 #endif

@@ -8,7 +8,7 @@
 layout(binding = BINDING_OCCLUSION_TEX) uniform sampler2D uOcclusion;
 
 // The occlusion of full-resolution pixel `pixel` at view depth `viewDepth` (m, positive): 1 when
-// the term is off. The four half-resolution neighbours weigh by bilinear position times depth
+// the term is off. The four neighbours at the stage's downsample (stage.counts.y) weigh by bilinear position times depth
 // likeness, so occlusion does not bleed across silhouettes.
 // WITH_OCCLUSION 0 (render/lighting_features.h): the term is off, a constant 1.
 #ifndef WITH_OCCLUSION
@@ -21,20 +21,30 @@ float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
     if (stage.occlusion.x < 0.5)
         return 1.0;
     vec2 size = stage.occlusion.zw;
-    vec2 h = (vec2(pixel) + 0.5) * 0.5 - 0.5;
+    vec2 h = (vec2(pixel) + 0.5) / float(stage.counts.y) - 0.5;
     vec2 b = floor(h);
     vec2 f = h - b;
-    // The 2x2 texels b .. b + 1 in two gathers, (0,1), (1,1), (1,0), (0,0) from b (clamped
-    // edges), as the blur reads its window (BENCHMARKS.md, "The occlusion by gathers").
-    vec2 uv = (b + 1.0) / size;
-    vec4 vis = textureGather(uOcclusion, uv, 0);
-    vec4 depth = textureGather(uOcclusion, uv, 1);
-    vec4 bilinear = gatherBilinearWeights(f); // common_math.glsl
-    vec4 d = abs(depth - viewDepth) / (0.03 * viewDepth + 0.01);
-    // The nearest in depth wins where none is alike.
-    vec4 w = (bilinear + 1e-3) * exp(-d * d) + 1e-6 / (1.0 + d);
-    float total = dot(w, vec4(1.0));
-    return total > 0.0 ? dot(vis, w) / total : 1.0;
+    // Texels b .. b + 1 outside those the occlusion's passes drew are exactly 1 (render/ao_pass.h):
+    // the upsample is a loop run once or not at all, which llvmpipe leaves for a whole block of
+    // such pixels (the shadow catcher's ground far from the mesh), where it runs both sides of
+    // an `if`.
+    ivec4 drawn = stage.occlusionTexels;
+    bool reads = all(greaterThanEqual(ivec2(b) + 1, drawn.xy)) && all(lessThan(ivec2(b), drawn.zw));
+    float result = 1.0;
+    for (int once = 0; once < (reads ? 1 : 0); ++once) {
+        // The 2x2 texels b .. b + 1 in two gathers, (0,1), (1,1), (1,0), (0,0) from b (clamped
+        // edges), as the blur reads its window (BENCHMARKS.md, "The occlusion by gathers").
+        vec2 uv = (b + 1.0) / size;
+        vec4 vis = textureGather(uOcclusion, uv, 0);
+        vec4 depth = textureGather(uOcclusion, uv, 1);
+        vec4 bilinear = gatherBilinearWeights(f); // common_math.glsl
+        vec4 d = abs(depth - viewDepth) / (0.03 * viewDepth + 0.01);
+        // The nearest in depth wins where none is alike.
+        vec4 w = (bilinear + 1e-3) * exp(-d * d) + 1e-6 / (1.0 + d);
+        float total = dot(w, vec4(1.0));
+        result = total > 0.0 ? dot(vis, w) / total : 1.0;
+    }
+    return result;
 }
 
 #ifndef WITH_LOCAL_SHADOWS

@@ -55,7 +55,10 @@ private slots:
                               "stage_frame_shadow_cpu_ms",
                               "shadow_map_pass_ms",
                               "occlusion_pass_ms",
-                              "shadow_mask_pass_ms"};
+                              "shadow_mask_pass_ms",
+                              "stage_shadow_ao_overhead_at_rest_resolution",
+                              "shadow_mask_pass_at_rest_resolution_ms",
+                              "occlusion_pass_at_rest_resolution_ms"};
         for (const char* k : keys)
             QVERIFY2(o.contains(k) && o.value(k).isDouble(), k);
         // The 24-byte layout with lobe channels beside the compact 16-byte one (issue 13).

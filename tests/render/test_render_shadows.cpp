@@ -2,7 +2,8 @@
 // the CPU (a ray from each ground point to the light, against the sphere), no self-shadowing of
 // a flat plane, and the screen-space occlusion term: 1 on an open plane (also under a weave that
 // bends its normals), below 1 in a crease, exactly 1 beyond its radius from the mesh, and the
-// light a bright crease bounces given back.
+// light a bright crease bounces given back. The shadow and the occlusion hold their known answers
+// in frames drawn while the camera moves too (FrameSettings::navigating: the stage at a quarter).
 #include "core/document_io.h"
 #include "core/light_rigs.h"
 #include "render/offscreen.h"
@@ -21,6 +22,23 @@ using namespace velvet;
 
 namespace {
 
+/// The frames drawn as while the camera moves (FrameSettings::navigating): the `navigating` rows.
+bool navigatingFrames = false;
+
+/// The frame's size over the test's: 2 in the navigating rows, whose stage is drawn at a quarter
+/// of the frame each way, not half, so that its texels cover what the rows at rest's do and the
+/// known answers' margins (in world units) mean the same; at 1280 x 720 a quarter is 320 x 180.
+int framePixelsPerStagePixel() {
+    return navigatingFrames ? 2 : 1;
+}
+
+/// The `navigating` column: the frames at rest and the frames while the camera moves.
+void addNavigatingRows() {
+    QTest::addColumn<bool>("navigating");
+    QTest::newRow("at rest") << false;
+    QTest::newRow("navigating") << true;
+}
+
 /// The process's test::OffscreenRenderer, resized per test (renderLinear).
 test::OffscreenRenderer* rig() {
     return test::processRenderer(128);
@@ -38,6 +56,7 @@ Image drawLinear(test::OffscreenRenderer* r, int size,
     fs.width = fs.height = size;
     fs.view = view;
     fs.lightPath = path;
+    fs.navigating = navigatingFrames;
     if (!r->renderer->render(fs, r->target->framebuffer(), &error))
         qFatal("render failed: %s", error.c_str());
     return r->renderer->readLinear();
@@ -114,11 +133,15 @@ float rayMissDistance(glm::vec3 p, glm::vec3 toLight, float length) {
 }
 
 /// Ground pixels of @p withShadows / @p without, classified by the CPU: in the umbra (the ray to
-/// the light passes the sphere's centre closer than 0.9) the ratio must be below 0.05, clearly
-/// outside (farther than 1.1) above 0.98.
+/// the light passes the sphere's centre closer than 0.9; 0.88 in the navigating rows) the ratio
+/// must be below 0.05, clearly outside (farther than 1.1; 1.12) above 0.98.
 void checkGroundShadow(const Scene& lit, const std::function<float(glm::vec3)>& missDistance,
                        render::LightPath path = render::LightPath::Auto) {
-    const int size = 128;
+    const int size = 128 * framePixelsPerStagePixel();
+    // Where the CPU's answer is sure: 0.1 m (about a mask texel) either side of the shadow's edge;
+    // a frame drawn while the camera moves interpolates between texels twice as far apart in
+    // pixels, which reach a little further into the margin (0.952 at 1.1009 m).
+    const float margin = navigatingFrames ? 0.12f : 0.1f;
     Scene unshadowed = lit;
     for (Light& l : unshadowed.lights)
         l.castShadows = false;
@@ -136,7 +159,7 @@ void checkGroundShadow(const Scene& lit, const std::function<float(glm::vec3)>& 
                 continue; // outside the spot's cone
             const float ratio = luminance(with.rgba(x, y)) / full;
             const float miss = missDistance(p);
-            if (miss < 0.9f) {
+            if (miss < 1.0f - margin) {
                 ++umbra;
                 if (ratio > 0.05f)
                     QFAIL(qPrintable(QString("ground (%1, %2, %3) should be in the umbra: %4 of "
@@ -145,7 +168,7 @@ void checkGroundShadow(const Scene& lit, const std::function<float(glm::vec3)>& 
                                          .arg(p.y)
                                          .arg(p.z)
                                          .arg(ratio)));
-            } else if (miss > 1.1f) {
+            } else if (miss > 1.0f + margin) {
                 ++open;
                 if (ratio < 0.98f)
                     QFAIL(qPrintable(QString("ground (%1, %2, %3) should be lit: %4 of the "
@@ -186,8 +209,12 @@ private slots:
     void cleanupTestCase() {
         test::stopProcessRenderer(); // while the context is current
     }
+    void init() { navigatingFrames = false; }
 
+    void directionalShadowOfSphereOnGround_data() { addNavigatingRows(); }
     void directionalShadowOfSphereOnGround() {
+        QFETCH(bool, navigating);
+        navigatingFrames = navigating;
         Scene scene = stageScene(PreviewMeshKind::Sphere);
         scene.environment.ground = GroundMode::Plain;
         Light sun = test::analyticKeyLight();
@@ -448,14 +475,17 @@ private slots:
     }
 
     // The occlusion term alone (the occlusion view: material occlusion x GTAO).
+    void occlusionIsOneOnAnOpenPlane_data() { addNavigatingRows(); }
     void occlusionIsOneOnAnOpenPlane() {
+        QFETCH(bool, navigating);
+        navigatingFrames = navigating;
         Scene scene = stageScene(PreviewMeshKind::Plane);
         scene.camera.orthographic = false;
         scene.camera.target = {0.0f, 0.0f, 0.0f};
         scene.camera.distance = 3.0f;
         scene.environment.ambientOcclusion = true;
         scene.environment.occlusionRadius = 0.4f;
-        const int size = 96;
+        const int size = 96 * framePixelsPerStagePixel();
         const Image ao = renderLinear(scene, size, render::DebugView::Occlusion);
         const Image normal = renderLinear(scene, size, render::DebugView::Normal);
         int checked = 0;
@@ -517,13 +547,16 @@ private slots:
                  qPrintable(QString("open plane occluded: mean %1").arg(sum / checked)));
     }
 
+    void occlusionIsBelowOneInACrease_data() { addNavigatingRows(); }
     void occlusionIsBelowOneInACrease() {
+        QFETCH(bool, navigating);
+        navigatingFrames = navigating;
         const Scene scene = creaseScene();
-        const int size = 128;
+        const int size = 128 * framePixelsPerStagePixel();
         const Image ao = renderLinear(scene, size, render::DebugView::Occlusion);
         const Image pos = renderLinear(scene, size, render::DebugView::Position);
         double creaseSum = 0.0, openSum = 0.0;
-        int crease = 0, open = 0;
+        int crease = 0, open = 0, openBelow = 0;
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
                 const float d = distanceFromCube(glm::vec3(pos.rgba(x, y)));
@@ -536,11 +569,19 @@ private slots:
                 } else if (d > 0.8f) {
                     openSum += a;
                     ++open;
-                    QVERIFY2(a > 0.95f, qPrintable(QString("open ground occluded: %1").arg(a)));
+                    // A frame drawn while the camera moves: a ground pixel by the cube's
+                    // silhouette whose four texels, a quarter of the frame apart, all lie on the
+                    // cube takes the cube's occlusion (by the top edge: 0.938 in 4 of 6,765).
+                    const float least = navigatingFrames ? 0.9f : 0.95f;
+                    QVERIFY2(a > least, qPrintable(QString("open ground occluded: %1").arg(a)));
+                    openBelow += a <= 0.95f;
                 }
             }
-        qInfo("crease: %d pixels, mean %.3f; open ground: %d pixels, mean %.3f", crease,
-              creaseSum / std::max(crease, 1), open, openSum / std::max(open, 1));
+        qInfo("crease: %d pixels, mean %.3f; open ground: %d pixels, mean %.3f, %d at or below "
+              "0.95",
+              crease, creaseSum / std::max(crease, 1), open, openSum / std::max(open, 1),
+              openBelow);
+        QVERIFY(openBelow * 1000 <= open);
         QVERIFY(crease >= 10 && open >= 100);
         QVERIFY(creaseSum / crease < 0.9);
         QVERIFY(openSum / open > 0.98);

@@ -1,6 +1,7 @@
 // Drives the real MainWindow under xvfb-run (issue 14, docs/shadows.md): a light's "Casts
 // shadows" box, the Scene toolbar's ground toggle, the Scene panel's ground and occlusion, and
-// the mesh chooser's stage defaults are undoable document edits that change the viewport.
+// the mesh chooser's stage defaults are undoable document edits that change the viewport. An
+// orbit at full size draws the stage's masks and occlusion coarser until the mouse is released.
 #include "core/scene.h"
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
@@ -19,6 +20,7 @@
 #include <QTest>
 #include <QToolButton>
 #include <QUndoStack>
+#include <algorithm>
 
 using namespace velvet;
 using namespace velvet::ui;
@@ -125,6 +127,48 @@ private slots:
         QCOMPARE(m_doc->scene().mesh.kind, PreviewMeshKind::ClothDrape);
         QCOMPARE(m_doc->scene().environment.ground, GroundMode::Plain);
         QVERIFY(!m_doc->scene().environment.ambientOcclusion);
+    }
+
+    // With the reduced resolution off, a left drag's frames are drawn navigating (the stage's
+    // shadow masks and occlusion at a quarter: FrameSettings::navigating); the release draws the
+    // view at rest again, at half. A reduced frame is coarse already and is not navigating.
+    void orbitDrawsTheStageCoarserUntilReleased() {
+        ViewportWidget* viewport = m_window->viewport();
+        QWindow* gl = viewport->glWindow();
+        viewport->setReducedResolution(false);
+        const QPoint c = viewport->rect().center();
+        QTest::mousePress(gl, Qt::LeftButton, Qt::NoModifier, c);
+        QTest::mouseMove(gl, c + QPoint(12, 3));
+        QTRY_VERIFY_WITH_TIMEOUT(viewport->lastFrameNavigating(), 5000);
+        QCOMPARE(viewport->lastRenderScale(), 1.0f);
+        const int frames = viewport->frameCount();
+        QTest::mouseRelease(gl, Qt::LeftButton, Qt::NoModifier, c + QPoint(12, 3));
+        QTRY_VERIFY_WITH_TIMEOUT(viewport->frameCount() > frames, 5000);
+        QTRY_VERIFY_WITH_TIMEOUT(!viewport->lastFrameNavigating(), 5000);
+
+        // Reduced (the default): every frame of the drag records its scale and whether it was
+        // drawn navigating.
+        viewport->setReducedResolution(true);
+        QList<QPair<float, bool>> drawn;
+        const QMetaObject::Connection noted =
+            connect(viewport, &ViewportWidget::frameCompleted, this, [&] {
+                drawn.append({viewport->lastRenderScale(), viewport->lastFrameNavigating()});
+            });
+        QTest::mousePress(gl, Qt::LeftButton, Qt::NoModifier, c);
+        for (int i = 1; i <= 4; ++i) {
+            QTest::mouseMove(gl, c + QPoint(-6 * i, 2 * i));
+            QTest::qWait(10);
+        }
+        const auto reduced = [&] {
+            return std::any_of(drawn.begin(), drawn.end(),
+                               [](const QPair<float, bool>& f) { return f.first < 1.0f; });
+        };
+        QTRY_VERIFY_WITH_TIMEOUT(reduced(), 5000);
+        QTest::mouseRelease(gl, Qt::LeftButton, Qt::NoModifier, c + QPoint(-24, 8));
+        QTRY_COMPARE_WITH_TIMEOUT(viewport->lastRenderScale(), 1.0f, 5000);
+        disconnect(noted);
+        for (const QPair<float, bool>& f : drawn)
+            QVERIFY2(!(f.first < 1.0f && f.second), "a reduced frame was drawn navigating");
     }
 
 private:
