@@ -123,6 +123,8 @@ MainWindow::MainWindow(bool restoreLayout, QWidget* parent)
             &ViewportWidget::setTimingOverlayVisible);
     connect(m_viewToolbar, &ViewportToolbar::progressiveAntialiasToggled, m_viewport,
             &ViewportWidget::setProgressiveAntialiasing);
+    connect(m_viewToolbar, &ViewportToolbar::reducedWhileMovingToggled, m_viewport,
+            [this](bool on) { m_viewport->setReducedResolution(on); });
 
     resize(1280, 800);
     // Under the viewport: the graph three fifths of the width, the Log (and Post chain) the rest,
@@ -306,6 +308,8 @@ void MainWindow::applyViewState() {
     m_viewport->setFrameSettings(m_viewToolbar->frameSettings());
     m_viewport->setTimingOverlayVisible(m_viewToolbar->timingOverlay());
     m_viewport->setProgressiveAntialiasing(m_viewToolbar->progressiveAntialias());
+    if (m_viewport->reducedResolutionEnabled() != m_viewToolbar->reducedWhileMoving())
+        m_viewport->setReducedResolution(m_viewToolbar->reducedWhileMoving());
     m_properties->setPickerColorSpace(m_viewToolbar->pickerColorSpace());
 }
 

@@ -58,6 +58,7 @@ const char* const kLookKey = "viewport/look";
 const char* const kExposureKey = "viewport/exposureEv";
 const char* const kOverlayKey = "viewport/timingOverlay";
 const char* const kAntialiasKey = "viewport/progressiveAntialias";
+const char* const kReducedKey = "viewport/reducedWhileMoving";
 
 constexpr double kMaxExposure = 10.0;
 constexpr int kExposureSliderSteps = 10; // slider units per EV
@@ -129,6 +130,14 @@ ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorMan
         tr("Anti-alias the still view: once nothing changes, average %1 frames offset by a "
            "fraction of a pixel (smooth silhouettes, highlights and threads)")
             .arg(ViewportWidget::kProgressiveSamples));
+    m_reduced = addAction(tr("Half while moving"));
+    m_reduced->setObjectName(QStringLiteral("reducedWhileMovingAction"));
+    m_reduced->setCheckable(true);
+    m_reduced->setChecked(true);
+    m_reduced->setToolTip(
+        tr("Draw the view at half size while it moves (a drag, a slider) and at full size once it "
+           "rests. Off: full size while moving too, the shadows and contact occlusion drawn "
+           "coarser while the camera moves"));
     m_overlay = addAction(tr("Timings"));
     m_overlay->setObjectName(QStringLiteral("timingOverlayAction"));
     m_overlay->setCheckable(true);
@@ -155,6 +164,11 @@ ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorMan
         if (!m_updating) // restoreSettings(): nothing new to save
             saveSettings();
         emit progressiveAntialiasToggled(on);
+    });
+    connect(m_reduced, &QAction::toggled, this, [this](bool on) {
+        if (!m_updating)
+            saveSettings();
+        emit reducedWhileMovingToggled(on);
     });
     connect(m_overlay, &QAction::toggled, this, [this](bool on) {
         if (!m_updating)
@@ -233,6 +247,10 @@ bool ViewportToolbar::progressiveAntialias() const {
     return m_antialias->isChecked();
 }
 
+bool ViewportToolbar::reducedWhileMoving() const {
+    return m_reduced->isChecked();
+}
+
 void ViewportToolbar::restoreSettings() {
     QSettings settings;
     m_updating = true;
@@ -250,8 +268,10 @@ void ViewportToolbar::restoreSettings() {
     // other's not yet restored state over the stored one.
     const bool overlay = settings.value(kOverlayKey, false).toBool();
     const bool antialias = settings.value(kAntialiasKey, true).toBool();
+    const bool reduced = settings.value(kReducedKey, true).toBool();
     m_overlay->setChecked(overlay);
     m_antialias->setChecked(antialias);
+    m_reduced->setChecked(reduced);
     m_updating = false;
     emit viewStateChanged();
 }
@@ -265,6 +285,7 @@ void ViewportToolbar::saveSettings() const {
     settings.setValue(kExposureKey, m_exposure->value());
     settings.setValue(kOverlayKey, m_overlay->isChecked());
     settings.setValue(kAntialiasKey, m_antialias->isChecked());
+    settings.setValue(kReducedKey, m_reduced->isChecked());
 }
 
 // ---------------------------------------------------------------------------------------------

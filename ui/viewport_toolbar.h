@@ -58,6 +58,9 @@ public:
     bool timingOverlay() const;
     /// The still view refined by progressive anti-aliasing (ViewportWidget; on by default).
     bool progressiveAntialias() const;
+    /// The view drawn at half size while it moves (ViewportWidget::setReducedResolution; on by
+    /// default); off, full size, the stage's soft terms coarser while the camera moves.
+    bool reducedWhileMoving() const;
 
     /// Reads the view state from QSettings (unknown names fall back to the defaults).
     void restoreSettings();
@@ -69,6 +72,7 @@ signals:
     void viewStateChanged();
     void timingOverlayToggled(bool visible);
     void progressiveAntialiasToggled(bool on);
+    void reducedWhileMovingToggled(bool on);
 
 private:
     void fillViews();
@@ -82,6 +86,7 @@ private:
     QDoubleSpinBox* m_exposure;
     QSlider* m_exposureSlider;
     QAction* m_antialias;
+    QAction* m_reduced;
     QAction* m_overlay;
     bool m_updating = false;
 };

@@ -10,6 +10,7 @@
 #include "ui_test_util.h"
 #include "ui_test_window.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
@@ -129,13 +130,19 @@ private slots:
         QVERIFY(!m_doc->scene().environment.ambientOcclusion);
     }
 
-    // With the reduced resolution off, a left drag's frames are drawn navigating (the stage's
-    // shadow masks and occlusion at a quarter: FrameSettings::navigating); the release draws the
-    // view at rest again, at half. A reduced frame is coarse already and is not navigating.
+    // With the toolbar's "Half while moving" off, a left drag's frames are drawn at full size,
+    // navigating (the stage's shadow masks and occlusion at a quarter: FrameSettings::navigating);
+    // the release draws the view at rest again, at half. With it on (the default) the drag's
+    // frames are reduced, coarse already, and not navigating.
     void orbitDrawsTheStageCoarserUntilReleased() {
         ViewportWidget* viewport = m_window->viewport();
         QWindow* gl = viewport->glWindow();
-        viewport->setReducedResolution(false);
+        auto* reducedAction =
+            m_window->findChild<QAction*>(QStringLiteral("reducedWhileMovingAction"));
+        QVERIFY(reducedAction && reducedAction->isChecked() &&
+                viewport->reducedResolutionEnabled());
+        reducedAction->trigger();
+        QVERIFY(!viewport->reducedResolutionEnabled());
         const QPoint c = viewport->rect().center();
         QTest::mousePress(gl, Qt::LeftButton, Qt::NoModifier, c);
         QTest::mouseMove(gl, c + QPoint(12, 3));
@@ -148,7 +155,8 @@ private slots:
 
         // Reduced (the default): every frame of the drag records its scale and whether it was
         // drawn navigating.
-        viewport->setReducedResolution(true);
+        reducedAction->trigger();
+        QVERIFY(viewport->reducedResolutionEnabled());
         QList<QPair<float, bool>> drawn;
         const QMetaObject::Connection noted =
             connect(viewport, &ViewportWidget::frameCompleted, this, [&] {
