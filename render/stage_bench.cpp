@@ -22,6 +22,11 @@ double processCpuMs() {
            double(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
 }
 
+/// How much more @p ms is than @p baseMs, as a fraction (0.25: a quarter more).
+double overhead(double ms, double baseMs) {
+    return ms / std::max(baseMs, 1e-6) - 1.0;
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0.0 : v[v.size() / 2];
@@ -141,23 +146,22 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     report.frameShadowMs = median(shadowMs);
     report.frameStageMs = median(fullMs);
     report.frameStageValueEditMs = median(valueEditMs);
-    report.shadowOverhead = report.frameShadowMs / std::max(report.frameOffMs, 1e-6) - 1.0;
-    report.stageOverhead = report.frameStageMs / std::max(report.frameOffMs, 1e-6) - 1.0;
+    report.shadowOverhead = overhead(report.frameShadowMs, report.frameOffMs);
+    report.stageOverhead = overhead(report.frameStageMs, report.frameOffMs);
     report.shadowMapMs = median(mapMs);
     report.occlusionMs = median(occlusionMs);
     report.shadowMaskMs = median(maskMs);
     report.cpuOffMs = median(offCpu);
     report.cpuShadowMs = median(shadowCpu);
     report.cpuStageMs = median(fullCpu);
-    report.cpuShadowOverhead = report.cpuShadowMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
-    report.cpuStageOverhead = report.cpuStageMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
+    report.cpuShadowOverhead = overhead(report.cpuShadowMs, report.cpuOffMs);
+    report.cpuStageOverhead = overhead(report.cpuStageMs, report.cpuOffMs);
     report.cpuShadowUnsettledMs = median(unsettledCpu);
-    report.cpuShadowUnsettledOverhead =
-        report.cpuShadowUnsettledMs / std::max(report.cpuOffMs, 1e-6) - 1.0;
+    report.cpuShadowUnsettledOverhead = overhead(report.cpuShadowUnsettledMs, report.cpuOffMs);
     report.frameShadowRestMs = median(shadowRestMs);
     report.frameStageRestMs = median(fullRestMs);
-    report.shadowRestOverhead = report.frameShadowRestMs / std::max(report.frameOffMs, 1e-6) - 1.0;
-    report.stageRestOverhead = report.frameStageRestMs / std::max(report.frameOffMs, 1e-6) - 1.0;
+    report.shadowRestOverhead = overhead(report.frameShadowRestMs, report.frameOffMs);
+    report.stageRestOverhead = overhead(report.frameStageRestMs, report.frameOffMs);
     report.shadowMaskRestMs = median(maskRestMs);
     report.occlusionRestMs = median(occlusionRestMs);
     report.shadowMaskTexels = median(texels);

@@ -63,6 +63,17 @@ const char* const kReducedKey = "viewport/reducedWhileMoving";
 constexpr double kMaxExposure = 10.0;
 constexpr int kExposureSliderSteps = 10; // slider units per EV
 
+/// A checkable action of @p bar, checked or not, named for the tests and settings.
+QAction* addToggle(QToolBar* bar, const QString& text, const QString& name, bool checked,
+                   const QString& tip) {
+    QAction* action = bar->addAction(text);
+    action->setObjectName(name);
+    action->setCheckable(true);
+    action->setChecked(checked);
+    action->setToolTip(tip);
+    return action;
+}
+
 QComboBox* makeCombo(const QString& name, const QString& tip, QWidget* parent) {
     auto* combo = new QComboBox(parent);
     combo->setObjectName(name);
@@ -122,26 +133,18 @@ ViewportToolbar::ViewportToolbar(std::shared_ptr<const ColorManagement> colorMan
     addWidget(m_exposure);
     addSeparator();
 
-    m_antialias = addAction(tr("Refine"));
-    m_antialias->setObjectName(QStringLiteral("progressiveAntialiasAction"));
-    m_antialias->setCheckable(true);
-    m_antialias->setChecked(true);
-    m_antialias->setToolTip(
+    m_antialias = addToggle(
+        this, tr("Refine"), QStringLiteral("progressiveAntialiasAction"), true,
         tr("Anti-alias the still view: once nothing changes, average %1 frames offset by a "
            "fraction of a pixel (smooth silhouettes, highlights and threads)")
             .arg(ViewportWidget::kProgressiveSamples));
-    m_reduced = addAction(tr("Half while moving"));
-    m_reduced->setObjectName(QStringLiteral("reducedWhileMovingAction"));
-    m_reduced->setCheckable(true);
-    m_reduced->setChecked(true);
-    m_reduced->setToolTip(
+    m_reduced = addToggle(
+        this, tr("Half while moving"), QStringLiteral("reducedWhileMovingAction"), true,
         tr("Draw the view at half size while it moves (a drag, a slider) and at full size once it "
            "rests. Off: full size while moving too, the shadows and contact occlusion drawn "
            "coarser while the camera moves"));
-    m_overlay = addAction(tr("Timings"));
-    m_overlay->setObjectName(QStringLiteral("timingOverlayAction"));
-    m_overlay->setCheckable(true);
-    m_overlay->setToolTip(tr("Show per-pass GPU timings over the viewport"));
+    m_overlay = addToggle(this, tr("Timings"), QStringLiteral("timingOverlayAction"), false,
+                          tr("Show per-pass GPU timings over the viewport"));
 
     fillViews();
 
