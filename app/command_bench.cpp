@@ -48,6 +48,8 @@ const char* kHelp =
     "The look-dev stage: the shader ball on a shadow catcher under the key light, the frame with\n"
     "its shadow (and ambient occlusion) against without, and the shadow-map and occlusion passes;\n"
     "its frames also by the process's CPU time (*_cpu_ms, *_overhead_cpu), steadier under load.\n"
+    "Its orbit frames are drawn as the editor draws full-size frames while the camera moves (the\n"
+    "shadow masks and occlusion at a quarter); *_at_rest_resolution: the same frames at half.\n"
     "The G-buffer: the 24-byte layout with eight lobe channels beside the compact 16-byte one,\n"
     "alternate frames of two renderers, G-buffer + lighting time and frame time, for the default\n"
     "velvet and for a velvet with four lobe maps (which the compact layout draws as means).\n"
