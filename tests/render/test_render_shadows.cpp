@@ -227,15 +227,25 @@ private slots:
                           [toLight](glm::vec3 p) { return rayMissDistance(p, toLight, 1e9f); });
     }
 
-    // A spot light's perspective map, through the point-lights paths (brute force and tiled).
+    // A spot light's perspective map, through the point-lights paths (brute force, tiled and
+    // volumes), each reading the mask at rest and while the camera moves.
     void spotShadowOfSphereOnGround_data() {
         QTest::addColumn<int>("path");
-        QTest::newRow("brute") << int(render::LightPath::Brute);
-        QTest::newRow("tiled") << int(render::LightPath::Tiled);
-        QTest::newRow("volumes") << int(render::LightPath::Volumes);
+        QTest::addColumn<bool>("navigating");
+        for (bool navigating : {false, true}) {
+            const char* suffix = navigating ? " navigating" : "";
+            QTest::newRow(qPrintable(QString("brute%1").arg(suffix)))
+                << int(render::LightPath::Brute) << navigating;
+            QTest::newRow(qPrintable(QString("tiled%1").arg(suffix)))
+                << int(render::LightPath::Tiled) << navigating;
+            QTest::newRow(qPrintable(QString("volumes%1").arg(suffix)))
+                << int(render::LightPath::Volumes) << navigating;
+        }
     }
     void spotShadowOfSphereOnGround() {
         QFETCH(int, path);
+        QFETCH(bool, navigating);
+        navigatingFrames = navigating;
         Scene scene = stageScene(PreviewMeshKind::Sphere);
         scene.environment.ground = GroundMode::Plain;
         Light spot;
