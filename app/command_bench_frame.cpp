@@ -6,13 +6,14 @@
 // `velvet bench`'s frame_nolights_wall_ms; the passes are GPU timer queries. The frame is drawn
 // as the editor's viewport draws it: display only (FrameSettings::displayOnly: the tone map
 // inside the lighting pass), after a material value edit (a slider dragged: each frame changes
-// the roughness, so the background's pixels are kept, render/frame_reuse.h). Beside it, in
+// the roughness, so the background's pixels are kept, render/frame_reuse.h, and, the velvet's
+// values being the same at every pixel, its G-buffer: gbuffer_kept_frames). Beside it, in
 // turn, the same frame while the camera orbits (orbit_: half a degree a frame, every pixel
 // drawn), through the scene-linear target with the tone map a pass of its own (hdr_), and with
 // the generic lighting program (every term and lobe at run time, generic_), and as the editor
 // refines a still view (refine_: each frame jittered and folded into the progressive mean,
-// render/progressive_accumulation.h), so each gain and cost is measured on the same machine
-// state.
+// render/progressive_accumulation.h), and the value edit drawing its G-buffer again
+// (gbuffer_drawn_), so each gain and cost is measured on the same machine state.
 #include "app/cli.h"
 #include "core/document_io.h"
 #include "core/post_effects.h"
@@ -62,12 +63,17 @@ int runFrameBench(bool json, bool quick) {
         render::Renderer renderer;
         std::vector<double> wall, cpu, gbuffer, lighting, post;
         int backgroundKept = 0;
+        int gbufferKept = 0; ///< frames that kept the G-buffer (a value edit: FramePasses)
     };
-    Variant variants[5] = {{"", true, true, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
-                           {"orbit_", true, true, Change::Orbit, {}, {}, {}, {}, {}, {}},
-                           {"hdr_", true, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
-                           {"generic_", false, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
-                           {"refine_", true, true, Change::Refine, {}, {}, {}, {}, {}, {}}};
+    Variant variants[6] = {
+        {"", true, true, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
+        {"orbit_", true, true, Change::Orbit, {}, {}, {}, {}, {}, {}},
+        {"hdr_", true, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
+        {"generic_", false, false, Change::ValueEdit, {}, {}, {}, {}, {}, {}},
+        {"refine_", true, true, Change::Refine, {}, {}, {}, {}, {}, {}},
+        // The value edit drawing its G-buffer again (FrameSettings::keepGBuffer
+        // off): what keeping it saves.
+        {"gbuffer_drawn_", true, true, Change::ValueEdit, {}, {}, {}, {}, {}, {}}};
     render::OffscreenTarget target;
     if (!target.resize(width, height, &error)) {
         std::cerr << "velvet bench: " << error << "\n";
@@ -91,6 +97,7 @@ int runFrameBench(bool json, bool quick) {
     for (int i = 0; i < frames + 2; ++i)
         for (Variant& v : variants) {
             fs.displayOnly = v.displayOnly;
+            fs.keepGBuffer = &v != &variants[5];
             // What changed since the last frame: a value (the roughness, by turns 1 % either
             // side) or the camera (the yaw).
             fs.camera.reset();
@@ -130,6 +137,7 @@ int runFrameBench(bool json, bool quick) {
             v.lighting.push_back(t.lightingMs);
             v.post.push_back(t.postMs);
             v.backgroundKept += v.renderer.lastFramePasses().backgroundKept ? 1 : 0;
+            v.gbufferKept += v.renderer.lastFramePasses().gbufferKept ? 1 : 0;
         }
     std::vector<std::pair<std::string, double>> figures{
         {"width", width}, {"height", height}, {"frames", frames}};
@@ -142,6 +150,7 @@ int runFrameBench(bool json, bool quick) {
         figures.emplace_back(p + "post_ms", median(v.post));
         if (v.displayOnly)
             figures.emplace_back(p + "background_kept_frames", v.backgroundKept);
+        figures.emplace_back(p + "gbuffer_kept_frames", v.gbufferKept);
     }
     // What keeping the background saves: an orbit's frame against a value edit's.
     figures.emplace_back("background_kept_speedup",
@@ -162,6 +171,8 @@ int runFrameBench(bool json, bool quick) {
     // A refinement frame (jittered, every pixel drawn, then folded into the mean) against an
     // orbit's frame (every pixel drawn): what the mean adds.
     figures.emplace_back("refine_vs_orbit", median(variants[4].wall) / median(variants[1].wall));
+    figures.emplace_back("gbuffer_kept_speedup",
+                         median(variants[5].wall) / median(variants[0].wall));
     const render::FramePasses passes = variants[0].renderer.lastFramePasses();
     figures.emplace_back("inline_display_frames", passes.inlineDisplay ? 1.0 : 0.0);
     figures.emplace_back("fullscreen_passes", passes.fullScreen);

@@ -4,8 +4,10 @@
 #include "render/shader_program.h"
 #include "render/texture_set.h"
 
+#include <algorithm>
 #include <epoxy/gl.h>
 #include <glm/trigonometric.hpp>
+#include <string_view>
 
 namespace velvet::render {
 
@@ -46,6 +48,11 @@ GpuMaterial packMaterialRecord(const Material& m, const TextureSet& textures,
     g.clearcoat.w = float(map.iorEntry());
     g.sheenWeightAnisotropy.w = perturbsNormal(textures.presentSlots(), graphFields) ? 1.0f : 0.0f;
     textures.applyTo(g, map);
+    const auto writes = [&](std::string_view field) {
+        return std::find(graphFields.begin(), graphFields.end(), field) != graphFields.end();
+    };
+    if (g.terms2.y == 0 && !writes("baseColor") && !writes("metallic") && !writes("roughness"))
+        g.terms2.y = kRecordValuesPerMaterial;
     if (overflow)
         *overflow = compactGBuffer ? 0u : map.overflow;
     return g;

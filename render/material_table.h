@@ -31,6 +31,13 @@ struct GpuMaterial {
 };
 static_assert(sizeof(GpuMaterial) == 144, "GpuMaterial must match the std430 layout");
 
+/// A bit of GpuMaterial::terms2.y (beside the texture presence bits, one per slot): the record's
+/// base colour, metallic and roughness are the same at every pixel (no texture at all, no graph
+/// writes them), so the lighting passes read them from the table, quantised as the G-buffer
+/// holds them (gbuffer_read.glsl), and a value edit need not draw the G-buffer again
+/// (Renderer::Impl::keepsGBuffer, render/frame_reuse.h).
+inline constexpr int kRecordValuesPerMaterial = 1 << 30;
+
 /// The IOR's lobe-channel entry of @p g (LobeChannelMap::iorEntry(), kept in clearcoat.w): its
 /// channel, or kLobePerMaterial.
 inline int iorLobeEntry(const GpuMaterial& g) {

@@ -259,6 +259,7 @@ std::string renderInterfaceGlsl() {
          defines(kDiffuses) + defines(kSheenModels) + defines(kToneMappers);
     // The material record (the std430 table itself is common_material.glsl's).
     s += "struct GpuMaterial {\n" + membersText(kMaterialMembers) + "};\n";
+    s += "#define RECORD_VALUES_PER_MATERIAL " + std::to_string(kRecordValuesPerMaterial) + "\n";
     return s;
 }
 

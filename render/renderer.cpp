@@ -59,6 +59,7 @@ bool Renderer::reloadShaders(std::string* error) {
     if (!d.initialized)
         return fail(error, "Renderer::reloadShaders called before initialize()");
     d.backgroundReuse.invalidate();
+    d.gbufferReuse.invalidate();
     d.stage.invalidateScreenPasses();
     // Every program from disk; each failure keeps its last good program and adds its message.
     std::string errors;
@@ -102,8 +103,10 @@ void Renderer::update(const Scene& scene, ScenePart parts, Problems* problems) {
     d.haveScene = true;
     // A value edit leaves the background and the coverage as they were; anything else may not
     // (a texture slot's cut-out, the mesh, the environment: render/frame_reuse.h).
-    if (touches(parts, ~ScenePart::MaterialValues))
+    if (touches(parts, ~ScenePart::MaterialValues)) {
         d.backgroundReuse.invalidate();
+        d.gbufferReuse.invalidate();
+    }
     // The dome's cache keys the environment's and the display's values but not the post chain's
     // parameters (uniforms) nor an HDRI file replaced under the same name.
     if (touches(parts, ScenePart::Environment | ScenePart::PostChain))
@@ -351,7 +354,12 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.geometryDeferred = false;
     geometry.deferred = &d.geometryDeferred;
     d.valueEditSinceFrame = false;
-    drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
+    // After a value edit of a material whose G-buffer values are all per material, the G-buffer
+    // is already right: its values come from the table (Renderer::Impl::keepsGBuffer).
+    d.passes.gbufferKept =
+        d.keepsGBuffer(fs, block, geometry.framebuffer, emission, geometry.lobeTargets);
+    if (!d.passes.gbufferKept)
+        drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
     d.warnSpecialisationFailures();
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);

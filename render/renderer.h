@@ -115,6 +115,10 @@ struct FrameSettings {
     /// again (BENCHMARKS.md, "The stage at a quarter while the camera moves"). Stills, turntables
     /// and the refinement never set it.
     bool navigating = false;
+    /// Lets a value edit keep the last frame's G-buffer where nothing in it depends on the values
+    /// (FramePasses::gbufferKept). The image is the same either way; off draws it every frame:
+    /// the bench's "before".
+    bool keepGBuffer = true;
     /// Lets the maps' depth bounds settle shadow-mask texels without filtering them
     /// (render/shadow_depth_bounds.h). The result is the same either way; off filters every
     /// texel: the reference the settled mask is tested against, and the bench's "before".
@@ -236,6 +240,10 @@ struct FramePasses {
     /// G-buffer colour targets cleared and written: the lobe-channel targets only when a drawn
     /// material has a lobe map (or a split frame's B may have one).
     int gbufferTargets = 0;
+    /// The frame kept the last frame's G-buffer (no geometry pass): a value edit of a material
+    /// whose G-buffer values are all per material, the camera where it was
+    /// (kRecordValuesPerMaterial, render/material_table.h).
+    bool gbufferKept = false;
 };
 
 /// GPU timings of the last frame (GL timer queries; 0 where unavailable). Logged, never asserted.

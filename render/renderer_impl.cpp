@@ -271,6 +271,27 @@ FrameKey Renderer::Impl::screenPassKey(const FrameSettings& fs, const FrameBlock
     return key;
 }
 
+bool Renderer::Impl::keepsGBuffer(const FrameSettings& fs, const FrameBlock& b,
+                                  unsigned framebuffer, bool emission, bool lobeTargets) {
+    const bool steady = steadySince(gbufferUploadedBytes);
+    const bool valuesFromTable = (packedA.terms2.y & kRecordValuesPerMaterial) != 0 &&
+                                 packedGraphFields.empty() && !hasLobeMap(packedA) &&
+                                 packedA.sheenWeightAnisotropy.w < 0.5f;
+    const bool alone = !fs.splitMaterial && scene.environment.ground == GroundMode::Off;
+    // The specialised G-buffer program compiles the mesh's visibility out when it has none
+    // (FIXED_MESH_VISIBILITY 0): the specular occlusion is then the material occlusion, 1.
+    const bool eligible = fs.keepGBuffer && steady && valuesFromTable && alone && !emission &&
+                          !lobeTargets && specialisedPrograms && !mesh->gpu.hasVisibility();
+    if (!eligible) {
+        gbufferReuse.invalidate();
+        return false;
+    }
+    FrameKey key;
+    key.add(b.viewMatrix).add(b.projMatrix).add(fs.width).add(fs.height).add(framebuffer);
+    key.add(packedA.terms2).add(mesh);
+    return gbufferReuse.reuse(std::move(key));
+}
+
 bool Renderer::Impl::keepsBackground(const FrameSettings& fs, const FrameBlock& b,
                                      const IblBlock& ibl, const InlineDisplay& d,
                                      unsigned targetFbo) {

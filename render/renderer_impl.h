@@ -108,6 +108,10 @@ struct Renderer::Impl {
     /// Inline frames keep the last frame's background pixels after a value edit
     /// (render/frame_reuse.h); uploadedBytes is the texture bytes uploaded as of that frame.
     FrameReuse backgroundReuse;
+    /// The G-buffer kept after a value edit of a material whose G-buffer values are all per
+    /// material (keepsGBuffer()); gbufferUploadedBytes as uploadedBytes, for its own key.
+    FrameReuse gbufferReuse;
+    std::uint64_t gbufferUploadedBytes = 0;
     BackgroundDownsample backgroundDownsample; ///< the inline background at a quarter size
     BackgroundDome backgroundDome;             ///< the inline HDRI background from its cache
     std::uint64_t uploadedBytes = 0;
@@ -374,6 +378,15 @@ struct Renderer::Impl {
     /// what it cannot see (steadySince()) invalidates what they kept. Once a frame: it notes the
     /// uploads.
     FrameKey screenPassKey(const FrameSettings& fs, const FrameBlock& b);
+    /// Whether this frame may keep the last one's G-buffer instead of drawing it: nothing the
+    /// geometry pass writes depends on A's values (its record reads its base colour, metallic
+    /// and roughness from the table: kRecordValuesPerMaterial; no graph, no lobe map, no
+    /// normal it bends, no emission, and a mesh without the visibility its specular occlusion
+    /// would take from the roughness), nothing else is drawn into it (no ground, no split), and
+    /// the camera, the size and the targets are as they were: a value edit, a slider dragged,
+    /// draws the lighting alone. Updates other than values invalidate it (update()).
+    bool keepsGBuffer(const FrameSettings& fs, const FrameBlock& b, unsigned framebuffer,
+                      bool emission, bool lobeTargets);
     /// Whether this inline frame may keep the last one's background pixels (frame_reuse.h).
     bool keepsBackground(const FrameSettings& fs, const FrameBlock& b, const IblBlock& ibl,
                          const InlineDisplay& d, unsigned targetFbo);

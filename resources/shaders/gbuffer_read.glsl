@@ -161,9 +161,15 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     vec4 rt2 = texelFetch(gMaterialTex, pixel, 0);
     p.materialId = decodeMaterialId(rt2.b);
     GpuMaterial m = materials[p.materialId];
+    // A record whose base colour, metallic and roughness are the same at every pixel
+    // (RECORD_VALUES_PER_MATERIAL: render/material_table.h) reads them from the table, quantised
+    // to the G-buffer's 8 bits as the geometry pass would have written them, so a value edit
+    // keeps the G-buffer it drew (Renderer::Impl::keepsGBuffer). A select, not a branch.
+    bool perMaterial = (m.terms2.y & RECORD_VALUES_PER_MATERIAL) != 0;
+    rt0.rgb = perMaterial ? unorm8(encodeBaseColor(m.baseColorMetallic.rgb)) : rt0.rgb;
     p.s.baseColor = decodeBaseColor(rt0.rgb);
-    p.s.metallic = rt2.r;
-    p.s.roughness = rt2.g;
+    p.s.metallic = perMaterial ? unorm8(m.baseColorMetallic.a) : rt2.r;
+    p.s.roughness = perMaterial ? unorm8(m.roughIorOcclusionNormal.x) : rt2.g;
     p.s.specularWeight = m.specularColorWeight.a;
     p.s.specularColor = m.specularColorWeight.rgb;
     p.s.ior = m.roughIorOcclusionNormal.y;
