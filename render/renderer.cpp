@@ -358,8 +358,10 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // is already right: its values come from the table (Renderer::Impl::keepsGBuffer).
     d.passes.gbufferKept =
         d.keepsGBuffer(fs, block, geometry.framebuffer, emission, geometry.lobeTargets);
-    if (!d.passes.gbufferKept)
+    if (!d.passes.gbufferKept) {
         drawGeometryPass(geometry, *d.mesh, d.graph, d.textures);
+        d.gbufferSpecialised = geometry.specialise && !d.geometryDeferred;
+    }
     d.warnSpecialisationFailures();
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);

@@ -281,7 +281,7 @@ bool Renderer::Impl::keepsGBuffer(const FrameSettings& fs, const FrameBlock& b,
     // The specialised G-buffer program compiles the mesh's visibility out when it has none
     // (FIXED_MESH_VISIBILITY 0): the specular occlusion is then the material occlusion, 1.
     const bool eligible = fs.keepGBuffer && steady && valuesFromTable && alone && !emission &&
-                          !lobeTargets && specialisedPrograms && !mesh->gpu.hasVisibility();
+                          !lobeTargets && gbufferSpecialised && !mesh->gpu.hasVisibility();
     if (!eligible) {
         gbufferReuse.invalidate();
         return false;

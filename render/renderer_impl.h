@@ -112,6 +112,9 @@ struct Renderer::Impl {
     /// material (keepsGBuffer()); gbufferUploadedBytes as uploadedBytes, for its own key.
     FrameReuse gbufferReuse;
     std::uint64_t gbufferUploadedBytes = 0;
+    /// The G-buffer as last drawn came from the specialised program (the generic one, drawing
+    /// while a specialisation builds, runs the mesh-visibility code whatever the mesh).
+    bool gbufferSpecialised = false;
     BackgroundDownsample backgroundDownsample; ///< the inline background at a quarter size
     BackgroundDome backgroundDome;             ///< the inline HDRI background from its cache
     std::uint64_t uploadedBytes = 0;
