@@ -2,7 +2,9 @@
 // (ui/viewport_progressive.cpp, render/progressive_accumulation.h): at rest the viewport refines
 // and then stops drawing; a change or a resize shows the plain frame at once; screenshots take
 // the settled mean, plain grabs the plain frame; the toolbar's Refine turns it off and is
-// remembered with the Timings toggle; a glossy metal settles to its sampled reflections.
+// remembered with the Timings toggle; a glossy metal settles to its sampled reflections; a slider
+// dragged on the default velvet draws the lighting alone, the G-buffer kept.
+#include "render/renderer.h"
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
 #include "ui/viewport_toolbar.h"
@@ -18,6 +20,7 @@
 #include <QSettings>
 #include <QStandardPaths>
 #include <QTest>
+#include <QUndoStack>
 #include <algorithm>
 #include <cstdlib>
 
@@ -35,6 +38,7 @@ private slots:
     void aResizeWhileRefiningShowsThePlainFrame();
     void aGrabLeavesTheSettledViewSettled();
     void aGlossyMetalSettlesToItsSampledReflections();
+    void aSliderDragKeepsTheGBuffer();
 
 private:
     QImage viewportImage() { return m_window->viewport()->grabFramebuffer(); }
@@ -224,6 +228,34 @@ void TestUiViewportRefine::aGlossyMetalSettlesToItsSampledReflections() {
         }
     qInfo("glossy copper: %d of %d pixels changed by the refinement", changed, total);
     QVERIFY2(changed * 20 > total, qPrintable(QStringLiteral("%1 pixels").arg(changed)));
+}
+
+void TestUiViewportRefine::aSliderDragKeepsTheGBuffer() {
+    // A drag of the roughness slider: edits in quick succession under one merge key. The
+    // velvet's values are the same at every pixel, so after the drag's first (reduced) frame
+    // every frame keeps the G-buffer (render::FramePasses::gbufferKept) and draws the lighting
+    // alone; the refinement at rest, jittered, draws it again.
+    ViewportWidget* viewport = m_window->viewport();
+    DocumentController* doc = m_window->controller();
+    doc->newDocument();
+    QTRY_VERIFY_WITH_TIMEOUT(viewport->frameCount() > 0, kFrameTimeoutMs);
+    int kept = 0, frames = 0;
+    const QMetaObject::Connection noted =
+        connect(viewport, &ViewportWidget::frameCompleted, this, [&] {
+            ++frames;
+            kept += viewport->renderer()->lastFramePasses().gbufferKept ? 1 : 0;
+        });
+    for (int i = 0; i < 8; ++i) {
+        doc->editParam(ParamId::Roughness, glm::vec3(0.5f + 0.03f * float(i)), 4343);
+        const int before = frames;
+        QTRY_VERIFY_WITH_TIMEOUT(frames > before, kFrameTimeoutMs);
+    }
+    disconnect(noted);
+    qInfo("%d of %d frames of the drag kept the G-buffer", kept, frames);
+    QVERIFY2(kept >= 4, qPrintable(QString::number(kept)));
+    QCOMPARE(doc->undoStack()->count(), 1); // one merged step
+    doc->undoStack()->undo();                // clean again: the window closes without asking
+    QVERIFY(doc->undoStack()->isClean());
 }
 
 int main(int argc, char** argv) {
