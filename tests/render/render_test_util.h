@@ -90,6 +90,14 @@ inline OffscreenRenderer* processRenderer(int side) {
     }
     return r.get();
 }
+/// The headless context, then processRenderer() with its target at @p width x @p height: a
+/// render test's initTestCase. Null + @p error when either cannot start.
+inline OffscreenRenderer* startProcessRenderer(int width, int height, std::string* error) {
+    if (!headlessContext(error))
+        return nullptr;
+    OffscreenRenderer* r = processRenderer(std::max(width, height));
+    return r->target->resize(width, height, error) ? r : nullptr;
+}
 inline void stopProcessRenderer() {
     if (auto& r = processRendererSlot())
         r->stop();

@@ -49,9 +49,8 @@ class TestRenderGBufferReuse : public QObject {
 private slots:
     void initTestCase() {
         std::string error;
-        QVERIFY2(test::headlessContext(&error), error.c_str());
-        m_rig = test::processRenderer(kSize);
-        QVERIFY2(m_rig->target->resize(kSize, kSize, &error), error.c_str());
+        m_rig = test::startProcessRenderer(kSize, kSize, &error);
+        QVERIFY2(m_rig, error.c_str());
         m_fs.width = m_fs.height = kSize;
     }
 

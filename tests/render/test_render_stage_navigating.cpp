@@ -50,9 +50,8 @@ class TestRenderStageNavigating : public QObject {
 private slots:
     void initTestCase() {
         std::string error;
-        QVERIFY2(test::headlessContext(&error), error.c_str());
-        m_rig = test::processRenderer(kWidth);
-        QVERIFY2(m_rig->target->resize(kWidth, kHeight, &error), error.c_str());
+        m_rig = test::startProcessRenderer(kWidth, kHeight, &error);
+        QVERIFY2(m_rig, error.c_str());
         m_fs.width = kWidth;
         m_fs.height = kHeight;
     }
