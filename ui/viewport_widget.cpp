@@ -122,7 +122,12 @@ ViewportWidget::ViewportWidget(QWidget* parent)
     m_refineTimer->setSingleShot(true);
     m_refineTimer->setInterval(kRefineDelayMs);
     connect(m_refineTimer, &QTimer::timeout, this, [this] {
-        // Idle: draw once more at full size.
+        // Idle: draw once more at full size; but not before the reduced frame the stream asked
+        // for has been drawn (a busy event loop can deliver this timer before that frame).
+        if (m_interacting && !m_reducedFrameDrawn && isVisible()) {
+            m_refineTimer->start();
+            return;
+        }
         m_interacting = false;
         if (m_lastRenderScale < 1.0f || (m_renderer && m_renderer->specialisationPending()))
             requestFrame();
@@ -231,14 +236,18 @@ void ViewportWidget::updateAnimation() {
 }
 
 void ViewportWidget::noteInteraction() {
-    // The second change within the refine delay is a drag: reduce until it pauses.
-    const bool streaming =
-        m_lastInteraction.isValid() && m_lastInteraction.elapsed() < kRefineDelayMs;
+    // The second change within the refine delay is a drag: reduce until it pauses. A change
+    // under a held mouse drag streams however slow the frames between its moves are (a frame
+    // slower than the delay is where reducing matters most).
+    const bool streaming = m_drag != Drag::None || (m_lastInteraction.isValid() &&
+                                                    m_lastInteraction.elapsed() < kRefineDelayMs);
     m_lastInteraction.start();
     if (!m_reducedEnabled)
         return;
-    if (streaming)
+    if (streaming) {
         m_interacting = true;
+        m_reducedFrameDrawn = false;
+    }
     m_refineTimer->start();
 }
 
@@ -470,6 +479,7 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
     ++m_frameCount;
     m_lastRenderScale = settings.renderScale;
     m_lastNavigating = settings.navigating;
+    m_reducedFrameDrawn = m_reducedFrameDrawn || settings.renderScale < 1.0f;
     // A structural graph edit compiles on the driver's threads; the renderer adopts the new
     // program at a later frame, so keep frames coming (a short pause each: polling, not spinning).
     if (m_renderer->graphPending())

@@ -295,7 +295,8 @@ private:
     bool m_splitSwapped = false;
     bool m_reducedEnabled = true;
     float m_reducedScale = 0.5f;
-    bool m_interacting = false; ///< the next frame is reduced
+    bool m_interacting = false;      ///< the next frame is reduced
+    bool m_reducedFrameDrawn = true; ///< a reduced frame drawn since the stream's last change
     float m_lastRenderScale = 1.0f;
     bool m_lastNavigating = false;
     QElapsedTimer m_lastInteraction;
