@@ -179,6 +179,32 @@ private slots:
             QVERIFY2(!(f.first < 1.0f && f.second), "a reduced frame was drawn navigating");
     }
 
+    // A drag whose moves come slower than the refine delay (frames slower than 150 ms, as a
+    // heavy stage on a loaded machine draws them) is still a drag: each move's frame is reduced,
+    // and a pause under the held button draws the view at full size again.
+    void aSlowDragStillDrawsReduced() {
+        ViewportWidget* viewport = m_window->viewport();
+        QWindow* gl = viewport->glWindow();
+        QVERIFY(viewport->reducedResolutionEnabled());
+        QTest::qWait(2 * ViewportWidget::kRefineDelayMs); // nothing streams into the drag
+        QTRY_COMPARE_WITH_TIMEOUT(viewport->lastRenderScale(), 1.0f, 5000);
+        const QPoint c = viewport->rect().center();
+        QTest::mousePress(gl, Qt::LeftButton, Qt::NoModifier, c);
+        for (int i = 1; i <= 2; ++i) {
+            const int frames = viewport->frameCount();
+            QTest::mouseMove(gl, c + QPoint(10 * i, 0));
+            // The move's own frame: reduced (before, the first move after a pause was drawn at
+            // full size, and with frames this far apart every one was).
+            QTRY_VERIFY_WITH_TIMEOUT(viewport->frameCount() > frames, 5000);
+            QVERIFY2(viewport->lastRenderScale() < 1.0f,
+                     qPrintable(QStringLiteral("move %1").arg(i)));
+            // Held still past the delay: the full-size view, the button still down.
+            QTRY_COMPARE_WITH_TIMEOUT(viewport->lastRenderScale(), 1.0f, 5000);
+        }
+        QTest::mouseRelease(gl, Qt::LeftButton, Qt::NoModifier, c + QPoint(20, 0));
+        QTRY_VERIFY_WITH_TIMEOUT(!viewport->lastFrameNavigating(), 5000);
+    }
+
 private:
     std::unique_ptr<MainWindow> m_window;
     DocumentController* m_doc = nullptr;
