@@ -2,7 +2,7 @@
 /// @file light_passes.h
 /// Render-private: the point, spot and area lights of a scene, drawn on top of the full-screen
 /// lighting pass (which does directional lights, ambient and the environment) by one of three
-/// paths that give the same image (tests/render/test_render_lights.cpp):
+/// paths that give the same image (tests/render/test_render_light_paths.cpp):
 ///  - Volumes: the seeds' light volumes, a proxy per light (a sphere; a cone for spot lights of
 ///    outer angle up to kConeProxyMaxOuterDeg), back faces depth-tested against the G-buffer and
 ///    added by blending, so only pixels in front of a light's far side pay;

@@ -13,6 +13,7 @@
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
@@ -22,6 +23,13 @@
 #include <string>
 
 namespace velvet::test {
+
+/// Whether this run rewrites the golden images it compares against (VELVET_UPDATE_GOLDENS=1:
+/// only after a deliberate change, reviewed by eye).
+inline bool updateGoldens() {
+    const char* v = std::getenv("VELVET_UPDATE_GOLDENS");
+    return v && std::string(v) == "1";
+}
 
 inline render::HeadlessContext* headlessContext(std::string* error) {
     static std::string lastError;

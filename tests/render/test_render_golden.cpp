@@ -16,11 +16,6 @@ namespace {
 
 const char* kGolden = VELVET_SOURCE_DIR "/tests/render/golden/default_scene_128.png";
 
-bool updateGoldens() {
-    const char* v = std::getenv("VELVET_UPDATE_GOLDENS");
-    return v && std::string(v) == "1";
-}
-
 } // namespace
 
 class TestRenderGolden : public QObject {
@@ -43,7 +38,7 @@ private slots:
                                               &error, &problems),
                  error.c_str());
         QVERIFY(problems.items.empty());
-        if (updateGoldens()) {
+        if (test::updateGoldens()) {
             QVERIFY2(writeImage(kGolden, display, PixelFormat::UInt8, &error), error.c_str());
             qWarning("VELVET_UPDATE_GOLDENS=1: rewrote %s", kGolden);
             return;

@@ -23,15 +23,6 @@
 using namespace velvet;
 using namespace velvet::test;
 
-namespace {
-
-bool updateGoldens() {
-    const char* v = std::getenv("VELVET_UPDATE_GOLDENS");
-    return v && std::string(v) == "1";
-}
-
-} // namespace
-
 class TestRenderPostEffects : public QObject {
     Q_OBJECT
 

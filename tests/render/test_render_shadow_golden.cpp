@@ -39,11 +39,6 @@ test::OffscreenRenderer* rig() {
     return fx.get();
 }
 
-bool updateGoldens() {
-    const char* v = std::getenv("VELVET_UPDATE_GOLDENS");
-    return v && std::string(v) == "1";
-}
-
 /// @p scene's display image through light path @p path.
 Image drawDisplay(const Scene& scene, render::LightPath path = render::LightPath::Auto) {
     test::OffscreenRenderer* r = rig();
@@ -68,7 +63,7 @@ Image drawDisplay(const Scene& scene, render::LightPath path = render::LightPath
 void compareWithReference(const Image& display, const std::string& name) {
     const std::string file = VELVET_SOURCE_DIR "/tests/render/golden/shadow_" + name + ".png";
     std::string error;
-    if (updateGoldens()) {
+    if (test::updateGoldens()) {
         QVERIFY2(writeImage(file, display, PixelFormat::UInt8, &error), error.c_str());
         qWarning("VELVET_UPDATE_GOLDENS=1: rewrote %s", file.c_str());
         return;
