@@ -2,7 +2,7 @@
 /// @file post_test_harness.h
 /// Test-only: runs a post chain (render/post_chain.h) on small synthetic float images and reads
 /// the result back, so each effect's defining property can be checked on known inputs
-/// (test_render_post_effects, test_render_display_transform). Needs a current GL 4.5 context.
+/// (test_render_post_effects, test_render_post_grading, test_render_display_transform). Needs a current GL 4.5 context.
 
 #include "core/image.h"
 #include "core/post_chain.h"
