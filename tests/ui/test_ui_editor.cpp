@@ -38,6 +38,7 @@
 using namespace velvet;
 using namespace velvet::ui;
 using velvet::test::centrePixel;
+using velvet::test::describe;
 using velvet::test::handleCentre;
 using velvet::test::kFrameTimeoutMs;
 using velvet::test::maxDifference;
@@ -49,10 +50,6 @@ const QString kRoughness = QStringLiteral("param:lobes.base.roughness");
 /// The spin box shows 3 decimals of the stored float.
 bool shows(const QDoubleSpinBox* spin, float value) {
     return std::abs(spin->value() - value) < 5e-4;
-}
-
-QString describe(const QVector<double>& p) {
-    return QStringLiteral("(%1, %2, %3)").arg(p[0]).arg(p[1]).arg(p[2]);
 }
 
 } // namespace

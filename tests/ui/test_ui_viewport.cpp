@@ -46,18 +46,12 @@
 using namespace velvet;
 using namespace velvet::ui;
 using velvet::test::centrePixel;
+using velvet::test::describe;
 using velvet::test::kFrameTimeoutMs;
+using velvet::test::luma;
 using velvet::test::maxDifference;
 
 namespace {
-
-double luma(const QVector<double>& p) {
-    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-}
-
-QString describe(const QVector<double>& p) {
-    return QStringLiteral("(%1, %2, %3)").arg(p[0]).arg(p[1]).arg(p[2]);
-}
 
 bool copyTree(const QString& from, const QString& to) {
     std::error_code ec;
@@ -99,13 +93,9 @@ private slots:
     void orbitedViewIsSavedWithTheDocument();
     void brokenShaderKeepsDrawingAndLogs();
     void droppedExrSetsHdri();
-    void timingOverlayKeepsPicture();
-    void screenshotIncludesViewport();
     void dockLayoutRestores();
     void pickerRoundTripsThroughOcioView();
     void recentFilesKeepNewestEight();
-    void animationRunsOnlyWhileSceneReadsTime();
-    void editedTextureFileRedrawsIdleViewport();
     void lookComboChangesPixelAndPersists();
 
 private:
@@ -472,40 +462,6 @@ void TestUiViewport::droppedExrSetsHdri() {
     QVERIFY(!m_doc->undoStack()->canUndo()); // only the undone HDRI edit, nothing new
 }
 
-void TestUiViewport::timingOverlayKeepsPicture() {
-    // The overlay is painted over the GL window by Qt's paint engine after the renderer's frame:
-    // the frames that follow still draw the same picture.
-    ViewportWidget* viewport = m_window->viewport();
-    const QVector<double> before = centrePixel(viewportImage());
-    viewport->setTimingOverlayVisible(true);
-    QVERIFY(viewport->isTimingOverlayVisible());
-    for (int i = 0; i < 3; ++i) {
-        QSignalSpy swapped(glWindow(), SIGNAL(frameSwapped()));
-        viewport->requestFrame();
-        QVERIFY(swapped.wait(kFrameTimeoutMs));
-    }
-    QVERIFY(viewport->errorMessage().isEmpty());
-    const QVector<double> during = centrePixel(viewportImage());
-    viewport->setTimingOverlayVisible(false);
-    QVERIFY2(maxDifference(before, during) < 2.0,
-             qPrintable(describe(before) + " vs " + describe(during)));
-}
-
-void TestUiViewport::screenshotIncludesViewport() {
-    // QWidget::grab leaves the native GL window out; the screenshot paints the viewport's frame
-    // where it sits.
-    ViewportWidget* viewport = m_window->viewport();
-    const QImage shot = grabWithViewports(m_window.get()).convertToFormat(QImage::Format_RGB32);
-    QCOMPARE(shot.size(), m_window->size() * m_window->devicePixelRatio());
-    const QImage frame = viewportImage();
-    const QPoint origin = viewport->mapTo(m_window.get(), QPoint(0, 0));
-    const QImage inShot = shot.copy(QRect(origin, viewport->size()));
-    const QVector<double> expected = centrePixel(frame), found = centrePixel(inShot);
-    QVERIFY2(maxDifference(expected, found) < 2.0,
-             qPrintable(describe(expected) + " vs " + describe(found)));
-    QVERIFY2(luma(found) > 5.0, qPrintable(describe(found))); // the lit sphere, not black
-}
-
 /// One line per dock: object name, area, hidden, floating and the docks tabbed with it.
 static QStringList describeDocks(const QMainWindow& window) {
     QStringList lines;
@@ -581,142 +537,6 @@ void TestUiViewport::recentFilesKeepNewestEight() {
     QVERIFY(!files.contains(QStringLiteral("/tmp/velvet-recent-0.json")));
 }
 
-// Film grain reads time: the viewport keeps drawing and its time advances; paused, or with a
-// still chain, no frame comes without a change and the time stays where it was.
-void TestUiViewport::animationRunsOnlyWhileSceneReadsTime() {
-    ViewportWidget* viewport = m_window->viewport();
-    // True once no frame has come for 500 ms (the frame a change asks for may take a while on a
-    // loaded llvmpipe); false if frames keep coming for @p deadlineMs.
-    const auto settles = [viewport](int deadlineMs = 30000) {
-        QElapsedTimer deadline;
-        deadline.start();
-        int frames = viewport->frameCount();
-        QElapsedTimer quiet;
-        quiet.start();
-        while (deadline.elapsed() < deadlineMs) {
-            QTest::qWait(50);
-            if (viewport->frameCount() != frames) {
-                frames = viewport->frameCount();
-                quiet.restart();
-            } else if (quiet.elapsed() >= 500) {
-                return true;
-            }
-        }
-        return false;
-    };
-    Scene still = m_doc->scene();
-    still.environment.background = BackgroundMode::Sharp;
-    still.post = defaultPostChain();
-    QVERIFY(!sceneReadsTime(still));
-    viewport->setScene(still);
-    QVERIFY(!viewport->isAnimating());
-    const double stillTime = viewport->animationTime();
-    QVERIFY(settles());
-    QCOMPARE(viewport->animationTime(), stillTime);
-
-    Scene grain = still;
-    grain.post.effects.push_back(makeEffect("film_grain"));
-    grain.post.effects.back().params["intensity"] = {0.5f};
-    QVERIFY(sceneReadsTime(grain));
-    viewport->setScene(grain);
-    QVERIFY(viewport->isAnimating());
-    const int frames = viewport->frameCount();
-    QTRY_VERIFY_WITH_TIMEOUT(viewport->frameCount() >= frames + 3, 20000);
-    QVERIFY(!settles(2000)); // frames keep coming without any change
-    QVERIFY(viewport->animationTime() > stillTime);
-    // Two grabs at different times differ (the grain moved).
-    const QImage a = viewportImage();
-    QTest::qWait(120); // > 1/24 s: a new grain pattern
-    const QImage b = viewportImage();
-    QVERIFY(a != b);
-
-    viewport->setAnimationPaused(true);
-    QVERIFY(!viewport->isAnimating());
-    const double paused = viewport->animationTime();
-    QVERIFY(settles());
-    QCOMPARE(viewport->animationTime(), paused);
-    QVERIFY(viewportImage() == viewportImage()); // a paused frame is repeatable
-    viewport->setAnimationPaused(false);
-    QVERIFY(viewport->isAnimating());
-
-    // Disabling the only time-dependent effect stops the clock too.
-    grain.post.effects.back().enabled = false;
-    viewport->setScene(grain);
-    QVERIFY(!viewport->isAnimating());
-    QVERIFY(settles());
-    viewport->setScene(m_doc->scene());
-}
-
-namespace {
-
-/// A 16 x 16 opaque image of one colour (display-encoded sRGB values, as a PNG holds them).
-Image flatImage(glm::vec3 rgb) {
-    Image img(16, 16, 4);
-    for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 16; ++x) {
-            float* p = img.at(x, y);
-            p[0] = rgb.r, p[1] = rgb.g, p[2] = rgb.b, p[3] = 1.0f;
-        }
-    return img;
-}
-
-/// Largest channel difference between two frames of the same size, in 0..255 units.
-int maxImageDifference(const QImage& a, const QImage& b) {
-    int worst = 0;
-    for (int y = 0; y < std::min(a.height(), b.height()); ++y)
-        for (int x = 0; x < std::min(a.width(), b.width()); ++x) {
-            const QColor p = a.pixelColor(x, y), q = b.pixelColor(x, y);
-            worst = std::max({worst, std::abs(p.red() - q.red()), std::abs(p.green() - q.green()),
-                              std::abs(p.blue() - q.blue())});
-        }
-    return worst;
-}
-
-} // namespace
-
-// An image edited in another program shows in an idle viewport: the texture file watcher
-// (ui/texture_file_watcher.h) asks for a frame when the base colour's file changes on disk, and
-// that frame re-uploads it (nothing else asks for one while the test waits).
-void TestUiViewport::editedTextureFileRedrawsIdleViewport() {
-    QTemporaryDir dir;
-    const std::string file = dir.filePath(QStringLiteral("base.png")).toStdString();
-    std::string error;
-    QVERIFY2(writeImage(file, flatImage({1.0f, 0.0f, 0.0f}), PixelFormat::UInt8, &error),
-             error.c_str());
-    TextureRef ref;
-    ref.file = file;
-    m_doc->setTexture(TextureSlot::BaseColor, ref);
-    // Textures load off the drawing thread (issue 16): the map shows a few frames later.
-    QVector<double> red;
-    const auto isRed = [&] {
-        red = centrePixel(viewportImage());
-        return red[0] > red[2] + 20.0;
-    };
-    QTRY_VERIFY2_WITH_TIMEOUT(isRed(), qPrintable(describe(red)), 20000);
-
-    // Idle: no frame for a second (the environment bake and the refine timer are done).
-    ViewportWidget* viewport = m_window->viewport();
-    QSignalSpy frames(viewport, &ViewportWidget::frameCompleted);
-    QElapsedTimer quiet;
-    quiet.start();
-    while (quiet.elapsed() < 1000) {
-        const qsizetype before = frames.count();
-        QTest::qWait(100);
-        if (frames.count() != before)
-            quiet.restart();
-        QVERIFY2(frames.count() < 2000, "the viewport never goes idle");
-    }
-    frames.clear();
-    QVERIFY2(writeImage(file, flatImage({0.0f, 0.0f, 1.0f}), PixelFormat::UInt8, &error),
-             error.c_str());
-    QTRY_VERIFY_WITH_TIMEOUT(!frames.isEmpty(), 10000); // drawn without anyone asking
-    // That frame starts the reload; the viewport keeps drawing until the new map is complete.
-    QTRY_VERIFY_WITH_TIMEOUT(viewport->textureProgress().loading == 0 && frames.count() >= 2,
-                             20000);
-    const QVector<double> blue = centrePixel(viewportImage());
-    QVERIFY2(blue[2] > blue[0] + 20.0, qPrintable(describe(red) + " -> " + describe(blue)));
-}
-
 // The look combo: choosing a look changes the viewport (OCIO applies it in scene-linear before
 // the view), is view state saved to QSettings as the toolbar saves the display and view (never
 // a document edit), and choosing "No look" again gives the earlier frame back.
@@ -738,7 +558,7 @@ void TestUiViewport::lookComboChangesPixelAndPersists() {
     look->setCurrentIndex(index);
     QCOMPARE(m_window->viewport()->frameSettings().look, name.toStdString());
     const QImage with = viewportImage();
-    const int changed = maxImageDifference(without, with);
+    const int changed = test::maxImageDifference(without, with);
     QVERIFY2(changed > 5, qPrintable(QStringLiteral("largest change %1").arg(changed)));
     QCOMPARE(QSettings().value(QStringLiteral("viewport/look")).toString(), name);
     QCOMPARE(m_doc->undoStack()->count(), undoCount); // view state, not an edit
@@ -746,7 +566,7 @@ void TestUiViewport::lookComboChangesPixelAndPersists() {
     look->setCurrentIndex(0);
     QVERIFY(m_window->viewport()->frameSettings().look.empty());
     QCOMPARE(QSettings().value(QStringLiteral("viewport/look")).toString(), QString());
-    QVERIFY(maxImageDifference(without, viewportImage()) <= 1);
+    QVERIFY(test::maxImageDifference(without, viewportImage()) <= 1);
 }
 
 int main(int argc, char** argv) {

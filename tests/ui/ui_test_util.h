@@ -11,6 +11,7 @@
 #include <QImage>
 #include <QMimeData>
 #include <QSlider>
+#include <QString>
 #include <QStyle>
 #include <QStyleOptionSlider>
 #include <QTest>
@@ -54,6 +55,28 @@ inline double maxDifference(const QVector<double>& a, const QVector<double>& b) 
     for (int i = 0; i < 3; ++i)
         d = std::max(d, std::abs(a[i] - b[i]));
     return d;
+}
+
+/// Relative luminance (Rec. 709 weights) of a centrePixel() result, 0..255.
+inline double luma(const QVector<double>& p) {
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+/// A centrePixel() result as "(r, g, b)", for failure messages.
+inline QString describe(const QVector<double>& p) {
+    return QStringLiteral("(%1, %2, %3)").arg(p[0]).arg(p[1]).arg(p[2]);
+}
+
+/// Largest channel difference between two frames of the same size, in 0..255 units.
+inline int maxImageDifference(const QImage& a, const QImage& b) {
+    int worst = 0;
+    for (int y = 0; y < std::min(a.height(), b.height()); ++y)
+        for (int x = 0; x < std::min(a.width(), b.width()); ++x) {
+            const QColor p = a.pixelColor(x, y), q = b.pixelColor(x, y);
+            worst = std::max({worst, std::abs(p.red() - q.red()), std::abs(p.green() - q.green()),
+                              std::abs(p.blue() - q.blue())});
+        }
+    return worst;
 }
 
 /// Centre of the slider's handle, from the style (where a user would grab it).
