@@ -55,6 +55,7 @@ std::vector<std::string> LightingFeatures::defines() const {
     without("WITH_LOCAL_SHADOWS", localShadows);
     without("WITH_OCCLUSION", occlusion);
     without("WITH_GEOMETRIC_HORIZON", geometricHorizon);
+    without("WITH_GBUFFER_VALUES", gbufferValues);
     without("WITH_SAMPLED_REFLECTIONS", sampledReflections);
     without("WITH_IRRADIANCE_MAP", irradianceMap);
     fixed("FIXED_IBL_BAKED", iblBaked);
@@ -86,6 +87,8 @@ LightingFeatures lightingFeaturesOf(std::span<const GpuMaterial> records, bool d
     });
     f.lobeChannels = any([](const GpuMaterial& m) { return hasLobeMap(m); });
     f.geometricHorizon = any([](const GpuMaterial& m) { return m.sheenWeightAnisotropy.w > 0.5f; });
+    f.gbufferValues =
+        any([](const GpuMaterial& m) { return (m.terms2.y & kRecordValuesPerMaterial) == 0; });
     f.directionalShadows = directionalShadows;
     f.occlusion = occlusion;
     f.iblBaked = iblBaked ? 1 : 0;

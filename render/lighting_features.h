@@ -48,6 +48,10 @@ struct LightingFeatures {
     bool localShadows = true;
     /// Screen-space ambient occlusion is on.
     bool occlusion = true;
+    /// Some drawn record's base colour, metallic or roughness vary per pixel (it lacks
+    /// kRecordValuesPerMaterial): the lighting decodes them from the G-buffer. Without, it reads
+    /// the table's alone and the G-buffer's sRGB decode compiles out.
+    bool gbufferValues = true;
     /// Some drawn material bends its shading normal per pixel
     /// (GpuMaterial::sheenWeightAnisotropy.w): the lighting reconstructs the geometric normal to
     /// keep light from below the surface out.

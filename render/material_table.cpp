@@ -1,19 +1,31 @@
 #include "render/material_table.h"
 
+#include "core/color_management.h"
 #include "render/lobe_channels.h"
 #include "render/shader_program.h"
 #include "render/texture_set.h"
 
 #include <algorithm>
+#include <cmath>
 #include <epoxy/gl.h>
 #include <glm/trigonometric.hpp>
 #include <string_view>
 
 namespace velvet::render {
 
+glm::vec3 storedBaseColor(glm::vec3 linear) {
+    glm::vec3 stored;
+    for (int c = 0; c < 3; ++c) {
+        const float encoded = std::clamp(linearToSrgb(std::max(linear[c], 0.0f)), 0.0f, 1.0f);
+        stored[c] = srgbToLinear(std::floor(encoded * 255.0f + 0.5f) / 255.0f);
+    }
+    return stored;
+}
+
 GpuMaterial packMaterial(const Material& m) {
     GpuMaterial g{};
     g.baseColorMetallic = glm::vec4(m.color(ParamId::BaseColor), m.scalar(ParamId::Metallic));
+    g.storedBaseColor = glm::vec4(storedBaseColor(m.color(ParamId::BaseColor)), 0.0f);
     g.specularColorWeight =
         glm::vec4(m.color(ParamId::SpecularColor), m.scalar(ParamId::SpecularWeight));
     g.roughIorOcclusionNormal =

@@ -28,8 +28,17 @@ struct GpuMaterial {
     glm::vec4 sheenWeightAnisotropy;
     glm::ivec4 terms;
     glm::ivec4 terms2;
+    /// The base colour as the G-buffer holds it and the lighting reads it back: 8-bit sRGB,
+    /// decoded (storedBaseColor()); w unused. A record of kRecordValuesPerMaterial is read from
+    /// here in place of the G-buffer, without the sRGB curves' powers per pixel.
+    glm::vec4 storedBaseColor;
 };
-static_assert(sizeof(GpuMaterial) == 144, "GpuMaterial must match the std430 layout");
+static_assert(sizeof(GpuMaterial) == 160, "GpuMaterial must match the std430 layout");
+
+/// @p linear as the G-buffer stores a base colour (gbuffer.frag's encodeBaseColor into an 8-bit
+/// unorm target, OpenGL 4.5 section 2.3.5.1's round(clamp(v) x 255)) and gbuffer_read.glsl
+/// decodes it: the CPU twin of decodeBaseColor(unorm8(encodeBaseColor(linear))).
+glm::vec3 storedBaseColor(glm::vec3 linear);
 
 /// A bit of GpuMaterial::terms2.y (beside the texture presence bits, one per slot): the record's
 /// base colour, metallic and roughness are the same at every pixel (no texture at all, no graph

@@ -82,6 +82,8 @@ constexpr std::array kMaterialMembers{
     VELVET_MEMBER(GpuMaterial, "ivec4", terms2, "",
                   "sheen model, texture-slot presence bits, atlas-region bits "
                   "(render/texture_set.h), lobe-channel map (render/lobe_channels.h)"),
+    VELVET_MEMBER(GpuMaterial, "vec4", storedBaseColor, "",
+                  "rgb the base colour as the G-buffer stores and decodes it, w unused"),
 };
 
 constexpr std::array kPostFrameMembers{

@@ -33,6 +33,11 @@ struct ShadingPoint {
 #ifndef WITH_GEOMETRIC_HORIZON
 #define WITH_GEOMETRIC_HORIZON 1
 #endif
+// WITH_GBUFFER_VALUES 0: every drawn record reads its base colour, metallic and roughness from
+// the table (RECORD_VALUES_PER_MATERIAL; readShadingPoint).
+#ifndef WITH_GBUFFER_VALUES
+#define WITH_GBUFFER_VALUES 1
+#endif
 
 // The view-space position of full-resolution pixel @p q (clamped to the frame) from its depth.
 vec3 viewPositionAt(ivec2 q) {
@@ -163,11 +168,17 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     GpuMaterial m = materials[p.materialId];
     // A record whose base colour, metallic and roughness are the same at every pixel
     // (RECORD_VALUES_PER_MATERIAL: render/material_table.h) reads them from the table, quantised
-    // to the G-buffer's 8 bits as the geometry pass would have written them, so a value edit
-    // keeps the G-buffer it drew (Renderer::Impl::keepsGBuffer). A select, not a branch.
+    // to the G-buffer's 8 bits as the geometry pass would have written them (the base colour
+    // decoded on the CPU: GpuMaterial::storedBaseColor), so a value edit keeps the G-buffer it
+    // drew (Renderer::Impl::keepsGBuffer). A select, not a branch; WITH_GBUFFER_VALUES 0 (every
+    // drawn record is such a one: render/lighting_features.h) compiles the G-buffer's side and
+    // its sRGB decode out, which llvmpipe would otherwise run at every pixel.
+#if WITH_GBUFFER_VALUES
     bool perMaterial = (m.terms2.y & RECORD_VALUES_PER_MATERIAL) != 0;
-    rt0.rgb = perMaterial ? unorm8(encodeBaseColor(m.baseColorMetallic.rgb)) : rt0.rgb;
-    p.s.baseColor = decodeBaseColor(rt0.rgb);
+#else
+    const bool perMaterial = true;
+#endif
+    p.s.baseColor = perMaterial ? m.storedBaseColor.rgb : decodeBaseColor(rt0.rgb);
     p.s.metallic = perMaterial ? unorm8(m.baseColorMetallic.a) : rt2.r;
     p.s.roughness = perMaterial ? unorm8(m.roughIorOcclusionNormal.x) : rt2.g;
     p.s.specularWeight = m.specularColorWeight.a;

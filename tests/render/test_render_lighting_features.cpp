@@ -117,6 +117,20 @@ private slots:
         bent.sheenWeightAnisotropy.w = 1.0f; // packMaterialRecord: a normal map or graph normal
         QVERIFY(render::lightingFeaturesOf({&bent, 1}, false, false, true, true).geometricHorizon);
 
+        // A record whose base colour, metallic and roughness are per material (packMaterialRecord
+        // flags a plain one) is read from the table alone: the G-buffer's side and its sRGB
+        // decode compile out; one record of two that decodes the G-buffer keeps them.
+        QVERIFY(f.gbufferValues); // packMaterial alone does not flag the record
+        GpuMaterial fromTable = velvet;
+        fromTable.terms2.y = render::kRecordValuesPerMaterial;
+        f = render::lightingFeaturesOf({&fromTable, 1}, false, false, true, true);
+        QVERIFY(!f.gbufferValues);
+        const std::vector<std::string> tableDefines = f.defines();
+        QVERIFY(std::find(tableDefines.begin(), tableDefines.end(), "WITH_GBUFFER_VALUES 0") !=
+                tableDefines.end());
+        const GpuMaterial mixed[] = {fromTable, velvet};
+        QVERIFY(render::lightingFeaturesOf(mixed, false, false, true, true).gbufferValues);
+
         // Two materials that disagree on a term leave it to run time; a coat on one compiles it in.
         Material beckmann = preset("car_paint");
         beckmann.setChoice(ParamId::Distribution, int(Distribution::Beckmann));
@@ -144,6 +158,27 @@ private slots:
 
         QVERIFY(LightingFeatures::generic().defines().empty());
         QVERIFY(LightingFeatures::generic().isGeneric());
+    }
+
+    /// The table's base colour as the G-buffer stores it (8-bit sRGB, decoded): known answers
+    /// computed by hand (0.5 encodes to 187.52 of 255, stored as 188: 0.50289), and a stored
+    /// colour stores as itself, so the table and a G-buffer written from it agree.
+    void storedBaseColorIsTheGBuffersValue() {
+        const glm::vec3 stored = render::storedBaseColor({0.5f, 0.18f, 0.02f});
+        QVERIFY(std::abs(stored.r - 0.502886f) < 2e-6f);
+        QVERIFY(std::abs(stored.g - 0.181164f) < 2e-6f);
+        QVERIFY(std::abs(stored.b - 0.020289f) < 2e-6f);
+        QCOMPARE(render::storedBaseColor(glm::vec3(0.0f)), glm::vec3(0.0f));
+        QVERIFY(std::abs(render::storedBaseColor(glm::vec3(1.0f)).r - 1.0f) < 1e-6f);
+        QVERIFY(render::storedBaseColor(glm::vec3(-0.2f, 2.0f, 0.0f)).g <= 1.0f + 1e-6f);
+        for (int i = 0; i <= 1000; ++i) {
+            const glm::vec3 once = render::storedBaseColor(glm::vec3(float(i) / 1000.0f));
+            QVERIFY(glm::all(
+                glm::lessThan(glm::abs(render::storedBaseColor(once) - once), glm::vec3(1e-6f))));
+        }
+        const GpuMaterial velvet = render::packMaterial(preset("crimson_velvet"));
+        QCOMPARE(glm::vec3(velvet.storedBaseColor),
+                 render::storedBaseColor(glm::vec3(velvet.baseColorMetallic)));
     }
 
     /// Every specialisation draws what the generic program draws.
