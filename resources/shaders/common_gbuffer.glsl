@@ -45,7 +45,6 @@ int decodeMaterialId(float stored) { return int(stored * 255.0 + 0.5); }
 // What an 8-bit unsigned normalised target holds of @p v, read back (OpenGL 4.5 §2.3.5.1:
 // round(clamp(v) x 255), then / 255).
 float unorm8(float v) { return floor(clamp(v, 0.0, 1.0) * 255.0 + 0.5) / 255.0; }
-vec3 unorm8(vec3 v) { return floor(clamp(v, vec3(0.0), vec3(1.0)) * 255.0 + 0.5) / 255.0; }
 
 // ---- Lobe channels (render/lobe_channels.h) ---------------------------------------------------
 // The first channel of lobe value @p value in the material's map (GpuMaterial::terms2.w), or
