@@ -32,6 +32,8 @@ const std::vector<OptionSpec> kOptions{
     {"reflection-samples", 0, true, "N",
      "--table: the viewport's reflection samples per sample, as at rest (default 16; 0: the "
      "split sum of a frame drawn while the view moves)"},
+    {"no-screen-space-reflections", 0, false, "",
+     "--table: the viewport without the mesh's reflections of itself (its occlusion alone)"},
     {"images", 0, true, "DIR", "--table: write each case's viewport, reference and heat map"},
     {"help", 'h', false, "", "this text"},
 };
@@ -45,12 +47,14 @@ const char* kHelp =
     "an integer image (.png, …) is taken as display-referred sRGB. Both must have the same size.\n"
     "\n"
     "velvet compare --table [--preset A,B] [--mesh A,B] [--light-rig A,B] [--size N] [--spp N]\n"
-    "                       [--bounces N] [--reflection-samples N] [--images DIR]\n"
+    "                       [--bounces N] [--reflection-samples N]\n"
+    "                       [--no-screen-space-reflections] [--images DIR]\n"
     "renders each library preset on each mesh under each rig (the default HDRI stays) with the\n"
     "viewport's renderer and the reference path tracer, and prints a Markdown table of the\n"
     "mean, 95th percentile and maximum ΔE2000 over the pixels the mesh covers, against issue\n"
     "15's goal (mean < 2, p95 < 5). The viewport's image is the editor's at rest: 4x4 samples a\n"
-    "pixel, reflections sampled. Progress on stderr.\n"
+    "pixel, reflections sampled, the mesh's reflections of itself traced in screen space.\n"
+    "Progress on stderr.\n"
     "Exit codes: 0 success, 1 usage error, 2 bad input, 3 rendering failure.\n\n";
 
 int usage(const std::string& message) {
@@ -92,6 +96,7 @@ int runTable(const Arguments& args) {
         !parseCount(args.value("reflection-samples"), options.reflectionSamples, 0, 256))
         return usage("--reflection-samples expects a whole number in [0, 256], got '" +
                      args.value("reflection-samples") + "'");
+    options.screenSpaceReflections = !args.has("no-screen-space-reflections");
     const std::vector<std::string> library = libraryPresets();
     std::vector<std::string> presets =
         args.has("preset") ? splitList(args.value("preset")) : library;

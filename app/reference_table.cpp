@@ -124,6 +124,7 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     fs.reflectionSamples = options.reflectionSamples;
     fs.reflectionSampleTotal = options.reflectionSamples * ss * ss;
     fs.reflectionSampleBlock = ss;
+    fs.screenSpaceReflections = options.screenSpaceReflections;
     if (!renderer.render(fs, m_impl->target->framebuffer(), error))
         return false;
     const Image frame = boxDownsample(renderer.readLinear(), ss);

@@ -33,8 +33,10 @@ struct ReferenceTableOptions {
     /// Reflection samples per viewport sample (FrameSettings::reflectionSamples), as the editor's
     /// viewport draws them at rest; 0: the split sum of an interactive frame.
     int reflectionSamples = 16; // render::kRefinementReflectionSamples (reference_table.cpp)
-    int samples = 64;           ///< reference samples per pixel
-    int bounces = 4;            ///< reference path vertices after the first hit
+    /// The viewport's reflections of the mesh in itself (FrameSettings::screenSpaceReflections).
+    bool screenSpaceReflections = true;
+    int samples = 64; ///< reference samples per pixel
+    int bounces = 4;  ///< reference path vertices after the first hit
     std::uint64_t seed = 1;
     int threads = 0; ///< reference threads; 0: all cores
 };

@@ -24,6 +24,8 @@ FrameTargets::~FrameTargets() {
         glDeleteFramebuffers(1, &m_litFbo);
     if (m_displayFbo)
         glDeleteFramebuffers(1, &m_displayFbo);
+    if (m_reflectionFbo)
+        glDeleteFramebuffers(1, &m_reflectionFbo);
     if (m_geometryFbo)
         glDeleteFramebuffers(1, &m_geometryFbo);
     if (m_maskFbo)
@@ -172,6 +174,29 @@ unsigned FrameTargets::displayFramebuffer(unsigned internalFormat, std::string* 
         m_displayGbufferGeneration = m_gbuffer.generation();
     }
     return m_displayFbo;
+}
+
+unsigned FrameTargets::reflectionSourceFramebuffer(std::string* error) {
+    if (!m_reflectionSource.resize(m_hdr.width(), m_hdr.height(), GL_RGBA16F, error))
+        return 0;
+    if (!m_reflectionFbo)
+        glCreateFramebuffers(1, &m_reflectionFbo);
+    if (m_reflectionGeneration != m_reflectionSource.generation() ||
+        m_reflectionGbufferGeneration != m_gbuffer.generation()) {
+        glNamedFramebufferTexture(m_reflectionFbo, GL_COLOR_ATTACHMENT0,
+                                  m_reflectionSource.texture(), 0);
+        glNamedFramebufferTexture(m_reflectionFbo, GL_DEPTH_ATTACHMENT,
+                                  depthTextureOf(m_gbuffer.framebuffer()), 0);
+        const GLenum status = glCheckNamedFramebufferStatus(m_reflectionFbo, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            fail(error,
+                 "reflection source framebuffer incomplete: " + framebufferStatusName(status));
+            return 0;
+        }
+        m_reflectionGeneration = m_reflectionSource.generation();
+        m_reflectionGbufferGeneration = m_gbuffer.generation();
+    }
+    return m_reflectionFbo;
 }
 
 } // namespace velvet::render

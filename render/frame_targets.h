@@ -43,6 +43,12 @@ public:
     /// litFramebuffer(). Allocated on first use. 0 + message when incomplete.
     unsigned displayFramebuffer(unsigned internalFormat, std::string* error);
     const ColorTarget& display() const { return m_display; }
+    /// The framebuffer of the first surfaces pass of a frame with screen-space reflections
+    /// (FrameSettings::screenSpaceReflections): a copy of the HDR colour (RGBA16F) with the
+    /// G-buffer's depth, read-only as in litFramebuffer(); the second pass reads its colour.
+    /// Allocated on first use. 0 + message when incomplete.
+    unsigned reflectionSourceFramebuffer(std::string* error);
+    const ColorTarget& reflectionSource() const { return m_reflectionSource; }
 
     /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): at the stage's
     /// @p downsample of the frame's size (maskSize()), the mask (RGBA8, attachment 0) and its key
@@ -72,6 +78,9 @@ private:
     unsigned m_maskFbo = 0, m_maskDepth = 0; ///< the depth: a renderbuffer of the mask's size
     unsigned m_maskGeneration = 0, m_keyGeneration = 0, m_groundMaskGeneration = 0;
     ColorTarget m_display;
+    ColorTarget m_reflectionSource;
+    unsigned m_reflectionFbo = 0;
+    unsigned m_reflectionGeneration = 0, m_reflectionGbufferGeneration = 0;
     unsigned m_displayFbo = 0;
     unsigned m_displayGeneration = 0, m_displayGbufferGeneration = 0;
 };

@@ -58,6 +58,8 @@ std::vector<std::string> LightingFeatures::defines() const {
     without("WITH_GBUFFER_VALUES", gbufferValues);
     without("WITH_SAMPLED_REFLECTIONS", sampledReflections);
     without("WITH_IRRADIANCE_MAP", irradianceMap);
+    if (screenSpaceReflections) // off by default (lighting.frag's default is 0)
+        out.push_back("WITH_SCREEN_SPACE_REFLECTIONS 1");
     fixed("FIXED_IBL_BAKED", iblBaked);
     fixed("FIXED_MULTIPLE_SCATTERING", multipleScattering);
     return out;

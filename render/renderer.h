@@ -192,6 +192,14 @@ struct FrameSettings {
     /// Pixels per side of the frame that are samples of one output pixel (a supersampled
     /// still's factor; 1 for a frame of the progressive mean): they draw consecutive sets.
     int reflectionSampleBlock = 1;
+    /// With reflections sampled, a mesh that can see itself (not a convex preview mesh) and a
+    /// lobe glossy enough to sample: the surfaces are drawn twice, the second pass reading the
+    /// first's image where one ray per pixel, a sample of the lobe, meets the mesh in the depth
+    /// buffer (screen_space_reflection.glsl): the shader ball's copper shows the copper it faces
+    /// instead of an environment darkened by the mesh's occlusion. The frame then goes through
+    /// the scene-linear target (no display step inside the lighting pass). Off: the occlusion
+    /// alone, as before.
+    bool screenSpaceReflections = true;
     /// @}
     /// @name Progressive anti-aliasing (render/progressive_accumulation.h)
     /// @{
@@ -244,6 +252,9 @@ struct FramePasses {
     /// whose G-buffer values are all per material, the camera where it was
     /// (kRecordValuesPerMaterial, render/material_table.h).
     bool gbufferKept = false;
+    /// The surfaces were drawn twice, the second time with screen-space reflections of the
+    /// first (FrameSettings::screenSpaceReflections).
+    bool screenSpaceReflections = false;
 };
 
 /// GPU timings of the last frame (GL timer queries; 0 where unavailable). Logged, never asserted.

@@ -195,7 +195,8 @@ bool Renderer::Impl::chooseInlineDisplay(const FrameSettings& fs, const FrameBlo
     // Emission, the ground and the local lights add to the scene-linear target after the
     // surfaces (or between them): those frames keep it.
     if (!fs.displayOnly || fs.view != DebugView::Final || !specialisedPrograms || emission ||
-        scene.environment.ground != GroundMode::Off || lights.lightCount() != 0)
+        scene.environment.ground != GroundMode::Off || lights.lightCount() != 0 ||
+        wantsScreenSpaceReflections(fs)) // the second surfaces pass reads the first's linear image
         return false;
     const GLenum format = targetColorFormat(targetFbo);
     if (format == 0)
@@ -395,8 +396,17 @@ bool Renderer::Impl::drawLitPasses(const FrameSettings& fs, const FrameBlock& bl
         glEnable(GL_SCISSOR_TEST);
         glScissor(meshRect[0], meshRect[1], meshRect[2], meshRect[3]);
     }
-    lighting.drawSurfaces(surfaceProgram, emission);
-    ++passes.fullScreen;
+    bool reflected = false;
+    if (wantsScreenSpaceReflections(fs) &&
+        !drawReflectingSurfaces(fs, emission, surfaceProgram, reflected, error))
+        return false;
+    if (reflected) {
+        passes.fullScreen += 2;
+        passes.screenSpaceReflections = true;
+    } else {
+        lighting.drawSurfaces(surfaceProgram, emission);
+        ++passes.fullScreen;
+    }
     glDisable(GL_SCISSOR_TEST);
     if (fs.view == DebugView::Final && scene.environment.ground == GroundMode::ShadowCatcher) {
         if (!lighting.drawCatcher(emission, stageBackground(), error, // its own variant
@@ -405,6 +415,49 @@ bool Renderer::Impl::drawLitPasses(const FrameSettings& fs, const FrameBlock& bl
         ++passes.fullScreen;
     }
     passes.linear = true;
+    return true;
+}
+
+bool Renderer::Impl::drawReflectingSurfaces(const FrameSettings& fs, bool emission,
+                                            const ShaderProgram& surfaceProgram, bool& drawn,
+                                            std::string* error) {
+    drawn = false;
+    LightingFeatures features = frameFeatures(fs);
+    features.screenSpaceReflections = true;
+    const ShaderProgram* reflecting =
+        lighting.surfaceProgram(fs.view, error, scene.environment.ground, stageBackground(),
+                                features, mayBuildSpecialised());
+    if (!reflecting)
+        return false;
+    if (!lighting.lastWasSpecialised()) // not built yet (or failed): the plain surfaces
+        return true;
+    // The first pass only lights what the rays meet: by the split sum, which costs a sixteenth of
+    // the sampled lobe's lookups (the reflection the ray meets is seen from another angle anyway).
+    LightingFeatures sourceFeatures = frameFeatures(fs);
+    sourceFeatures.sampledReflections = false;
+    const ShaderProgram* source =
+        lighting.surfaceProgram(fs.view, error, scene.environment.ground, stageBackground(),
+                                sourceFeatures, mayBuildSpecialised());
+    if (!source)
+        return false;
+    if (!lighting.lastWasSpecialised())
+        source = &surfaceProgram;
+    const GLuint sourceFbo = targets.reflectionSourceFramebuffer(error);
+    if (!sourceFbo)
+        return false;
+    // The first pass over what the HDR target holds so far (the background, the emission), so
+    // that its image is the frame's but for the reflections.
+    const ColorTarget& hdr = targets.hdr();
+    glCopyImageSubData(hdr.texture(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                       targets.reflectionSource().texture(), GL_TEXTURE_2D, 0, 0, 0, 0, hdr.width(),
+                       hdr.height(), 1);
+    glBindFramebuffer(GL_FRAMEBUFFER, sourceFbo);
+    lighting.drawSurfaces(*source, emission);
+    glBindFramebuffer(GL_FRAMEBUFFER, targets.litFramebuffer());
+    glBindTextureUnit(binding::kHdrTex, targets.reflectionSource().texture());
+    lighting.drawSurfaces(*reflecting, emission);
+    glBindTextureUnit(binding::kHdrTex, 0);
+    drawn = true;
     return true;
 }
 

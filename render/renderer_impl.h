@@ -276,6 +276,25 @@ struct Renderer::Impl {
         return f;
     }
 
+    /// Whether this frame draws screen-space reflections (FrameSettings::screenSpaceReflections):
+    /// the final image with reflections sampled, a mesh that can see itself (one with its
+    /// visibility baked: the convex preview meshes have none) and a lobe glossy enough to sample.
+    bool wantsScreenSpaceReflections(const FrameSettings& fs) const {
+        if (!fs.screenSpaceReflections || fs.view != DebugView::Final || !mesh ||
+            !mesh->gpu.hasVisibility())
+            return false;
+        // Not while the environment bakes (the generic program draws, which may sample anything).
+        const LightingFeatures f = frameFeatures(fs);
+        return !f.isGeneric() && f.sampledReflections;
+    }
+    /// The surfaces into the first pass's target, then again with screen-space reflections of it
+    /// into the HDR target (drawLitPasses). @p drawn false when the reflecting program is not
+    /// available this frame (not built yet: nothing drawn, the caller draws the plain surfaces).
+    /// False + message on a failure.
+    bool drawReflectingSurfaces(const FrameSettings& fs, bool emission,
+                                const ShaderProgram& surfaceProgram, bool& drawn,
+                                std::string* error);
+
     void selectMesh(Problems* problems) {
         ++uploads.meshSelections;
         mesh = &meshes.select(scene.mesh, problems);

@@ -167,9 +167,7 @@ void main() {
         vec3 v = frame.cameraPosition.w > 0.5
                      ? normalize((frame.invViewMatrix * vec4(0.0, 0.0, 1.0, 0.0)).xyz)
                      : normalize(frame.cameraPosition.xyz - vWorldPosition);
-        float lobeOpen = specularVisibility(vVisibility, n, reflect(-v, n), roughness * roughness);
-        vec3 f0 = mix(vec3(0.04), baseColor, metallic);
-        specularOcclusion *= saturate(dot(multiBounceOcclusion(lobeOpen, f0), vec3(1.0 / 3.0)));
+        specularOcclusion *= specularVisibility(vVisibility, n, reflect(-v, n), roughness * roughness);
     }
 #endif
     gBaseColorOcclusion = vec4(encodeBaseColor(baseColor), occlusion);

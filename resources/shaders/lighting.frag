@@ -27,6 +27,7 @@
 #include "light_lobes.glsl"
 #include "stage_shading.glsl"
 #include "common_occlusion.glsl"
+#include "screen_space_reflection.glsl"
 
 layout(location = 0) out vec4 outColor;
 
@@ -182,7 +183,8 @@ void main() {
     // the split sum for the specular ones, the GGX-prefiltered cube times the DFG LUT with
     // Fdez-Aguera 2019's multiple-scattering energy (or the approximate path while the bake is
     // incomplete).
-    vec3 irradiance = irradianceOverPi(n);
+    vec3 surroundings = irradianceOverPi(n);
+    vec3 irradiance = surroundings;
     vec3 r = reflect(-v, n);
     float rough = max(s.roughness, MIN_ROUGHNESS);
     irradiance *= diffuseDirectionalAlbedo(s.terms.w, NdotV, rough);
@@ -237,9 +239,39 @@ void main() {
     // The diffuse and specular parts each under their own occlusion (gbuffer.frag: the
     // material's occlusion, and the mesh's visibility from itself where it has one).
     float diffuseOcclusion = p.occlusion, specularOcclusion = p.specularOcclusion;
+    // What the occlusion hides of the lobe is the surface itself, which reflects the environment
+    // too: no black, but the light it sends back (meshReflection), so a white metal's cavities stay
+    // white in a white furnace as the path tracer's do.
+    vec3 specularAlbedoMix = mix(specDielectric, specMetal, s.metallic);
+    vec3 reflected = specular * specularOcclusion +
+                     specularAlbedoMix * (1.0 - specularOcclusion) *
+                         meshReflection(surroundings, (1.0 - s.metallic) *
+                                                          (1.0 - max3(specDielectric)) * s.baseColor +
+                                                      specularAlbedoMix);
+#if WITH_SCREEN_SPACE_REFLECTIONS
+    // Where this pixel's rays meet the mesh, the mesh's own light in place of the environment's
+    // (screen_space_reflection.glsl), through the lobe's albedo. Its misses keep the occluded
+    // environment: the mesh may still hide it off screen or behind itself.
+    if (rough <= SAMPLED_REFLECTION_MAX_ROUGHNESS) {
+        bool stretched = usesAnisotropy(s);
+        vec3 t = stretched ? s.anisotropyDirection : incidencePlaneTangent(n, v, NdotV);
+        vec2 alpha = stretched ? anisotropicAlphas(rough, s.anisotropyStrength) : vec2(rough * rough);
+        // Every glossy pixel, also where the mesh's visibility finds the lobe open: its cone
+        // model misses parts of the mesh the rays meet (gated to the occluded pixels, the
+        // gold ball under the rig read 9.96 mean ΔE2000 against 9.28, for 45 instead of 74 ms
+        // added to a 290 ms 1280x720 refinement frame of the copper ball on its stage).
+        int rays = screenSpaceReflectionRays();
+        vec3 sum = vec3(0.0);
+        for (int i = 0; i < rays; ++i) {
+            vec4 hit = screenSpaceReflection(p, t, alpha, NdotV, pixel, i);
+            sum += hit.a > 0.0 ? specularAlbedoMix * hit.rgb : reflected;
+        }
+        reflected = sum / float(rays);
+    }
+#endif
     vec3 ambient = (1.0 - s.metallic) * (1.0 - max3(specDielectric)) * s.baseColor * irradiance *
                        diffuseOcclusion +
-                   specular * specularOcclusion;
+                   reflected;
 #if WITH_SHEEN // (common_brdf.glsl's specialisation)
     if (max3(s.sheenColor) > 0.0) {
         // The sheen model's own albedo for both the scaling and the sheen lobe, lit by the

@@ -6,7 +6,8 @@
 // the ring, at the pedestal's neck); a wide lobe on the open top is not occluded even where it
 // reaches below the horizon at the silhouette. Under a uniform environment a black
 // dielectric's pixel is its unoccluded specular albedo (the sphere's at the same normal) times
-// the view's factor: the factor reaches the lighting.
+// the view's factor, and the hidden rest the light its own surface sends back: the factor
+// reaches the lighting.
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
@@ -134,9 +135,10 @@ private slots:
 
     void finalImageDarkensByTheFactor() {
         // Under the uniform environment a black dielectric's pixel is its specular albedo, a
-        // function of n.v alone, times the factor. The sphere, which has no factor, gives the
-        // albedo per n.v (its centre pixel's normal is the orthographic view direction); each
-        // shader ball pixel must be that albedo at its n.v times its factor from the view.
+        // function of n.v alone, times the factor, plus what the hidden part reflects back. The
+        // sphere, which has no factor, gives the albedo per n.v (its centre pixel's normal is the
+        // orthographic view direction); each shader ball pixel must be that albedo at its n.v times
+        // its factor from the view.
         const Scene sphere = uniformScene(PreviewMeshKind::Sphere, 0.1f);
         const Image sphereNormal = draw(sphere, render::DebugView::Normal);
         const Image sphereFinal = draw(sphere, render::DebugView::Final);
@@ -169,8 +171,12 @@ private slots:
                 if (glm::length(n) < 0.5f || glm::dot(glm::normalize(n), v) < 0.2f ||
                     count[size_t(bin(n))] < 3)
                     continue;
-                const double expected =
-                    albedo[size_t(bin(n))] / count[size_t(bin(n))] * occlusion.rgba(x, y).r;
+                // What the factor hides brings the light the black surface there sends back:
+                // its albedo a of the white surroundings, through the series of
+                // common_occlusion.glsl's meshReflection (open share 0.5).
+                const double a = albedo[size_t(bin(n))] / count[size_t(bin(n))];
+                const double f = occlusion.rgba(x, y).r;
+                const double expected = a * (f + (1.0 - f) * a * 0.5 / (1.0 - 0.5 * a));
                 const bool close = std::abs(final.rgba(x, y).g - expected) < 0.1 * expected + 0.003;
                 ++compared;
                 agree += close;

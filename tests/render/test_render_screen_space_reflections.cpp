@@ -1,0 +1,182 @@
+// The mesh reflected in itself: a frame at rest draws the surfaces twice on a mesh that can see
+// itself, the second pass reading the first's image where its rays meet the mesh
+// (FrameSettings::screenSpaceReflections, screen_space_reflection.glsl), and what the mesh's
+// occlusion hides of a lobe brings the light the surface there sends back (common_occlusion.glsl's
+// meshReflection). Known answers: a white furnace stays white; in the dark the ball reflects only
+// its own light. And the frames that must not pay for the second pass do not: the convex sphere,
+// a rough lobe, a frame without reflection samples, the setting off.
+#include "render/renderer.h"
+#include "render_test_util.h"
+
+#include <QTemporaryDir>
+#include <QtTest>
+#include <algorithm>
+#include <vector>
+
+using namespace velvet;
+
+namespace {
+
+constexpr int kSize = 96;
+
+struct Frame {
+    Image color;
+    render::FramePasses passes;
+};
+
+Frame draw(const Scene& scene, render::FrameSettings fs) {
+    test::OffscreenRenderer* r = test::processRenderer(kSize);
+    r->renderer->setScene(scene, nullptr);
+    r->renderer->finishEnvironment();
+    fs.width = fs.height = kSize;
+    std::string error;
+    // Twice: the first frame after a scene change may not build a specialised program yet.
+    for (int i = 0; i < 2; ++i)
+        if (!r->renderer->render(fs, r->target->framebuffer(), &error))
+            qFatal("render failed: %s", error.c_str());
+    return {r->renderer->readLinear(), r->renderer->lastFramePasses()};
+}
+
+/// The frame's normal view (the mesh's pixels are those with a normal).
+Image normalView(const Scene& scene) {
+    render::FrameSettings fs;
+    fs.view = render::DebugView::Normal;
+    return draw(scene, fs).color;
+}
+
+/// A frame at rest: reflections sampled as the viewport's refinement samples them.
+render::FrameSettings atRest(bool reflections = true) {
+    render::FrameSettings fs;
+    fs.reflectionSamples = render::kRefinementReflectionSamples;
+    fs.reflectionSampleTotal = render::kRefinementReflectionSamples;
+    fs.screenSpaceReflections = reflections;
+    return fs;
+}
+
+/// The shader ball's pixels' mean RGB, sorted (the background, black in the normal view, left out).
+std::vector<float> meshValues(const Image& color, const Image& normals) {
+    std::vector<float> values;
+    for (int y = 0; y < color.height; ++y)
+        for (int x = 0; x < color.width; ++x) {
+            const glm::vec4 n = normals.rgba(x, y);
+            if (n.x * n.x + n.y * n.y + n.z * n.z < 0.25f)
+                continue;
+            const glm::vec4 c = color.rgba(x, y);
+            values.push_back((c.r + c.g + c.b) / 3.0f);
+        }
+    std::sort(values.begin(), values.end());
+    return values;
+}
+
+float percentile(const std::vector<float>& sorted, float p) {
+    return sorted[size_t(p * float(sorted.size() - 1))];
+}
+
+} // namespace
+
+class TestRenderScreenSpaceReflections : public QObject {
+    Q_OBJECT
+    QTemporaryDir m_dir;
+
+private slots:
+    void initTestCase() {
+        const std::string error = test::startWithCacheIn(m_dir);
+        QVERIFY2(error.empty(), error.c_str());
+    }
+    void cleanupTestCase() { test::stopProcessRenderer(); }
+
+    // A white metal (F0 = 1) in a uniform white environment reflects exactly the environment's
+    // radiance however often the light bounces between its parts: every pixel of the shader ball
+    // is 1, in its cavities too. With the mesh's occlusion alone the hidden part of a lobe brings
+    // the light the surface there sends back (meshReflection, common_occlusion.glsl: all of it
+    // for albedo 1), and the traced reflections read the first pass's white.
+    void aWhiteMetalBallStaysWhiteInAWhiteFurnace() {
+        Scene scene = test::uniformEnvironmentScene(glm::vec3(1.0f));
+        scene.mesh.kind = PreviewMeshKind::ShaderBall;
+        scene.material = test::whiteMaterial(1.0f, 0.25f);
+        const Image normals = normalView(scene);
+        for (bool traced : {false, true}) {
+            render::FrameSettings fs = atRest(traced);
+            fs.reflectionSamples = fs.reflectionSampleTotal = 64; // the lobe's own noise down
+            const Frame f = draw(scene, fs);
+            QCOMPARE(f.passes.screenSpaceReflections, traced);
+            const std::vector<float> v = meshValues(f.color, normals);
+            QVERIFY(v.size() > size_t(kSize * kSize / 5));
+            double error = 0.0;
+            for (float x : v)
+                error += std::abs(double(x) - 1.0);
+            error /= double(v.size());
+            qInfo("white furnace, white metal shader ball, reflections %s: mean |value - 1| %.4f, "
+                  "5th percentile %.3f, brightest %.3f",
+                  traced ? "traced" : "occluded only", error, percentile(v, 0.05f), v.back());
+            QVERIFY2(error < 0.02, qPrintable(QString::number(error)));
+            QVERIFY2(percentile(v, 0.05f) > 0.9f,
+                     qPrintable(QString::number(percentile(v, 0.05f))));
+            QVERIFY2(v.back() < 1.05f, qPrintable(QString::number(v.back())));
+        }
+    }
+
+    // In a black environment under one light the only light a reflection can bring is the mesh's
+    // own: with the reflections traced, parts of the ball that face its lit parts gain light, no
+    // pixel loses any (a miss sees the black environment as before), and none gains more than the
+    // brightest lit pixel of the ball (a white metal reflects at most what it meets).
+    void inTheDarkTheBallReflectsOnlyItsOwnLight() {
+        Scene scene = test::uniformEnvironmentScene(glm::vec3(0.0f));
+        scene.lights = {test::analyticKeyLight()};
+        scene.mesh.kind = PreviewMeshKind::ShaderBall;
+        scene.material = test::whiteMaterial(1.0f, 0.25f);
+        const Image normals = normalView(scene);
+        const Frame occluded = draw(scene, atRest(false));
+        const Frame traced = draw(scene, atRest(true));
+        QVERIFY(traced.passes.screenSpaceReflections);
+        int mesh = 0, brighter = 0;
+        float brightest = 0.0f, gain = 0.0f, loss = 0.0f;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                const glm::vec4 n = normals.rgba(x, y);
+                if (n.x * n.x + n.y * n.y + n.z * n.z < 0.25f)
+                    continue;
+                ++mesh;
+                const glm::vec4 a = occluded.color.rgba(x, y), b = traced.color.rgba(x, y);
+                const float before = (a.r + a.g + a.b) / 3.0f, after = (b.r + b.g + b.b) / 3.0f;
+                brightest = std::max(brightest, before);
+                gain = std::max(gain, after - before);
+                loss = std::max(loss, before - after);
+                brighter += after > before + 0.01f;
+            }
+        qInfo("black environment, key light: %d of %d mesh pixels brighter with the reflections "
+              "traced; largest gain %.3f (brightest lit pixel %.3f), largest loss %.5f",
+              brighter, mesh, gain, brightest, loss);
+        QVERIFY(brighter > mesh / 100); // the highlights it faces (69 of 3498 pixels here)
+        QVERIFY2(loss < 1e-3f, qPrintable(QString::number(loss)));
+        QVERIFY(gain <= brightest);
+    }
+
+    // Only frames at rest on a mesh that can see itself, with a lobe glossy enough to sample,
+    // draw the surfaces twice.
+    void framesThatCannotUseThemDrawTheSurfacesOnce() {
+        Scene ball = test::uniformEnvironmentScene(glm::vec3(1.0f));
+        ball.mesh.kind = PreviewMeshKind::ShaderBall;
+        ball.material = test::whiteMaterial(1.0f, 0.25f);
+        Scene sphere = ball;
+        sphere.mesh.kind = PreviewMeshKind::Sphere;
+        Scene rough = ball;
+        rough.material = test::whiteMaterial(1.0f, 0.9f);
+
+        const Frame convex = draw(sphere, atRest());
+        QVERIFY(!convex.passes.screenSpaceReflections);
+        QVERIFY(!draw(rough, atRest()).passes.screenSpaceReflections);
+        QVERIFY(!draw(ball, render::FrameSettings{}).passes.screenSpaceReflections);
+        // A frame of the editor that reads only the display image keeps its display step inside
+        // the lighting pass, unless it reflects the mesh (which needs the linear image).
+        render::FrameSettings display = atRest();
+        display.displayOnly = true;
+        QVERIFY(draw(ball, display).passes.screenSpaceReflections);
+        display.screenSpaceReflections = false;
+        const Frame plain = draw(ball, display);
+        QVERIFY(!plain.passes.screenSpaceReflections);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRenderScreenSpaceReflections)
+#include "test_render_screen_space_reflections.moc"
