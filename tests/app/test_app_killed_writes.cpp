@@ -74,12 +74,17 @@ private slots:
                      error.c_str());
             args << QStringLiteral("--") + map << file;
         }
-        // One complete run: its duration sets the range of kill moments.
-        QElapsedTimer clock;
-        clock.start();
-        const velvet::test::Result full = velvet::test::runVelvet(args);
-        QVERIFY2(full.exitCode == 0, qPrintable(full.err));
-        const int fullMs = int(clock.elapsed());
+        // Complete runs: the shorter of two sets the range of kill moments (the first, with cold
+        // caches or beside a loaded moment of a parallel suite, ran long enough in CI that most
+        // later runs finished before their kill).
+        int fullMs = 0;
+        for (int i = 0; i < 2; ++i) {
+            QElapsedTimer clock;
+            clock.start();
+            const velvet::test::Result full = velvet::test::runVelvet(args);
+            QVERIFY2(full.exitCode == 0, qPrintable(full.err));
+            fullMs = i == 0 ? int(clock.elapsed()) : std::min(fullMs, int(clock.elapsed()));
+        }
         velvet::ImageInfo reference;
         QVERIFY(velvet::readImageInfo(dir.filePath("orm.png").toStdString(), reference, &error));
 
