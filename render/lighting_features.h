@@ -60,9 +60,10 @@ struct LightingFeatures {
     /// a supersampled still); every other frame compiles the sampling out, which llvmpipe would
     /// otherwise pay for beside the split sum (+5 ms a 1280x720 frame).
     bool sampledReflections = true;
-    /// The second surfaces pass of a frame with screen-space reflections
+    /// The second surfaces pass of a frame that traces the mesh's light in screen space
     /// (FrameSettings::screenSpaceReflections; screen_space_reflection.glsl): it reads the first
-    /// pass's image where its rays meet the mesh. Off in the generic program and every first pass.
+    /// pass's image where its reflection and diffuse rays meet the mesh. Off in the generic
+    /// program and every first pass.
     bool screenSpaceReflections = false;
     /// The environment's irradiance cube (render/irradiance_map.h) is ready: the SH9 compiles out.
     bool irradianceMap = true;

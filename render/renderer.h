@@ -192,13 +192,13 @@ struct FrameSettings {
     /// Pixels per side of the frame that are samples of one output pixel (a supersampled
     /// still's factor; 1 for a frame of the progressive mean): they draw consecutive sets.
     int reflectionSampleBlock = 1;
-    /// With reflections sampled, a mesh that can see itself (not a convex preview mesh) and a
-    /// lobe glossy enough to sample: the surfaces are drawn twice, the second pass reading the
-    /// first's image where one ray per pixel, a sample of the lobe, meets the mesh in the depth
-    /// buffer (screen_space_reflection.glsl): the shader ball's copper shows the copper it faces
-    /// instead of an environment darkened by the mesh's occlusion. The frame then goes through
-    /// the scene-linear target (no display step inside the lighting pass). Off: the occlusion
-    /// alone, as before.
+    /// With reflections sampled and a mesh that can see itself (not a convex preview mesh): the
+    /// surfaces are drawn twice, the second pass reading the first's image where a few rays a
+    /// pixel meet the mesh in the depth buffer (screen_space_reflection.glsl): samples of a
+    /// glossy lobe (the shader ball's copper shows the copper it faces instead of an environment
+    /// darkened by the mesh's occlusion) and of the diffuse light (the key light on the ring
+    /// lights the pedestal under it). The frame then goes through the scene-linear target (no
+    /// display step inside the lighting pass). Off: the occlusions alone.
     bool screenSpaceReflections = true;
     /// @}
     /// @name Progressive anti-aliasing (render/progressive_accumulation.h)

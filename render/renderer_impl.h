@@ -276,16 +276,17 @@ struct Renderer::Impl {
         return f;
     }
 
-    /// Whether this frame draws screen-space reflections (FrameSettings::screenSpaceReflections):
-    /// the final image with reflections sampled, a mesh that can see itself (one with its
-    /// visibility baked: the convex preview meshes have none) and a lobe glossy enough to sample.
+    /// Whether this frame traces the mesh's light in screen space
+    /// (FrameSettings::screenSpaceReflections): the final image with reflections sampled (a frame
+    /// at rest, a still) and a mesh that can see itself (one with its visibility baked: the
+    /// convex preview meshes have none), once the environment is baked.
     bool wantsScreenSpaceReflections(const FrameSettings& fs) const {
-        if (!fs.screenSpaceReflections || fs.view != DebugView::Final || !mesh ||
-            !mesh->gpu.hasVisibility())
+        if (!fs.screenSpaceReflections || fs.reflectionSamples <= 0 ||
+            fs.view != DebugView::Final || !mesh || !mesh->gpu.hasVisibility())
             return false;
         // Not while the environment bakes (the generic program draws, which may sample anything).
         const LightingFeatures f = frameFeatures(fs);
-        return !f.isGeneric() && f.sampledReflections;
+        return !f.isGeneric();
     }
     /// The surfaces into the first pass's target, then again with screen-space reflections of it
     /// into the HDR target (drawLitPasses). @p drawn false when the reflecting program is not

@@ -243,11 +243,14 @@ void main() {
     // too: no black, but the light it sends back (meshReflection), so a white metal's cavities stay
     // white in a white furnace as the path tracer's do.
     vec3 specularAlbedoMix = mix(specDielectric, specMetal, s.metallic);
+    vec3 diffuseAlbedo = (1.0 - s.metallic) * (1.0 - max3(specDielectric)) * s.baseColor;
     vec3 reflected = specular * specularOcclusion +
                      specularAlbedoMix * (1.0 - specularOcclusion) *
-                         meshReflection(surroundings, (1.0 - s.metallic) *
-                                                          (1.0 - max3(specDielectric)) * s.baseColor +
-                                                      specularAlbedoMix);
+                         meshReflection(surroundings, diffuseAlbedo + specularAlbedoMix);
+    // The diffuse light: the environment's under the occlusions (the screen-space one applied
+    // with the rest of the ambient light below), or, traced, outside them.
+    vec3 diffuseLight = irradiance * diffuseOcclusion;
+    vec3 tracedDiffuse = vec3(0.0);
 #if WITH_SCREEN_SPACE_REFLECTIONS
     // Where this pixel's rays meet the mesh, the mesh's own light in place of the environment's
     // (screen_space_reflection.glsl), through the lobe's albedo. Its misses keep the occluded
@@ -268,10 +271,25 @@ void main() {
         }
         reflected = sum / float(rays);
     }
+    {
+        // The diffuse light traced too (screenSpaceGather): cosine-distributed rays about the
+        // face; those that meet the mesh bring its light (the key light's on the ring, which no
+        // occlusion can give back), the others the environment's irradiance. The rays find the
+        // mesh's parts that the screen-space occlusion finds, so it does not darken this light
+        // again (tracedDiffuse is kept out of it below).
+        int rays = screenSpaceReflectionRays();
+        vec3 gathered = vec3(0.0);
+        float hits = 0.0;
+        for (int i = 0; i < rays; ++i) {
+            vec4 hit = screenSpaceGather(p, pixel, i);
+            gathered += hit.rgb;
+            hits += hit.a;
+        }
+        tracedDiffuse = diffuseAlbedo * (diffuseLight * (float(rays) - hits) + gathered) / float(rays);
+        diffuseLight = vec3(0.0);
+    }
 #endif
-    vec3 ambient = (1.0 - s.metallic) * (1.0 - max3(specDielectric)) * s.baseColor * irradiance *
-                       diffuseOcclusion +
-                   reflected;
+    vec3 ambient = diffuseAlbedo * diffuseLight + reflected;
 #if WITH_SHEEN // (common_brdf.glsl's specialisation)
     if (max3(s.sheenColor) > 0.0) {
         // The sheen model's own albedo for both the scaling and the sheen lobe, lit by the
@@ -295,6 +313,7 @@ void main() {
 #endif
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
                   s.sheenColor * e * sheenLight * diffuseOcclusion;
+        tracedDiffuse *= 1.0 - max3(s.sheenColor) * e;
     }
 #endif
     float keepEmission = 1.0; // KHR_materials_clearcoat: emission seen through the coat's Fresnel
@@ -306,6 +325,7 @@ void main() {
         float cr = max(s.clearcoatRoughness, MIN_ROUGHNESS);
         vec2 abc = environmentDfg(NdotVc, cr);
         float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotVc);
+        tracedDiffuse *= 1.0 - fc;
         ambient = ambient * (1.0 - fc) +
                   s.clearcoat * (0.04 * abc.x + abc.y) * reflectedRadiance(reflect(-v, nc), NdotVc, cr) *
                       specularOcclusion;
@@ -316,9 +336,9 @@ void main() {
     // 2016's multiple-bounce fit, common_occlusion.glsl): the path tracer's interreflection, which
     // a bare visibility leaves out (BENCHMARKS.md, "Interreflection in the occlusion").
 #if WITH_OCCLUSION
-    color += ambient * multiBounceOcclusion(ssao, s.baseColor);
+    color += ambient * multiBounceOcclusion(ssao, s.baseColor) + tracedDiffuse;
 #else
-    color += ambient;
+    color += ambient + tracedDiffuse;
 #endif
 #if defined(STAGE_GROUND_PLAIN)
     if (p.materialId == GROUND_PLAIN_MATERIAL_ID) // the plain ground fades into the catcher

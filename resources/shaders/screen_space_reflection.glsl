@@ -1,5 +1,5 @@
-// Screen-space reflections (docs/architecture.md, "Reflections of the mesh in itself"): where a
-// glossy lobe's reflection meets the mesh itself (the shader ball's cap over its ring, the ring
+// The mesh's light traced in screen space (docs/architecture.md, "Reflections of the mesh in
+// itself"): where a glossy lobe's reflection meets the mesh itself (the shader ball's cap over its ring, the ring
 // over its pedestal), the light it brings is the mesh's own, not the environment's that the mesh
 // hides. The mesh's visibility (mesh_visibility.glsl) can only darken such a reflection; the path
 // tracer shows the lit copper the ray meets. A frame at rest (FrameSettings::reflectionSamples)
@@ -8,13 +8,16 @@
 // march in screen space with perspective-correct depth, as McGuire & Mara 2014, "Efficient GPU
 // Screen-Space Ray Tracing", JCGT 3(4), then a bisection of the step that crossed the surface).
 // The pixels of a progressive mean (or a supersampled still's samples) each trace another ray of
-// one stratified set, so the mean holds the share of the lobe that meets the mesh.
+// one stratified set, so the mean holds the share of the lobe that meets the mesh. The diffuse
+// light is gathered the same way (screenSpaceGather): a lit part of the mesh lights the parts
+// that face it, which no occlusion can give back.
 // Needs gbuffer_read.glsl, common_environment.glsl (reflectionSample, the visible normals) and
 // stage_shading.glsl (the stage block: the mesh's bounding sphere).
 
 // WITH_SCREEN_SPACE_REFLECTIONS 1 (render/lighting_features.h): the second surfaces pass.
 #ifndef WITH_SCREEN_SPACE_REFLECTIONS
 #define WITH_SCREEN_SPACE_REFLECTIONS 0
+
 #endif
 
 #if WITH_SCREEN_SPACE_REFLECTIONS
@@ -27,6 +30,9 @@ layout(binding = BINDING_HDR_TEX) uniform sampler2D uReflectionSource;
 // mean ΔE2000 of them (velvet compare --table).
 const int SSR_STEPS = 24;
 const int SSR_REFINEMENTS = 3;
+// The diffuse rays' steps: a wide lobe's light is a mean over many rays, each hit's place
+// matters less than a mirror's.
+const int SSR_GATHER_STEPS = 12;
 
 // The view-space z (negative in front) of full-resolution pixel @p q, from its hardware depth
 // through the projection's z row alone (a jitter moves x and y only): clip z = P22 z + P32 over
@@ -42,7 +48,7 @@ float ssrSceneZ(ivec2 q) {
 // behind the depth buffer, within a thickness that grows with the step's own depth span (a ray
 // passing behind a thin part does not stop there), or (-1, -1). @p jitter in [0, 1) offsets the
 // steps per pixel, so neighbours sample between each other's.
-ivec2 ssrMarch(vec3 origin, vec3 dir, float reach, float jitter) {
+ivec2 ssrMarch(vec3 origin, vec3 dir, float reach, float jitter, int steps) {
     vec3 end = origin + dir * reach;
     // Keep the end in front of the camera (a ray towards it leaves the frustum there).
     if (frame.cameraPosition.w < 0.5 && end.z > -0.01) {
@@ -66,11 +72,11 @@ ivec2 ssrMarch(vec3 origin, vec3 dir, float reach, float jitter) {
         return ivec2(-1);
     // Perspective-correct: q = p / w and k = 1 / w vary linearly across the screen.
     vec3 q0 = origin * k0, q1 = end * k1;
-    float stepZ = abs(q1.z / k1 - q0.z / k0) / float(SSR_STEPS);
+    float stepZ = abs(q1.z / k1 - q0.z / k0) / float(steps);
     float thickness = max(2.0 * stepZ, 0.02 * reach);
     float before = 0.0;
-    for (int i = 1; i <= SSR_STEPS; ++i) {
-        float t = tMax * (float(i) - jitter) / float(SSR_STEPS);
+    for (int i = 1; i <= steps; ++i) {
+        float t = tMax * (float(i) - jitter) / float(steps);
         ivec2 px = ivec2(mix(s0, s1, t));
         float rayZ = mix(q0.z, q1.z, t) / mix(k0, k1, t);
         float behind = ssrSceneZ(px) - rayZ; // > 0: the ray is farther than the surface
@@ -94,13 +100,9 @@ ivec2 ssrMarch(vec3 origin, vec3 dir, float reach, float jitter) {
     return ivec2(-1);
 }
 
-// The light one GGX visible-normal sample of the base lobe (alpha along t and n x t) brings to
-// pixel @p pixel from the mesh itself: rgb the first pass's radiance where the ray meets the
-// surface, a 1 there; a 0 where it leaves the frame, meets nothing, meets a surface from behind
-// or the shadow catcher (which stands for the background, not for an object in it).
-// Rays a pixel traces: SSR_RAYS_PER_OUTPUT_PIXEL over the samples its output pixel's mean holds
-// (ibl.reflection.y / .x: 16 for the viewport's refinement and the table's 4 x 4, 4 for a still
-// supersampled 2 x 2, whose one ray a sample left the reflections grainy).
+// Rays a pixel traces of each kind: SSR_RAYS_PER_OUTPUT_PIXEL over the samples its output
+// pixel's mean holds (ibl.reflection.y / .x: 16 for the viewport's refinement and the table's
+// 4 x 4, 4 for a still supersampled 2 x 2, whose one ray a sample left the reflections grainy).
 const int SSR_RAYS_PER_OUTPUT_PIXEL = 16;
 int screenSpaceReflectionRays() {
     float samplesInMean = max(ibl.reflection.y / max(ibl.reflection.x, 1.0), 1.0);
@@ -108,36 +110,60 @@ int screenSpaceReflectionRays() {
                  SSR_RAYS_PER_OUTPUT_PIXEL);
 }
 
-// Ray @p ray of screenSpaceReflectionRays().
-vec4 screenSpaceReflection(ShadingPoint p, vec3 t, vec2 alpha, float NdotV, ivec2 pixel, int ray) {
+// Ray @p ray of pixel @p pixel's screenSpaceReflectionRays() of one kind: its index in the
+// output pixel's stratified set (x), and the set's per-pixel scramble for the kind (yz), so the
+// reflection's and the diffuse light's rays are not the lobe samples of sampledReflection.
+uvec3 ssrRayIndex(ivec2 pixel, int ray, uvec2 kind) {
     uint block = uint(max(ibl.reflection.w, 1.0));
     uvec2 outputPixel = uvec2(pixel) / block, sub = uvec2(pixel) % block;
     uint set = uint(ibl.reflection.z) * block * block + sub.y * block + sub.x;
-    // Its own scramble (not sampledReflection's), so the ray is not the lobe's first sample.
-    uvec2 scramble = pcg2d(outputPixel ^ uvec2(0x9E3779B9u, 0x85EBCA6Bu));
-    uint rays = uint(screenSpaceReflectionRays());
-    vec2 u = reflectionSample(set * rays + uint(ray), scramble);
-    vec3 b = cross(p.n, t);
-    vec3 ht = sampleGgxVisibleNormal(visibleNormalsOf(vec3(dot(p.v, t), dot(p.v, b), NdotV), alpha), u);
-    vec3 h = t * ht.x + b * ht.y + p.n * ht.z;
-    vec3 l = reflect(-p.v, h);
+    return uvec3(set * uint(screenSpaceReflectionRays()) + uint(ray), pcg2d(outputPixel ^ kind));
+}
+
+// The light the ray from @p p along world direction @p l brings from the mesh itself: rgb the
+// first pass's radiance where it meets the surface, a 1 there; a 0 where it leaves the frame,
+// meets nothing, meets a surface from behind or the shadow catcher (which stands for the
+// background, not for an object in it). @p index: ssrRayIndex's x (the march's jitter).
+vec4 ssrTrace(ShadingPoint p, vec3 l, ivec2 pixel, uint index, int steps) {
     if (dot(p.n, l) <= 0.0 || dot(p.ng, l) <= 0.0)
         return vec4(0.0);
     vec3 dirView = normalize(mat3(frame.viewMatrix) * l);
     vec3 nView = normalize(mat3(frame.viewMatrix) * p.ng);
     // Off the surface by a little of its depth, so the march does not meet its own pixel.
     vec3 origin = p.posView + nView * (0.002 * -p.posView.z);
-    uint j = set * rays + uint(ray);
-    float jitter = float(pcg2d(uvec2(pixel) + uvec2(j * 7919u, j)).x) * 2.3283064365386963e-10;
-    ivec2 hit = ssrMarch(origin, dirView, 2.0 * stage.meshSphere.w, jitter);
+    float jitter = float(pcg2d(uvec2(pixel) + uvec2(index * 7919u, index)).x) * 2.3283064365386963e-10;
+    ivec2 hit = ssrMarch(origin, dirView, 2.0 * stage.meshSphere.w, jitter, steps);
     if (hit.x < 0 || hit == pixel)
         return vec4(0.0);
-    int id = readMaterialId(hit);
-    if (id == GROUND_CATCHER_MATERIAL_ID)
+    if (readMaterialId(hit) == GROUND_CATCHER_MATERIAL_ID)
         return vec4(0.0);
     // Met from behind (the ray slipped under a silhouette): no light of the surface's face.
     if (dot(octDecodeUnorm16(texelFetch(gNormalTex, hit, 0).rg), l) > 0.0)
         return vec4(0.0);
     return vec4(texelFetch(uReflectionSource, hit, 0).rgb, 1.0);
+}
+
+// Ray @p ray of screenSpaceReflectionRays(): a GGX visible-normal sample of the base lobe (alpha
+// along t and n x t), as ssrTrace.
+vec4 screenSpaceReflection(ShadingPoint p, vec3 t, vec2 alpha, float NdotV, ivec2 pixel, int ray) {
+    uvec3 index = ssrRayIndex(pixel, ray, uvec2(0x9E3779B9u, 0x85EBCA6Bu));
+    vec2 u = reflectionSample(index.x, index.yz);
+    vec3 b = cross(p.n, t);
+    vec3 ht = sampleGgxVisibleNormal(visibleNormalsOf(vec3(dot(p.v, t), dot(p.v, b), NdotV), alpha), u);
+    vec3 l = reflect(-p.v, t * ht.x + b * ht.y + p.n * ht.z);
+    return ssrTrace(p, l, pixel, index.x, SSR_STEPS);
+}
+
+// Ray @p ray of screenSpaceReflectionRays(): a sample of the cosine lobe about the face (the
+// diffuse light's directions), as ssrTrace.
+vec4 screenSpaceGather(ShadingPoint p, ivec2 pixel, int ray) {
+    uvec3 index = ssrRayIndex(pixel, ray, uvec2(0x68E31DA4u, 0xB5297A4Du));
+    vec2 u = reflectionSample(index.x, index.yz);
+    vec3 n = p.ng;
+    vec3 t = normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : vec3(1.0, 0.0, 0.0));
+    vec3 b = cross(n, t);
+    float r = sqrt(u.x), phi = 2.0 * PI * u.y;
+    vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(1.0 - u.x, 0.0));
+    return ssrTrace(p, l, pixel, index.x + 977u, SSR_GATHER_STEPS);
 }
 #endif

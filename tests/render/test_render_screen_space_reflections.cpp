@@ -2,7 +2,8 @@
 // itself, the second pass reading the first's image where its rays meet the mesh
 // (FrameSettings::screenSpaceReflections, screen_space_reflection.glsl), and what the mesh's
 // occlusion hides of a lobe brings the light the surface there sends back (common_occlusion.glsl's
-// meshReflection). Known answers: a white furnace stays white; in the dark the ball reflects only
+// meshReflection). Known answers: a white furnace stays white (a white metal; a white diffuse
+// ball under the stage's occlusion comes back towards white); in the dark the ball reflects only
 // its own light. And the frames that must not pay for the second pass do not: the convex sphere,
 // a rough lobe, a frame without reflection samples, the setting off.
 #include "render/renderer.h"
@@ -116,15 +117,60 @@ private slots:
         }
     }
 
-    // In a black environment under one light the only light a reflection can bring is the mesh's
-    // own: with the reflections traced, parts of the ball that face its lit parts gain light, no
-    // pixel loses any (a miss sees the black environment as before), and none gains more than the
-    // brightest lit pixel of the ball (a white metal reflects at most what it meets).
+    // A white Lambertian ball (no specular lobe) in a white furnace under the stage's
+    // screen-space occlusion, which darkens its cavities: the truth is 1 everywhere. The traced
+    // diffuse light replaces that occlusion by what the rays meet (the first pass's light) and
+    // the environment where they escape, so the cavities come back towards 1, and nothing
+    // exceeds it.
+    void aWhiteDiffuseBallComesBackTowardsWhiteUnderTheStagesOcclusion() {
+        Scene scene = test::uniformEnvironmentScene(glm::vec3(1.0f));
+        scene.mesh.kind = PreviewMeshKind::ShaderBall;
+        applyStageDefaults(scene.environment, PreviewMeshKind::ShaderBall);
+        scene.environment.ground = GroundMode::Off;
+        QVERIFY(scene.environment.ambientOcclusion);
+        scene.material = test::whiteMaterial(0.0f, 0.5f, /*specularWeight=*/0.0f);
+        const Image normals = normalView(scene);
+        double error[2] = {0.0, 0.0};
+        float brightest[2] = {0.0f, 0.0f}, low[2] = {0.0f, 0.0f};
+        for (bool traced : {false, true}) {
+            const Frame f = draw(scene, atRest(traced));
+            QCOMPARE(f.passes.screenSpaceReflections, traced);
+            const std::vector<float> v = meshValues(f.color, normals);
+            for (float x : v)
+                error[traced] += std::abs(double(x) - 1.0);
+            error[traced] /= double(v.size());
+            brightest[traced] = v.back();
+            low[traced] = percentile(v, 0.05f);
+        }
+        qInfo("white furnace, white Lambertian shader ball under the stage's occlusion: mean "
+              "|value - 1| %.4f occluded, %.4f traced; 5th percentile %.3f / %.3f; brightest "
+              "%.3f / %.3f",
+              error[0], error[1], low[0], low[1], brightest[0], brightest[1]);
+        QVERIFY2(error[0] > 0.01, "the occlusion darkens nothing: no test");
+        QVERIFY(error[1] < 0.6 * error[0]);
+        QVERIFY(low[1] > low[0]);
+        QVERIFY2(brightest[1] < 1.03f, qPrintable(QString::number(brightest[1])));
+    }
+
+    // In a black environment under one light the only light the traced rays can bring is the
+    // mesh's own: parts of the ball that face its lit parts gain light, no pixel loses any (a miss
+    // sees the black environment as before), and none gains more than the brightest lit pixel
+    // (a white surface reflects at most what it meets). A white metal gains it in its
+    // reflections of the highlights; a white diffuse ball, whose lit parts light every part that
+    // faces them, in many more pixels.
+    void inTheDarkTheBallReflectsOnlyItsOwnLight_data() {
+        QTest::addColumn<float>("metallic");
+        QTest::addColumn<int>("atLeastPerMille");
+        QTest::newRow("white metal") << 1.0f << 10;    // 65 of 3498 pixels here
+        QTest::newRow("white diffuse") << 0.0f << 100; // the pedestal under the lit ring
+    }
     void inTheDarkTheBallReflectsOnlyItsOwnLight() {
+        QFETCH(float, metallic);
+        QFETCH(int, atLeastPerMille);
         Scene scene = test::uniformEnvironmentScene(glm::vec3(0.0f));
         scene.lights = {test::analyticKeyLight()};
         scene.mesh.kind = PreviewMeshKind::ShaderBall;
-        scene.material = test::whiteMaterial(1.0f, 0.25f);
+        scene.material = test::whiteMaterial(metallic, 0.25f, metallic > 0.5f ? 1.0f : 0.0f);
         const Image normals = normalView(scene);
         const Frame occluded = draw(scene, atRest(false));
         const Frame traced = draw(scene, atRest(true));
@@ -144,16 +190,15 @@ private slots:
                 loss = std::max(loss, before - after);
                 brighter += after > before + 0.01f;
             }
-        qInfo("black environment, key light: %d of %d mesh pixels brighter with the reflections "
-              "traced; largest gain %.3f (brightest lit pixel %.3f), largest loss %.5f",
+        qInfo("black environment, key light: %d of %d mesh pixels brighter with the light traced; "
+              "largest gain %.3f (brightest lit pixel %.3f), largest loss %.5f",
               brighter, mesh, gain, brightest, loss);
-        QVERIFY(brighter > mesh / 100); // the highlights it faces (69 of 3498 pixels here)
+        QVERIFY(brighter * 1000 > mesh * atLeastPerMille);
         QVERIFY2(loss < 1e-3f, qPrintable(QString::number(loss)));
         QVERIFY(gain <= brightest);
     }
 
-    // Only frames at rest on a mesh that can see itself, with a lobe glossy enough to sample,
-    // draw the surfaces twice.
+    // Only frames at rest on a mesh that can see itself draw the surfaces twice.
     void framesThatCannotUseThemDrawTheSurfacesOnce() {
         Scene ball = test::uniformEnvironmentScene(glm::vec3(1.0f));
         ball.mesh.kind = PreviewMeshKind::ShaderBall;
@@ -165,7 +210,8 @@ private slots:
 
         const Frame convex = draw(sphere, atRest());
         QVERIFY(!convex.passes.screenSpaceReflections);
-        QVERIFY(!draw(rough, atRest()).passes.screenSpaceReflections);
+        // A rough lobe traces no reflection but its diffuse light: drawn twice.
+        QVERIFY(draw(rough, atRest()).passes.screenSpaceReflections);
         QVERIFY(!draw(ball, render::FrameSettings{}).passes.screenSpaceReflections);
         // A frame of the editor that reads only the display image keeps its display step inside
         // the lighting pass, unless it reflects the mesh (which needs the linear image).
