@@ -422,25 +422,30 @@ bool Renderer::Impl::drawReflectingSurfaces(const FrameSettings& fs, bool emissi
                                             const ShaderProgram& surfaceProgram, bool& drawn,
                                             std::string* error) {
     drawn = false;
+    // The final image's surface program specialised to @p f, or null (a failure, in @p error);
+    // @p specialised false when it is the generic one (not built yet, or its build failed).
+    bool specialised = false;
+    auto programFor = [&](const LightingFeatures& f) {
+        const ShaderProgram* p = lighting.surfaceProgram(
+            fs.view, error, scene.environment.ground, stageBackground(), f, mayBuildSpecialised());
+        specialised = p && lighting.lastWasSpecialised();
+        return p;
+    };
     LightingFeatures features = frameFeatures(fs);
     features.screenSpaceReflections = true;
-    const ShaderProgram* reflecting =
-        lighting.surfaceProgram(fs.view, error, scene.environment.ground, stageBackground(),
-                                features, mayBuildSpecialised());
+    const ShaderProgram* reflecting = programFor(features);
     if (!reflecting)
         return false;
-    if (!lighting.lastWasSpecialised()) // not built yet (or failed): the plain surfaces
+    if (!specialised) // the plain surfaces this frame
         return true;
     // The first pass only lights what the rays meet: by the split sum, which costs a sixteenth of
     // the sampled lobe's lookups (the reflection the ray meets is seen from another angle anyway).
-    LightingFeatures sourceFeatures = frameFeatures(fs);
-    sourceFeatures.sampledReflections = false;
-    const ShaderProgram* source =
-        lighting.surfaceProgram(fs.view, error, scene.environment.ground, stageBackground(),
-                                sourceFeatures, mayBuildSpecialised());
+    features.screenSpaceReflections = false;
+    features.sampledReflections = false;
+    const ShaderProgram* source = programFor(features);
     if (!source)
         return false;
-    if (!lighting.lastWasSpecialised())
+    if (!specialised)
         source = &surfaceProgram;
     const GLuint sourceFbo = targets.reflectionSourceFramebuffer(error);
     if (!sourceFbo)
