@@ -186,6 +186,9 @@ bool stageFigures(int width, int height, int frames,
     figures.emplace_back("stage_shadow_ao_overhead_at_rest_resolution", stage.stageRestOverhead);
     figures.emplace_back("shadow_mask_pass_at_rest_resolution_ms", stage.shadowMaskRestMs);
     figures.emplace_back("occlusion_pass_at_rest_resolution_ms", stage.occlusionRestMs);
+    figures.emplace_back("stage_refine_traced_ms", stage.refineTracedMs);
+    figures.emplace_back("stage_refine_untraced_ms", stage.refineUntracedMs);
+    figures.emplace_back("stage_refine_traced_overhead", stage.refineTracedOverhead);
     figures.emplace_back("stage_frame_off_cpu_ms", stage.cpuOffMs);
     figures.emplace_back("stage_frame_shadow_cpu_ms", stage.cpuShadowMs);
     figures.emplace_back("stage_frame_shadow_ao_cpu_ms", stage.cpuStageMs);

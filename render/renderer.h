@@ -255,6 +255,8 @@ struct FramePasses {
     /// The surfaces were drawn twice, the second time with screen-space reflections of the
     /// first (FrameSettings::screenSpaceReflections).
     bool screenSpaceReflections = false;
+    /// It read the light of the progressive mean's frame before instead of drawing a first pass.
+    bool reflectionSourceReused = false;
 };
 
 /// GPU timings of the last frame (GL timer queries; 0 where unavailable). Logged, never asserted.

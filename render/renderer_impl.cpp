@@ -1,6 +1,7 @@
 #include "render/renderer_impl.h"
 
 #include <epoxy/gl.h>
+#include <utility>
 
 namespace velvet::render {
 namespace {
@@ -46,6 +47,7 @@ TextureSet& Renderer::Impl::splitTextures(const Material& b) {
 bool Renderer::Impl::prepareFrame(const FrameSettings& fs, unsigned targetFbo,
                                   DisplayChoice& choice, const ShaderProgram*& surfaceProgram,
                                   std::string* error) {
+    reflectionSourceFrameBefore = std::exchange(reflectionSourceFrame, -2);
     // A texture file changed on disk (edited in another program): re-upload, re-pack the record.
     if (textures.poll()) {
         ++uploads.textureSlotRefreshes;
@@ -450,18 +452,34 @@ bool Renderer::Impl::drawReflectingSurfaces(const FrameSettings& fs, bool emissi
     const GLuint sourceFbo = targets.reflectionSourceFramebuffer(error);
     if (!sourceFbo)
         return false;
-    // The first pass over what the HDR target holds so far (the background, the emission), so
-    // that its image is the frame's but for the reflections.
     const ColorTarget& hdr = targets.hdr();
-    glCopyImageSubData(hdr.texture(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                       targets.reflectionSource().texture(), GL_TEXTURE_2D, 0, 0, 0, 0, hdr.width(),
-                       hdr.height(), 1);
-    glBindFramebuffer(GL_FRAMEBUFFER, sourceFbo);
-    lighting.drawSurfaces(*source, emission);
-    glBindFramebuffer(GL_FRAMEBUFFER, targets.litFramebuffer());
-    glBindTextureUnit(binding::kHdrTex, targets.reflectionSource().texture());
+    const ColorTarget& light = targets.reflectionSource();
+    // A frame of the progressive mean after the first reads the frame before's light (the same
+    // view but for a sub-pixel jitter): the frame's own light and one more bounce, for no first
+    // pass.
+    const bool reused =
+        accumulationIndex >= 1 && reflectionSourceFrameBefore == accumulationIndex - 1;
+    auto copyHdrToSource = [&] {
+        glCopyImageSubData(hdr.texture(), GL_TEXTURE_2D, 0, 0, 0, 0, light.texture(), GL_TEXTURE_2D,
+                           0, 0, 0, 0, hdr.width(), hdr.height(), 1);
+    };
+    if (!reused) {
+        // The first pass over what the HDR target holds so far (the background, the emission),
+        // so that its image is the frame's but for the traced light.
+        copyHdrToSource();
+        glBindFramebuffer(GL_FRAMEBUFFER, sourceFbo);
+        lighting.drawSurfaces(*source, emission);
+        glBindFramebuffer(GL_FRAMEBUFFER, targets.litFramebuffer());
+    }
+    glBindTextureUnit(binding::kHdrTex, light.texture());
     lighting.drawSurfaces(*reflecting, emission);
     glBindTextureUnit(binding::kHdrTex, 0);
+    // This frame's light for the mean's next frame.
+    if (accumulationIndex >= 0) {
+        copyHdrToSource();
+        reflectionSourceFrame = accumulationIndex;
+    }
+    passes.reflectionSourceReused = reused;
     drawn = true;
     return true;
 }
@@ -542,9 +560,11 @@ bool Renderer::Impl::renderAccumulated(Renderer& self, const FrameSettings& fs, 
     const auto start = std::chrono::steady_clock::now();
     FrameSettings inner = fs;
     inner.accumulation = -1;
-    if (!accumulationFrame.resize(fs.width, fs.height, GL_RGBA8, error) ||
-        !self.render(inner, accumulationFrame.framebuffer(), error) ||
-        !accumulation.add(accumulationFrame, fs.accumulation == 0, emptyVao, error))
+    accumulationIndex = fs.accumulation;
+    const bool drawn = accumulationFrame.resize(fs.width, fs.height, GL_RGBA8, error) &&
+                       self.render(inner, accumulationFrame.framebuffer(), error);
+    accumulationIndex = -1;
+    if (!drawn || !accumulation.add(accumulationFrame, fs.accumulation == 0, emptyVao, error))
         return false;
     accumulation.present(targetFbo);
     finishFrame(targetFbo, fs, start);

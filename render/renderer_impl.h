@@ -68,6 +68,15 @@ struct Renderer::Impl {
     /// FrameSettings::accumulation >= 0: the jittered frame, and the running mean of them
     ColorTarget accumulationFrame;
     ProgressiveAccumulation accumulation;
+    /// The frame of the progressive mean being drawn (renderAccumulated; -1 outside one), and the
+    /// one whose traced light the reflection source holds (-2: none, or a frame outside the
+    /// mean): frame k of the mean reads frame k - 1's light instead of drawing a first pass
+    /// (drawReflectingSurfaces), and each such frame adds one more bounce.
+    int accumulationIndex = -1;
+    int reflectionSourceFrame = -2;
+    /// reflectionSourceFrame as the frame found it (prepareFrame resets the member: a frame that
+    /// does not trace leaves the source's light stale).
+    int reflectionSourceFrameBefore = -2;
     FrameUniforms uniforms;
     MeshCache meshes;
     const MeshCache::Entry* mesh = nullptr;

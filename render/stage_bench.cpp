@@ -3,6 +3,7 @@
 #include "core/document_io.h"
 #include "core/light_rigs.h"
 #include "render/offscreen.h"
+#include "render/progressive_accumulation.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -142,6 +143,37 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
         report.occlusionKeptFrames += renderer.lastTimings().occlusionKept ? 1 : 0;
         fs.navigating = true;
     }
+    // The refinement at rest: whole progressive means of the same view, traced and not,
+    // alternated (a traced frame reads the light of the traced frame before it); frames 1..15
+    // timed.
+    std::vector<double> tracedMs, untracedMs;
+    fs.navigating = false;
+    fs.camera = camera;
+    fs.reflectionSamples = kRefinementReflectionSamples;
+    fs.reflectionSampleTotal = kRefinementReflectionSamples * 16;
+    renderer.update(full, ScenePart::All);
+    for (int round = 0; round < (frames >= 7 ? 2 : 1); ++round)
+        for (bool traced : {true, false}) {
+            fs.screenSpaceReflections = traced;
+            for (int k = 0; k < 16; ++k) {
+                fs.accumulation = k;
+                fs.jitter = progressiveJitter(k);
+                fs.reflectionSampleSet = k;
+                glFinish();
+                const auto start = std::chrono::steady_clock::now();
+                if (!renderer.render(fs, target.framebuffer(), error))
+                    return false;
+                glFinish();
+                const double ms = std::chrono::duration<double, std::milli>(
+                                      std::chrono::steady_clock::now() - start)
+                                      .count();
+                if (k > 0)
+                    (traced ? tracedMs : untracedMs).push_back(ms);
+            }
+        }
+    report.refineTracedMs = median(tracedMs);
+    report.refineUntracedMs = median(untracedMs);
+    report.refineTracedOverhead = overhead(report.refineTracedMs, report.refineUntracedMs);
     report.frameOffMs = median(offMs);
     report.frameShadowMs = median(shadowMs);
     report.frameStageMs = median(fullMs);

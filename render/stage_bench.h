@@ -38,6 +38,11 @@ struct StageBenchReport {
     double frameShadowRestMs = 0, frameStageRestMs = 0;
     double shadowRestOverhead = 0, stageRestOverhead = 0;
     double shadowMaskRestMs = 0, occlusionRestMs = 0;
+    /// The editor's refinement at rest of the shadowed, occluded stage (frames 1..15 of a
+    /// progressive mean, wall clock): with the mesh's light traced in screen space
+    /// (FrameSettings::screenSpaceReflections; each frame reading the frame before's light) and
+    /// without, alternated; and the overhead.
+    double refineTracedMs = 0, refineUntracedMs = 0, refineTracedOverhead = 0;
 };
 
 /// Median of @p frames frames each; needs a current context. False + message on failure.

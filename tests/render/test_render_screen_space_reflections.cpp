@@ -6,6 +6,7 @@
 // ball under the stage's occlusion comes back towards white); in the dark the ball reflects only
 // its own light. And the frames that must not pay for the second pass do not: the convex sphere,
 // a rough lobe, a frame without reflection samples, the setting off.
+#include "render/progressive_accumulation.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
 
@@ -196,6 +197,38 @@ private slots:
         QVERIFY(brighter * 1000 > mesh * atLeastPerMille);
         QVERIFY2(loss < 1e-3f, qPrintable(QString::number(loss)));
         QVERIFY(gain <= brightest);
+    }
+
+    // The editor's refinement: its first frame draws the first pass, each later one reads the
+    // light of the frame before (one more bounce, no first pass); a frame outside the mean in
+    // between (a grab, an edit's frame) makes the next draw its own again.
+    void aRefinementsLaterFramesReadTheFrameBefore() {
+        Scene scene = test::uniformEnvironmentScene(glm::vec3(0.2f));
+        scene.lights = {test::analyticKeyLight()};
+        scene.mesh.kind = PreviewMeshKind::ShaderBall;
+        scene.material = test::whiteMaterial(1.0f, 0.25f);
+        test::OffscreenRenderer* r = test::processRenderer(kSize);
+        draw(scene, atRest()); // the scene set and its programs built
+        auto refine = [&](int index) {
+            render::FrameSettings fs = atRest();
+            fs.width = fs.height = kSize;
+            fs.accumulation = index;
+            fs.jitter = render::progressiveJitter(index);
+            fs.reflectionSampleTotal = render::kRefinementReflectionSamples * 16;
+            fs.reflectionSampleSet = index;
+            std::string error;
+            if (!r->renderer->render(fs, r->target->framebuffer(), &error))
+                qFatal("render failed: %s", error.c_str());
+            return r->renderer->lastFramePasses();
+        };
+        for (int k = 0; k < 4; ++k) {
+            const render::FramePasses p = refine(k);
+            QVERIFY(p.screenSpaceReflections);
+            QCOMPARE(p.reflectionSourceReused, k > 0);
+        }
+        draw(scene, atRest()); // a plain frame between
+        QVERIFY(!refine(4).reflectionSourceReused);
+        QVERIFY(refine(5).reflectionSourceReused);
     }
 
     // Only frames at rest on a mesh that can see itself draw the surfaces twice.
