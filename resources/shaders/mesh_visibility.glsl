@@ -1,7 +1,7 @@
 // The mesh's visibility from itself (render/mesh_visibility.h: per vertex a bent normal and the
 // open share of the hemisphere, ray traced once per mesh) turned into the occlusion of
 // image-based light's reflections.
-#include "common_occlusion.glsl"
+#include "common_math.glsl"
 
 // Oat & Sander 2007, "Ambient Aperture Lighting" (section 3.2): the solid angle shared by two
 // spherical caps of apertures acos(cosA1), acos(cosA2) whose axes are acos(cosD) apart, over

@@ -44,7 +44,8 @@ QString presetDir() {
     return QString::fromStdString(resources::path("presets").string());
 }
 
-/// True when @p image is not one flat colour (a render, not a placeholder).
+/// True when @p image is not one flat colour (a rendered thumbnail, not the flat grey one the
+/// Library shows until the render arrives: LibraryPanel::placeholderCount()).
 bool hasDetail(const QImage& image) {
     const QRgb first = image.pixel(0, 0);
     for (int y = 0; y < image.height(); y += 3)
@@ -204,7 +205,7 @@ void TestUiLibrary::thumbnailsRenderThenComeFromCache() {
                                 .pixmap(ThumbnailRenderer::kSize, ThumbnailRenderer::kSize)
                                 .toImage();
         QVERIFY(hasDetail(icon));
-        // Gold's thumbnail is a gold sphere: yellow at the centre, not the grey placeholder.
+        // Gold's thumbnail is a gold sphere: yellow at the centre, not the flat grey stand-in.
         const int goldRow = panel.rowOfName(QStringLiteral("Polished gold"));
         QVERIFY(goldRow >= 0);
         const QImage goldIcon = panel.model()
