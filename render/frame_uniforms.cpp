@@ -48,7 +48,7 @@ FrameBlock makeFrameBlock(const Scene& scene, const Camera& cam, const GpuEnviro
     b.envParams =
         glm::vec4(std::cos(rot), std::sin(rot), env.intensity, float(environment.levels - 1));
     glm::vec3 ambient(0.0f);
-    int count = 0;
+    int count = 0; // frameDirectionalLightCount's
     for (const Light& l : scene.lights) {
         if (l.type == LightType::Ambient) {
             ambient += l.color * l.intensity;
@@ -70,6 +70,13 @@ FrameBlock makeFrameBlock(const Scene& scene, const Camera& cam, const GpuEnviro
     b.post = glm::vec4(std::exp2(fs.exposureEv), 2.0f * std::max(cam.distance, 0.1f),
                        float(environment.width), 0.0f);
     return b;
+}
+
+int frameDirectionalLightCount(const std::vector<Light>& lights) {
+    const auto directional = std::count_if(lights.begin(), lights.end(), [](const Light& l) {
+        return l.type == LightType::Directional;
+    });
+    return std::min(int(directional), kMaxDirectionalLights);
 }
 
 IblBlock makeIblBlock(const IblBaker& ibl, const FrameSettings& fs) {

@@ -19,6 +19,9 @@ class IblBaker;
 /// summed (point, spot and area lights are render/light_passes.h's).
 FrameBlock makeFrameBlock(const Scene& scene, const Camera& camera,
                           const GpuEnvironment& environment, const FrameSettings& fs);
+/// How many of @p lights the frame block carries as directional lights (FrameBlock::modes.x):
+/// the directional ones, at most kMaxDirectionalLights.
+int frameDirectionalLightCount(const std::vector<Light>& lights);
 /// The clip-space offset that moves a @p width x @p height image by @p jitter pixels
 /// (FrameSettings::jitter; identity for none): the frame block's projection is it times the
 /// camera's. jitterMatrix(-jitter, ...) undoes it.

@@ -41,6 +41,8 @@ std::vector<std::string> LightingFeatures::defines() const {
     fixed("FIXED_FRESNEL", fresnel);
     fixed("FIXED_DIFFUSE", diffuse);
     fixed("FIXED_SHEEN_MODEL", sheenModel);
+    fixed("FIXED_DIRECTIONAL_LIGHTS", directionalLights);
+    fixed("FIXED_MATERIAL_ID", materialId);
     // Compiled out only when absent (lighting.frag's defaults are 1: the generic program).
     auto without = [&](const char* name, bool present) {
         if (!present)

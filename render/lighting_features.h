@@ -33,6 +33,18 @@ struct LightingFeatures {
     int fresnel = kAnyTerm;
     int diffuse = kAnyTerm;
     int sheenModel = kAnyTerm;
+    /// How many directional lights the frame block carries (FrameBlock::modes.x), or kAnyTerm:
+    /// read at run time. A loop of a constant count is unrolled; one of a count read from the
+    /// frame block costs llvmpipe its mask bookkeeping at every pixel (about 10 % of the
+    /// lighting pass with one light: BENCHMARKS.md, "The directional lights' count compiled
+    /// in"). Adding or removing a light compiles; a light's value edit never does.
+    int directionalLights = kAnyTerm;
+    /// The material id of every pixel the surface programs shade (the scene's material, 0, when
+    /// neither the A/B split's material nor the plain ground is drawn; the shadow catcher's
+    /// pixels are discarded before they are read), or kAnyTerm: decoded per pixel. With it the
+    /// material table is read at a constant index, which llvmpipe loads once for a block of
+    /// pixels instead of once per pixel (about 0.7 ms of a 1280x720 frame's lighting).
+    int materialId = kAnyTerm;
     /// Lobes some drawn material has (a weight above zero or a per-pixel channel for it).
     bool sheen = true;
     bool clearcoat = true;

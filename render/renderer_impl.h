@@ -275,6 +275,9 @@ struct Renderer::Impl {
         LightingFeatures f =
             lightingFeaturesOf(records, stage.shadowsDirectionalLight(scene.lights),
                                scene.environment.ambientOcclusion, true, fs.specularMultiScatter);
+        f.directionalLights = frameDirectionalLightCount(scene.lights);
+        if (!fs.splitMaterial && scene.environment.ground != GroundMode::Plain)
+            f.materialId = 0; // the scene's material's record (ids: render/stage_interface.h)
         f.shadowMask = stage.hasShadows();
         f.localShadows = stage.shadowsLocalLight(scene.lights);
         f.irradianceMap = irradiance.texture() != 0;

@@ -164,7 +164,13 @@ ShadingPoint readShadingPoint(ivec2 pixel, float depth) {
     vec4 rt0 = texelFetch(gBaseColorOcclusionTex, pixel, 0);
     vec2 rt1 = texelFetch(gNormalTex, pixel, 0).rg;
     vec4 rt2 = texelFetch(gMaterialTex, pixel, 0);
+    // FIXED_MATERIAL_ID (render/lighting_features.h): every pixel this program shades has it, and
+    // the table read below at a constant index is one load for a block of pixels on llvmpipe.
+#ifdef FIXED_MATERIAL_ID
+    p.materialId = FIXED_MATERIAL_ID;
+#else
     p.materialId = decodeMaterialId(rt2.b);
+#endif
     GpuMaterial m = materials[p.materialId];
     // A record whose base colour, metallic and roughness are the same at every pixel
     // (RECORD_VALUES_PER_MATERIAL: render/material_table.h) reads them from the table, quantised

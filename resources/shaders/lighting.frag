@@ -128,7 +128,7 @@ void main() {
     {
         // Directional lights through one lobe; light_passes adds the other lights.
         vec3 lobes = vec3(0.0);
-        for (int i = 0; i < frame.modes.x && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
+        for (int i = 0; i < directionalLightCount() && view != DEBUG_LIGHTS_PER_PIXEL; ++i) {
             vec3 l = frame.lightDirection[i].xyz;
             lobes += selectLobes(shadeLobes(s, n, v, l, l, 0.0), view) * frame.lightRadiance[i].rgb *
                      directionalShadow(i, shadows) * geometricHorizon(p, l, 0.0);
@@ -173,7 +173,7 @@ void main() {
     // Direct light, shadowed by the lights' shadow maps (the shadow mask, shadow_mask.glsl).
     vec3 color = vec3(0.0);
     // A bent shading normal takes no light from below the surface (geometricHorizon).
-    for (int i = 0; i < frame.modes.x; ++i)
+    for (int i = 0; i < directionalLightCount(); ++i)
         color += shadeDirectional(s, n, v, frame.lightDirection[i].xyz, sheenAlbedoV) *
                  frame.lightRadiance[i].rgb *
                  directionalShadow(i, shadows) * geometricHorizon(p, frame.lightDirection[i].xyz, 0.0);

@@ -79,7 +79,7 @@ vec3 catcherTransmission(vec3 pos, float occlusion, vec4 mask) {
     vec3 n = vec3(0.0, 1.0, 0.0);
     vec3 env = irradianceOverPi(n) * PI;
     vec3 full = env, lit = env * occlusion;
-    for (int i = 0; i < frame.modes.x; ++i) {
+    for (int i = 0; i < directionalLightCount(); ++i) {
         vec3 e = frame.lightRadiance[i].rgb * max(dot(n, frame.lightDirection[i].xyz), 0.0);
         full += e;
         lit += e * directionalShadow(i, mask);

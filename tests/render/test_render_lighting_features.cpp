@@ -3,7 +3,9 @@
 // materials that exercise every specialisation (fixed terms, lobes compiled out, shadows and
 // occlusion off or on), with the compile rules: a value edit never compiles, a new set of
 // features compiles once at the next frame without an edit.
+#include "core/light_rigs.h"
 #include "core/resources.h"
+#include "render/frame_uniforms.h"
 #include "render/lighting_features.h"
 #include "render/lobe_channels.h"
 #include "render_test_util.h"
@@ -160,6 +162,34 @@ private slots:
         QVERIFY(LightingFeatures::generic().isGeneric());
     }
 
+    /// The frame's structure compiled in: the directional lights' count (the frame block's, the
+    /// ambient and local lights left out, capped as the block is) and the one material id.
+    void lightCountAndMaterialIdAreDefines() {
+        std::vector<Light> lights = *lightRigLights("three-point");
+        QCOMPARE(render::frameDirectionalLightCount(lights), 3);
+        Light ambient, point;
+        ambient.type = LightType::Ambient;
+        point.type = LightType::Point;
+        lights.push_back(ambient);
+        lights.push_back(point);
+        QCOMPARE(render::frameDirectionalLightCount(lights), 3);
+        Light sun;
+        sun.type = LightType::Directional;
+        QCOMPARE(render::frameDirectionalLightCount(
+                     std::vector<Light>(render::kMaxDirectionalLights + 3, sun)),
+                 render::kMaxDirectionalLights);
+        QCOMPARE(render::frameDirectionalLightCount({}), 0);
+
+        LightingFeatures f;
+        f.directionalLights = 3;
+        f.materialId = 0;
+        const std::vector<std::string> defines = f.defines();
+        QVERIFY(std::find(defines.begin(), defines.end(), "FIXED_DIRECTIONAL_LIGHTS 3") !=
+                defines.end());
+        QVERIFY(std::find(defines.begin(), defines.end(), "FIXED_MATERIAL_ID 0") != defines.end());
+        QVERIFY(!f.isGeneric());
+    }
+
     /// The table's base colour as the G-buffer stores it (8-bit sRGB, decoded): known answers
     /// computed by hand (0.5 encodes to 187.52 of 255, stored as 188: 0.50289), and a stored
     /// colour stores as itself, so the table and a G-buffer written from it agree.
@@ -199,6 +229,10 @@ private slots:
         // The shadow catcher's own program is specialised too (no shadow lookup without one).
         QTest::newRow("velvet on a shadow catcher") << "crimson_velvet" << false << catcher;
         QTest::newRow("car paint on a shadow catcher, shadows") << "car_paint" << true << catcher;
+        // Three directional lights (FIXED_DIRECTIONAL_LIGHTS 3), on the catcher and on the plain
+        // ground (whose frame decodes the material id per pixel).
+        QTest::newRow("velvet, three-point rig, catcher") << "three-point" << true << catcher;
+        QTest::newRow("velvet, three-point rig, plain ground") << "three-point" << false << plain;
     }
     void specialisedDrawsTheGenericImage() {
         QFETCH(QString, name);
@@ -227,6 +261,9 @@ private slots:
             sheen.region = {0, 0, 32, 32};
             scene.material.setTexture(TextureSlot::SheenColor, sheen);
             b = preset("car_paint"); // B: other values, a coat, no textures of its own
+        } else if (name == "three-point") {
+            scene.material = preset("crimson_velvet");
+            scene.lights = *lightRigLights("three-point");
         } else if (name != "other-terms") {
             scene.material = preset(name.toUtf8().constData());
         }
@@ -280,6 +317,16 @@ private slots:
         // Back to no coat: that variant is still built, nothing compiles.
         scene.material.setScalar(ParamId::ClearcoatWeight, 0.0f);
         m_fx.renderer->update(scene, ScenePart::MaterialValues);
+        m_fx.draw(nullptr);
+        QVERIFY(m_fx.renderer->lastFrameSpecialised());
+        QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles + 1);
+
+        // A light's values (its intensity, its direction) are no structure either, though the
+        // directional lights' count is compiled in (FIXED_DIRECTIONAL_LIGHTS).
+        QVERIFY(!scene.lights.empty() && scene.lights.front().type == LightType::Directional);
+        scene.lights.front().intensity *= 0.5f;
+        scene.lights.front().direction = glm::vec3(0.3f, -1.0f, -0.2f);
+        m_fx.renderer->update(scene, ScenePart::Lights);
         m_fx.draw(nullptr);
         QVERIFY(m_fx.renderer->lastFrameSpecialised());
         QCOMPARE(m_fx.renderer->shaderCompileCount(), compiles + 1);
