@@ -53,7 +53,8 @@ const char* kHelp =
     "viewport's renderer and the reference path tracer, and prints a Markdown table of the\n"
     "mean, 95th percentile and maximum ΔE2000 over the pixels the mesh covers, against issue\n"
     "15's goal (mean < 2, p95 < 5). The viewport's image is the editor's at rest: 4x4 samples a\n"
-    "pixel, reflections sampled, the mesh's reflections of itself traced in screen space.\n"
+    "pixel, reflections sampled, the mesh's reflections of itself traced in screen space over\n"
+    "the refinement's 16 frames, each reading the light of the one before.\n"
     "Progress on stderr.\n"
     "Exit codes: 0 success, 1 usage error, 2 bad input, 3 rendering failure.\n\n";
 

@@ -219,6 +219,10 @@ struct FrameSettings {
 /// the 256 with which the glossy metals met the path tracer (BENCHMARKS.md, "Reflections sampled
 /// at rest").
 inline constexpr int kRefinementReflectionSamples = 16;
+/// Frames in the viewport's progressive mean at rest (its refinement): each after the first
+/// reads the light of the one before where it traces the mesh's light in screen space, so the
+/// mean holds one to this many bounces of the mesh's own light.
+inline constexpr int kRefinementFrames = 16;
 /// The roughest isotropic lobe whose reflections are sampled (rougher ones keep the split sum:
 /// their shape hardly changes at grazing angles, and the cube's GGX prefilter beats the
 /// equirect's box-filtered mips; common_environment.glsl, SAMPLED_REFLECTION_MAX_ROUGHNESS).

@@ -128,7 +128,7 @@ public:
     /// over. View state (the viewport toolbar's Refine, kept in QSettings), on by default.
     /// @{
     static constexpr int kProgressiveDelayMs = 200;
-    static constexpr int kProgressiveSamples = 16;
+    static constexpr int kProgressiveSamples = render::kRefinementFrames;
     void setProgressiveAntialiasing(bool enabled);
     bool progressiveAntialiasing() const { return m_progressiveEnabled; }
     /// The frames in the mean the viewport shows (0: a plain frame).

@@ -70,7 +70,13 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // (render/irradiance_map.h): ceramic, silk and terry on the sphere under the HDRI met the goal
 // (ceramic 2.00 / 4.30 to 1.07 / 2.67, terry 2.71 / 5.80 to 1.78 / 4.09) and left the list, so the
 // test fails if the SH9 comes back; cotton under the HDRI is on the line at this size (2.56 / 5.85
-// to 1.97 / 4.41) and stays listed, and the other misses' bounds were tightened to their values.
+// to 1.97 / 4.41) and stays listed, and the other misses' bounds were tightened to their values;
+// and again when the table began to draw the refinement's 16 frames, each reading the light of
+// the one before, as the editor does at rest (more bounces of the mesh's own light than the one
+// a single frame traces): plastic on the ball under the HDRI met the goal (1.89 / 4.53) and left
+// the list, under the rig it reads 1.80 / 5.26; gold on the ball under the HDRI rose from
+// 7.60 / 35.94 to 8.75 / 34.51 (its rings' rims, already brighter than the path tracer's, gain
+// the bounces), under the rig it reads 10.20 / 46.59.
 const Miss kMisses[] = {
     {"brushed_aluminium", kSphere, "environment", 2.38, 6.77},
     {"cotton", kSphere, "environment", 1.97, 4.41}, // on the line at this size (met at 48x48)
@@ -78,10 +84,9 @@ const Miss kMisses[] = {
     {"tweed", kSphere, "environment", 2.44, 4.87},
     {"tweed", kSphere, "three-point", 2.69, 6.19},
     {"wool", kSphere, "environment", 2.20, 5.52},
-    {"plastic", kBall, "environment", 2.07, 4.88},
-    {"plastic", kBall, "three-point", 2.72, 8.23},
-    {"gold", kBall, "environment", 7.60, 35.94},
-    {"gold", kBall, "three-point", 10.58, 61.14},
+    {"plastic", kBall, "three-point", 1.80, 5.26},
+    {"gold", kBall, "environment", 8.75, 34.51},
+    {"gold", kBall, "three-point", 10.20, 46.59},
     {"crushed_velvet", kBall, "environment", 2.06, 4.74},
     {"leather", kBall, "three-point", 1.20, 5.32}, // meets the goal at 48x48 (1.32 / 4.63)
 };
