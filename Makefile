@@ -3,14 +3,14 @@
 
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
-GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
 JOBS ?= $(shell nproc)
-# ccache, when installed, makes rebuilds in a second checkout (a worktree, a fresh clone) cheap;
+# Ninja and ccache are looked for when a build folder is configured (recursively expanded: after
+# `deps` has run), so the first build on a fresh machine, whose `make test` installs them, uses
+# them too. ccache makes rebuilds in a second checkout (a worktree, a fresh clone) cheap;
 # CCACHE_BASEDIR lets checkouts in different folders share the cache.
-ifneq ($(shell command -v ccache 2>/dev/null),)
+GENERATOR = $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
 export CCACHE_BASEDIR ?= $(CURDIR)
-LAUNCHER := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
-endif
+LAUNCHER = $(if $(shell command -v ccache 2>/dev/null),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 
 .PHONY: all deps configure build run test test-asan test-asan-core fuzz format clean goldens install package \
   bench-peers
