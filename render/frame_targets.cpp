@@ -22,10 +22,9 @@ GLuint depthTextureOf(GLuint fbo) {
 FrameTargets::~FrameTargets() {
     if (m_litFbo)
         glDeleteFramebuffers(1, &m_litFbo);
-    if (m_displayFbo)
-        glDeleteFramebuffers(1, &m_displayFbo);
-    if (m_reflectionFbo)
-        glDeleteFramebuffers(1, &m_reflectionFbo);
+    for (DepthSharingTarget* t : {&m_display, &m_reflectionSource})
+        if (t->fbo)
+            glDeleteFramebuffers(1, &t->fbo);
     if (m_geometryFbo)
         glDeleteFramebuffers(1, &m_geometryFbo);
     if (m_maskFbo)
@@ -155,48 +154,35 @@ unsigned FrameTargets::shadowMaskFramebuffer(int downsample, std::string* error)
     return m_maskFbo;
 }
 
-unsigned FrameTargets::displayFramebuffer(unsigned internalFormat, std::string* error) {
-    if (!m_display.resize(m_gbuffer.width(), m_gbuffer.height(), internalFormat, error))
+unsigned FrameTargets::depthSharingFramebuffer(DepthSharingTarget& t, unsigned internalFormat,
+                                               const char* what, std::string* error) {
+    if (!t.color.resize(m_gbuffer.width(), m_gbuffer.height(), internalFormat, error))
         return 0;
-    if (!m_displayFbo)
-        glCreateFramebuffers(1, &m_displayFbo);
-    if (m_displayGeneration != m_display.generation() ||
-        m_displayGbufferGeneration != m_gbuffer.generation()) {
-        glNamedFramebufferTexture(m_displayFbo, GL_COLOR_ATTACHMENT0, m_display.texture(), 0);
-        glNamedFramebufferTexture(m_displayFbo, GL_DEPTH_ATTACHMENT,
+    if (!t.fbo)
+        glCreateFramebuffers(1, &t.fbo);
+    if (t.colorGeneration != t.color.generation() ||
+        t.gbufferGeneration != m_gbuffer.generation()) {
+        glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.color.texture(), 0);
+        glNamedFramebufferTexture(t.fbo, GL_DEPTH_ATTACHMENT,
                                   depthTextureOf(m_gbuffer.framebuffer()), 0);
-        const GLenum status = glCheckNamedFramebufferStatus(m_displayFbo, GL_FRAMEBUFFER);
+        const GLenum status = glCheckNamedFramebufferStatus(t.fbo, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
-            fail(error, "display framebuffer incomplete: " + framebufferStatusName(status));
+            fail(error,
+                 std::string(what) + " framebuffer incomplete: " + framebufferStatusName(status));
             return 0;
         }
-        m_displayGeneration = m_display.generation();
-        m_displayGbufferGeneration = m_gbuffer.generation();
+        t.colorGeneration = t.color.generation();
+        t.gbufferGeneration = m_gbuffer.generation();
     }
-    return m_displayFbo;
+    return t.fbo;
+}
+
+unsigned FrameTargets::displayFramebuffer(unsigned internalFormat, std::string* error) {
+    return depthSharingFramebuffer(m_display, internalFormat, "display", error);
 }
 
 unsigned FrameTargets::reflectionSourceFramebuffer(std::string* error) {
-    if (!m_reflectionSource.resize(m_hdr.width(), m_hdr.height(), GL_RGBA16F, error))
-        return 0;
-    if (!m_reflectionFbo)
-        glCreateFramebuffers(1, &m_reflectionFbo);
-    if (m_reflectionGeneration != m_reflectionSource.generation() ||
-        m_reflectionGbufferGeneration != m_gbuffer.generation()) {
-        glNamedFramebufferTexture(m_reflectionFbo, GL_COLOR_ATTACHMENT0,
-                                  m_reflectionSource.texture(), 0);
-        glNamedFramebufferTexture(m_reflectionFbo, GL_DEPTH_ATTACHMENT,
-                                  depthTextureOf(m_gbuffer.framebuffer()), 0);
-        const GLenum status = glCheckNamedFramebufferStatus(m_reflectionFbo, GL_FRAMEBUFFER);
-        if (status != GL_FRAMEBUFFER_COMPLETE) {
-            fail(error,
-                 "reflection source framebuffer incomplete: " + framebufferStatusName(status));
-            return 0;
-        }
-        m_reflectionGeneration = m_reflectionSource.generation();
-        m_reflectionGbufferGeneration = m_gbuffer.generation();
-    }
-    return m_reflectionFbo;
+    return depthSharingFramebuffer(m_reflectionSource, GL_RGBA16F, "reflection source", error);
 }
 
 } // namespace velvet::render

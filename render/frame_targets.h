@@ -42,13 +42,13 @@ public:
     /// the copy into it changes no value) with the G-buffer's depth, read-only as in
     /// litFramebuffer(). Allocated on first use. 0 + message when incomplete.
     unsigned displayFramebuffer(unsigned internalFormat, std::string* error);
-    const ColorTarget& display() const { return m_display; }
+    const ColorTarget& display() const { return m_display.color; }
     /// The framebuffer of the first surfaces pass of a frame with screen-space reflections
     /// (FrameSettings::screenSpaceReflections): a copy of the HDR colour (RGBA16F) with the
     /// G-buffer's depth, read-only as in litFramebuffer(); the second pass reads its colour.
     /// Allocated on first use. 0 + message when incomplete.
     unsigned reflectionSourceFramebuffer(std::string* error);
-    const ColorTarget& reflectionSource() const { return m_reflectionSource; }
+    const ColorTarget& reflectionSource() const { return m_reflectionSource.color; }
 
     /// The screen-space shadow mask's framebuffer (render/shadow_mask.h): at the stage's
     /// @p downsample of the frame's size (maskSize()), the mask (RGBA8, attachment 0) and its key
@@ -77,12 +77,18 @@ private:
     ColorTarget m_shadowMask, m_shadowKey, m_groundShadowMask;
     unsigned m_maskFbo = 0, m_maskDepth = 0; ///< the depth: a renderbuffer of the mask's size
     unsigned m_maskGeneration = 0, m_keyGeneration = 0, m_groundMaskGeneration = 0;
-    ColorTarget m_display;
-    ColorTarget m_reflectionSource;
-    unsigned m_reflectionFbo = 0;
-    unsigned m_reflectionGeneration = 0, m_reflectionGbufferGeneration = 0;
-    unsigned m_displayFbo = 0;
-    unsigned m_displayGeneration = 0, m_displayGbufferGeneration = 0;
+    /// A colour target drawn with the G-buffer's depth (the display target, the reflection
+    /// source), its framebuffer and the generations it was last attached at.
+    struct DepthSharingTarget {
+        ColorTarget color;
+        unsigned fbo = 0;
+        unsigned colorGeneration = 0, gbufferGeneration = 0;
+    };
+    /// @p t's framebuffer at the G-buffer's size in @p internalFormat, attached again when the
+    /// colour target or the G-buffer was remade; 0 + message naming @p what on failure.
+    unsigned depthSharingFramebuffer(DepthSharingTarget& t, unsigned internalFormat,
+                                     const char* what, std::string* error);
+    DepthSharingTarget m_display, m_reflectionSource;
 };
 
 } // namespace velvet::render
