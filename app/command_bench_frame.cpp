@@ -105,10 +105,11 @@ int runFrameBench(bool json, bool quick) {
             fs.jitter = glm::vec2(0.0f);
             fs.reflectionSamples = 0;
             if (v.change == Change::Refine) { // the editor's still view: one more frame of its mean
-                fs.accumulation = i % 16;
+                fs.accumulation = i % render::kRefinementFrames;
                 fs.jitter = render::progressiveJitter(fs.accumulation);
                 fs.reflectionSamples = render::kRefinementReflectionSamples;
-                fs.reflectionSampleTotal = 16 * render::kRefinementReflectionSamples;
+                fs.reflectionSampleTotal =
+                    render::kRefinementFrames * render::kRefinementReflectionSamples;
                 fs.reflectionSampleSet = fs.accumulation;
             } else if (v.change == Change::Orbit) {
                 Camera camera = edited.camera;

@@ -150,12 +150,12 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     fs.navigating = false;
     fs.camera = camera;
     fs.reflectionSamples = kRefinementReflectionSamples;
-    fs.reflectionSampleTotal = kRefinementReflectionSamples * 16;
+    fs.reflectionSampleTotal = kRefinementReflectionSamples * kRefinementFrames;
     renderer.update(full, ScenePart::All);
     for (int round = 0; round < (frames >= 7 ? 2 : 1); ++round)
         for (bool traced : {true, false}) {
             fs.screenSpaceReflections = traced;
-            for (int k = 0; k < 16; ++k) {
+            for (int k = 0; k < kRefinementFrames; ++k) {
                 fs.accumulation = k;
                 fs.jitter = progressiveJitter(k);
                 fs.reflectionSampleSet = k;
