@@ -432,6 +432,9 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
         grab ? settledGrab && m_progressiveIndex >= kProgressiveSamples : m_progressiveIndex >= 0;
     if (refined && settings.renderScale == 1.0f && displayOnly) {
         settings.accumulation = m_progressiveIndex;
+        // Their linear images kept for the settled mean (setKeepsSettledLinear).
+        if (!grab && m_keepSettledLinear)
+            settings.displayOnly = false;
         settings.jitter = render::progressiveJitter(m_progressiveIndex);
         // The reflections sampled, each frame another set (FrameSettings::reflectionSamples).
         settings.reflectionSamples = render::kRefinementReflectionSamples;
@@ -492,6 +495,8 @@ bool ViewportWidget::drawFrame(unsigned fbo, bool displayOnly, bool settledGrab)
     // specialised one (render/lighting_features.h), so no compile ever lands inside a drag.
     if (m_renderer->specialisationPending())
         m_refineTimer->start();
+    if (!grab && !showMean)
+        keepLinearFrame(settings);
     if (!grab)
         progressiveFrameDrawn(settings);
     updateOverlay();

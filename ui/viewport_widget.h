@@ -134,6 +134,21 @@ public:
     /// The frames in the mean the viewport shows (0: a plain frame).
     int progressiveSamples() const { return m_progressiveShown; }
     /// @}
+    /// @name The settled view, scene-linear (the Reference panel's comparison)
+    /// The view at rest is the mean of the refinement's frames, and on a mesh that traces its
+    /// own light each frame reads the light of the one before: the mean holds one to
+    /// kProgressiveSamples bounces, which no single frame does. While kept, the refinement's
+    /// frames go through the scene-linear target (no display step inside the lighting pass) and
+    /// their linear images are averaged as they are drawn; when the refinement ends,
+    /// settledLinearReady() is emitted and settledLinear() holds the mean until the view changes.
+    /// Turning it on over a view that has already settled draws the refinement again.
+    /// @{
+    void setKeepsSettledLinear(bool keep);
+    bool keepsSettledLinear() const { return m_keepSettledLinear; }
+    /// The scene-linear mean of the refinement the view shows now, RGBA; empty while the view
+    /// has not settled since its last change, or when it is not kept.
+    const Image& settledLinear() const { return m_settledLinear; }
+    /// @}
     /// @name Animation
     /// Film grain, night-vision grain, vaporwave static, paintbrush strokes and the procedural
     /// FBM background read FrameSettings::time. While the scene reads time (sceneReadsTime) and
@@ -217,6 +232,8 @@ signals:
     void environmentRotationDragged(float deltaDeg, int gestureKey);
     /// The artist dragged the A/B seam to @p fraction of the width.
     void splitPositionChanged(float fraction);
+    /// The refinement ended with settledLinear() kept (setKeepsSettledLinear).
+    void settledLinearReady();
 
 private:
     enum class Drag { None, Orbit, Pan, Look, RotateEnvironment, Seam };
@@ -258,6 +275,8 @@ private:
     /// view is still (or the first one kProgressiveDelayMs later), or stops.
     void progressiveFrameDrawn(const render::FrameSettings& settings);
     void progressiveStep();
+    /// Adds the frame just drawn with @p settings to the settled mean when it is kept.
+    void keepLinearFrame(const render::FrameSettings& settings);
     /// @}
     /// A scene or view change: decides whether the next frame is reduced (see kRefineDelayMs).
     void noteInteraction();
@@ -310,6 +329,10 @@ private:
     int m_progressiveIndex = -1;
     int m_progressiveShown = 0; ///< frames in the mean on screen (0: a plain frame)
     QSize m_progressiveSize;    ///< the frame size the refinement's mean has
+    bool m_keepSettledLinear = false;
+    Image m_linearSum;      ///< the refinement's linear frames so far, summed
+    int m_linearFrames = 0; ///< frames in m_linearSum
+    Image m_settledLinear;  ///< their mean once the refinement has ended
     QTimer* m_progressiveTimer;
     /// Draws a frame when a texture file the material uses changes on disk (an idle viewport
     /// would otherwise not notice; ui/texture_file_watcher.h).

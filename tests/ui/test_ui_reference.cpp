@@ -5,6 +5,7 @@
 // The ΔE heat map toggle shows each pixel coloured by the CIEDE2000 between the two images the
 // split shows, and the status bar states their mean and 95th percentile as the render converges.
 #include "core/image_compare.h"
+#include "core/image_ops.h"
 #include "ui/document_controller.h"
 #include "ui/main_window.h"
 #include "ui/reference/reference_job.h"
@@ -314,6 +315,71 @@ private slots:
                  qPrintable(QString::number(atRest) + " " + QString::number(moving)));
         QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
         QVERIFY(QTest::qWaitFor([&] { return !panel->active(); }));
+    }
+
+    // On a mesh that lights itself (the shader ball's cavities) the view at rest is the mean of
+    // the refinement's frames, each with one bounce more than the one before: the panel compares
+    // the reference with that mean once the view settles, not with a single frame, which holds
+    // one bounce and is darker in the cavities.
+    void theShaderBallIsComparedWithEveryBounceItShowsAtRest() {
+        ReferencePanel* panel = m_window->referencePanel();
+        ViewportWidget* viewport = m_window->viewport();
+        QVERIFY(panel && viewport->progressiveAntialiasing());
+        Material white;
+        white.setColor(ParamId::BaseColor, glm::vec3(0.9f));
+        white.setScalar(ParamId::Roughness, 1.0f); // the split sum's reflections: no samples' noise
+        white.setScalar(ParamId::SheenWeight, 0.0f);
+        m_window->controller()->setMaterial(white, "white");
+        m_window->controller()->setMesh(MeshRef{PreviewMeshKind::ShaderBall, {}});
+        QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
+        QVERIFY(QTest::qWaitFor([&] { return panel->active(); }));
+        QVERIFY(viewport->keepsSettledLinear());
+        QVERIFY(QTest::qWaitFor([&] { return panel->comparesSettledView(); }, 240000));
+        const Image settled = viewport->settledLinear();
+        QVERIFY(!settled.empty());
+        QCOMPARE(viewport->progressiveSamples(), ViewportWidget::kProgressiveSamples);
+        // The viewport's side of the split is the settled mean through the reference's display.
+        const int height = panel->view()->composed().height();
+        std::string error;
+        const QImage expected = ReferenceJob::toQImage(ReferenceJob::displayImage(
+            velvet::resize(settled, ReferencePanel::kWidth, height, &error, ResizeFilter::Box),
+            viewport->frameSettings().exposureEv));
+        panel->view()->setHeatMapShown(false);
+        panel->view()->setSplit(1.0);
+        QCOMPARE(panel->view()->composed(), expected.convertToFormat(QImage::Format_RGB888));
+        // A single frame drawn now: one bounce. At the panel's size the settled mean is brighter
+        // where the ball lights itself (under the ring, the neck); the single frame's few traced
+        // rays are grainy, so it is brighter in places too, but by far less in all.
+        Image single;
+        viewport->grabFramebuffer(&single);
+        QCOMPARE(single.width, settled.width);
+        QCOMPARE(single.height, settled.height);
+        const Image a =
+            velvet::resize(single, ReferencePanel::kWidth, height, &error, ResizeFilter::Box);
+        const Image b =
+            velvet::resize(settled, ReferencePanel::kWidth, height, &error, ResizeFilter::Box);
+        int brighter = 0;
+        double gained = 0.0, lost = 0.0;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x) {
+                const float one = a.at(x, y)[1], mean = b.at(x, y)[1];
+                brighter += mean > one * 1.03f + 1e-3f;
+                (mean > one ? gained : lost) += std::abs(mean - one);
+            }
+        qInfo("settled against one frame at %dx%d: %d pixels 3 %% brighter; green gained %.3f, "
+              "lost %.3f",
+              a.width, a.height, brighter, gained, lost);
+        QVERIFY2(brighter > 100 && gained > 2.0 * lost,
+                 qPrintable(QStringLiteral("%1 brighter; gained %2, lost %3")
+                                .arg(brighter)
+                                .arg(gained)
+                                .arg(lost)));
+        // Off with the panel: the viewport goes back to its display-only refinement.
+        QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
+        QVERIFY(QTest::qWaitFor([&] { return !panel->active(); }));
+        QVERIFY(!viewport->keepsSettledLinear());
+        QVERIFY(viewport->settledLinear().empty());
+        m_window->controller()->setMesh(MeshRef{});
     }
 };
 

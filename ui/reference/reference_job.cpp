@@ -6,8 +6,25 @@
 #include <QPointer>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 namespace velvet::ui {
+
+struct ReferenceJob::Compared {
+    std::mutex mutex;
+    std::shared_ptr<const Image> image;
+    int version = -1;
+
+    std::pair<std::shared_ptr<const Image>, int> get() {
+        const std::lock_guard lock(mutex);
+        return {image, version};
+    }
+    void set(std::shared_ptr<const Image> next) {
+        const std::lock_guard lock(mutex);
+        image = std::move(next);
+        ++version;
+    }
+};
 
 ReferenceJob::ReferenceJob(QObject* parent) : QObject(parent) {}
 
@@ -57,6 +74,11 @@ Image ReferenceJob::fromQImage(const QImage& image) {
     return out;
 }
 
+void ReferenceJob::setViewport(const Image& viewport) {
+    if (m_compared)
+        m_compared->set(std::make_shared<const Image>(viewport));
+}
+
 void ReferenceJob::stop() {
     if (m_cancel)
         m_cancel->store(true);
@@ -78,13 +100,16 @@ void ReferenceJob::start(const Scene& scene, int width, int height, const Image&
     options.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
     // Each image is encoded and compared on the worker and delivered to the UI thread only if
     // this render is still the current one (a restart bumps the generation).
-    auto compareWith = std::make_shared<const Image>(viewport);
-    options.onPassImage = [self, generation, compareWith,
+    m_compared = std::make_shared<Compared>();
+    m_compared->set(std::make_shared<const Image>(viewport));
+    options.onPassImage = [self, generation, compared = m_compared,
                            exposureEv](const Image& soFar, const Image& coverage, int passes) {
+        const auto [compareWith, version] = compared->get();
         ReferenceFrame frame;
         const Image display = displayImage(soFar, exposureEv);
         frame.image = toQImage(display);
         frame.passes = passes;
+        frame.viewportVersion = version;
         frame.coverage = coverage;
         // The statistics are the material's: over the pixels the mesh covers, not the background
         // (the viewport may blur it, the path tracer shows it sharp) nor the silhouette's

@@ -27,6 +27,9 @@ struct ReferenceFrame {
     Image coverage;    ///< per pixel, the fraction of the reference's samples on the mesh
     DeltaEStats stats; ///< of deltaE over the pixels the mesh covers (coverage 1)
     int passes = 0;    ///< samples per pixel so far
+    /// Which viewport image deltaE is against: 0 the one given to start, n the n-th given to
+    /// setViewport since.
+    int viewportVersion = 0;
 };
 
 class ReferenceJob : public QObject {
@@ -40,6 +43,9 @@ public:
     /// same size; empty: no comparison).
     void start(const Scene& scene, int width, int height, const Image& viewport,
                float exposureEv = 0.0f, int samples = 1024);
+    /// Compares the running render's next images with @p viewport instead (display-referred,
+    /// the size given to start): the viewport's view at rest, once it has settled.
+    void setViewport(const Image& viewport);
     /// Cancels the running render (returns once its thread has stopped).
     void stop();
     bool running() const { return m_thread.joinable() && !m_done->load(); }
@@ -60,6 +66,8 @@ signals:
     void failed(const QString& message);
 
 private:
+    struct Compared; ///< the viewport's image the worker compares with, replaceable meanwhile
+    std::shared_ptr<Compared> m_compared;
     std::thread m_thread;
     std::shared_ptr<std::atomic<bool>> m_cancel;
     std::shared_ptr<std::atomic<bool>> m_done;

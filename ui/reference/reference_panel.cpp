@@ -46,6 +46,11 @@ void ReferenceSplitView::setImages(const QImage& viewport, const QImage& referen
     update();
 }
 
+void ReferenceSplitView::setViewportImage(const QImage& viewport) {
+    m_viewport = viewport;
+    update();
+}
+
 void ReferenceSplitView::setDeltaE(const Image& deltaE, const Image& coverage) {
     m_deltaE = deltaE;
     m_coverage = coverage;
@@ -227,12 +232,15 @@ ReferencePanel::ReferencePanel(DocumentController* controller, ViewportWidget* v
     connect(m_controller, &DocumentController::sceneChanged, this,
             &ReferencePanel::scheduleRestart);
     connect(m_viewport, &ViewportWidget::viewCameraChanged, this, &ReferencePanel::scheduleRestart);
+    connect(m_viewport, &ViewportWidget::settledLinearReady, this,
+            &ReferencePanel::adoptSettledView);
 }
 
 ReferencePanel::~ReferencePanel() = default;
 
 void ReferencePanel::showFrame(const ReferenceFrame& frame) {
     m_passes = frame.passes;
+    m_shownVersion = frame.viewportVersion;
     m_stats = frame.stats;
     m_view->setImages(m_snapshot, frame.image);
     m_view->setDeltaE(frame.deltaE, frame.coverage);
@@ -249,6 +257,8 @@ void ReferencePanel::showFrame(const ReferenceFrame& frame) {
                    .arg(frame.passes)
                    .arg(frame.stats.mean, 0, 'f', 2)
                    .arg(frame.stats.p95, 0, 'f', 2);
+        if (!comparesSettledView())
+            text += tr(" (against the viewport's plain frame until it settles)");
     }
     m_label->setText(text + tr(" (CPU path tracer; restarts when the scene or the view changes)"));
     emit status(text);
@@ -258,6 +268,8 @@ void ReferencePanel::setActive(bool active) {
     if (active == m_active)
         return;
     m_active = active;
+    // The viewport keeps its refinement's linear frames while the panel compares with them.
+    m_viewport->setKeepsSettledLinear(active);
     if (active) {
         restart();
     } else {
@@ -280,28 +292,53 @@ void ReferencePanel::restart() {
     // The viewport as it is now, scene-linear, averaged down to the reference's size (each
     // reference pixel integrates its footprint too) and shown through the same display transform
     // as the reference: the left of the split and what the ΔE compares.
-    Image linear;
-    const QImage grabbed = m_viewport->grabFramebuffer(&linear);
-    const float exposure = m_viewport->frameSettings().exposureEv;
-    Image viewportDisplay;
-    std::string error;
+    // The view at rest where it has settled (the refinement's mean); else a frame drawn now,
+    // replaced by the mean once the refinement ends (adoptSettledView).
     // A debug view's linear image holds raw values (normals, depth…), not light.
     const bool debugView = m_viewport->frameSettings().view != render::DebugView::Final;
     m_noComparison = debugView ? tr("the viewport shows a debug view: no ΔE") : QString();
-    if (!linear.empty() && !debugView) {
-        const Image small = velvet::resize(linear, kWidth, height, &error, ResizeFilter::Box);
-        if (!small.empty())
-            viewportDisplay = ReferenceJob::displayImage(small, exposure);
-    }
+    const bool settled = !debugView && !m_viewport->settledLinear().empty();
+    Image linear = settled ? m_viewport->settledLinear() : Image();
+    const QImage grabbed = settled ? QImage() : m_viewport->grabFramebuffer(&linear);
+    const Image viewportDisplay = debugView ? Image() : comparisonImage(linear, height);
     m_snapshot = viewportDisplay.empty() ? grabbed.scaled(kWidth, height, Qt::IgnoreAspectRatio,
                                                           Qt::SmoothTransformation)
                                          : ReferenceJob::toQImage(viewportDisplay);
+    // Without the refinement the frame drawn is the view the artist sees: nothing to wait for.
+    const bool atRest = settled || !m_viewport->progressiveAntialiasing();
+    m_settledVersion = atRest && !viewportDisplay.empty() ? 0 : -1;
+    m_viewportVersions = 0;
+    const float exposure = m_viewport->frameSettings().exposureEv;
     Scene scene = m_controller->scene();
     scene.camera = m_viewport->viewCamera();
     m_passes = 0;
     m_stats = {};
     m_label->setText(tr("Rendering the reference…"));
     m_job->start(scene, kWidth, height, viewportDisplay, exposure);
+}
+
+Image ReferencePanel::comparisonImage(const Image& linear, int height) const {
+    if (linear.empty())
+        return {};
+    std::string error;
+    const Image small = velvet::resize(linear, kWidth, height, &error, ResizeFilter::Box);
+    if (small.empty())
+        return {};
+    return ReferenceJob::displayImage(small, m_viewport->frameSettings().exposureEv);
+}
+
+void ReferencePanel::adoptSettledView() {
+    // A restart still to come reads the settled mean itself; a debug view compares nothing.
+    if (!m_active || m_restart.isActive() ||
+        m_viewport->frameSettings().view != render::DebugView::Final || m_settledVersion >= 0)
+        return;
+    const Image display = comparisonImage(m_viewport->settledLinear(), m_snapshot.height());
+    if (display.empty() || display.width != m_snapshot.width())
+        return;
+    m_snapshot = ReferenceJob::toQImage(display);
+    m_view->setViewportImage(m_snapshot);
+    m_job->setViewport(display);
+    m_settledVersion = ++m_viewportVersions;
 }
 
 } // namespace velvet::ui

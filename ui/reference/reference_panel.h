@@ -33,6 +33,8 @@ class ReferenceSplitView : public QWidget {
 public:
     explicit ReferenceSplitView(QWidget* parent = nullptr);
     void setImages(const QImage& viewport, const QImage& reference);
+    /// The viewport's side alone (the reference's stays).
+    void setViewportImage(const QImage& viewport);
     /// The per-pixel ΔE the heat map shows and the reference's coverage of each pixel by the
     /// mesh (both one channel, the images' size; empty: none yet).
     void setDeltaE(const Image& deltaE, const Image& coverage);
@@ -85,6 +87,11 @@ public:
     /// The ΔE of the image shown against the viewport's snapshot over the pixels the mesh
     /// covers (pixels 0: none yet).
     const DeltaEStats& deltaEStats() const { return m_stats; }
+    /// Whether the image shown is compared with the viewport at rest: the mean of its
+    /// refinement's frames (ViewportWidget::settledLinear), which on a mesh that traces its own
+    /// light holds every bounce the settled view shows. Until the view settles the comparison
+    /// is with one frame drawn when the reference started.
+    bool comparesSettledView() const { return m_passes > 0 && m_shownVersion == m_settledVersion; }
     ReferenceSplitView* view() const { return m_view; }
     /// Width in pixels the reference renders at (its height follows the viewport's aspect).
     static constexpr int kWidth = 160;
@@ -101,6 +108,11 @@ private:
     void restart();
     void scheduleRestart();
     void showFrame(const ReferenceFrame& frame);
+    /// The viewport settled: its refinement's mean becomes the comparison.
+    void adoptSettledView();
+    /// The viewport's scene-linear @p linear averaged down to @p height rows of kWidth and
+    /// through the reference's display transform (empty when it cannot be made).
+    Image comparisonImage(const Image& linear, int height) const;
 
     DocumentController* m_controller;
     ViewportWidget* m_viewport;
@@ -115,6 +127,9 @@ private:
     DeltaEStats m_stats;
     bool m_active = false;
     int m_passes = 0;
+    int m_shownVersion = 0;     ///< ReferenceFrame::viewportVersion of the image shown
+    int m_settledVersion = -1;  ///< the job's viewport version that is the settled view, or -1
+    int m_viewportVersions = 0; ///< setViewport calls since the job started
 };
 
 } // namespace velvet::ui
