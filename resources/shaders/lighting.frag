@@ -331,9 +331,31 @@ void main() {
         vec2 abc = environmentDfg(NdotVc, cr);
         float fc = s.clearcoat * fresnelSchlick(0.04, 1.0, NdotVc);
         tracedDiffuse *= 1.0 - fc;
-        ambient = ambient * (1.0 - fc) +
-                  s.clearcoat * (0.04 * abc.x + abc.y) * reflectedRadiance(reflect(-v, nc), NdotVc, cr) *
-                      specularOcclusion;
+        // As the base's reflection (above): what the occlusion hides of the coat's lobe is the
+        // surface itself, which sends back its own light (meshReflection), not black: a glazed
+        // ceramic's coat under the shader ball's ring mirrors the lit ball, as the path tracer's
+        // does (BENCHMARKS.md, "The coat reflects the mesh").
+        vec3 coatReflected =
+            reflectedRadiance(reflect(-v, nc), NdotVc, cr) * specularOcclusion +
+            (1.0 - specularOcclusion) * meshReflection(surroundings, diffuseAlbedo + specularAlbedoMix);
+#if WITH_SCREEN_SPACE_REFLECTIONS && WITH_SAMPLED_REFLECTIONS
+        {
+            // And traced where the base's reflection is (its rays above): GGX visible normals of
+            // the coat's lobe about its own normal, the mesh's light where they meet it.
+            ShadingPoint coat = p;
+            coat.n = nc;
+            vec3 tc = incidencePlaneTangent(nc, v, NdotVc);
+            int rays = cr <= SAMPLED_REFLECTION_MAX_ROUGHNESS ? screenSpaceReflectionRays() : 0;
+            vec3 sum = vec3(0.0);
+            for (int i = 0; i < rays; ++i) {
+                vec4 hit = screenSpaceReflection(coat, tc, vec2(cr * cr), NdotVc, pixel, i);
+                sum += hit.a > 0.0 ? hit.rgb : coatReflected;
+            }
+            if (rays > 0)
+                coatReflected = sum / float(rays);
+        }
+#endif
+        ambient = ambient * (1.0 - fc) + s.clearcoat * (0.04 * abc.x + abc.y) * coatReflected;
         keepEmission = 1.0 - fc;
     }
 #endif
