@@ -333,6 +333,11 @@ private slots:
         white.setScalar(ParamId::SheenWeight, 0.0f);
         m_window->controller()->setMaterial(white, "white");
         m_window->controller()->setMesh(MeshRef{PreviewMeshKind::ShaderBall, {}});
+        // The view at rest before the panel opens, as the artist sees it.
+        QVERIFY(QTest::qWaitFor(
+            [&] { return viewport->progressiveSamples() == ViewportWidget::kProgressiveSamples; },
+            240000));
+        const QImage shownBefore = viewport->grabFramebuffer(nullptr, /*settled=*/true);
         QTest::keyClick(m_window.get(), Qt::Key_R, Qt::ControlModifier | Qt::ShiftModifier);
         QVERIFY(QTest::qWaitFor([&] { return panel->active(); }));
         QVERIFY(viewport->keepsSettledLinear());
@@ -340,6 +345,19 @@ private slots:
         const Image settled = viewport->settledLinear();
         QVERIFY(!settled.empty());
         QCOMPARE(viewport->progressiveSamples(), ViewportWidget::kProgressiveSamples);
+        // Keeping the refinement's linear frames (no display step inside the lighting pass)
+        // leaves what the viewport shows at rest as it was.
+        const QImage shownAfter = viewport->grabFramebuffer(nullptr, /*settled=*/true);
+        QCOMPARE(shownAfter.size(), shownBefore.size());
+        int worst = 0;
+        for (int y = 0; y < shownAfter.height(); ++y)
+            for (int x = 0; x < shownAfter.width(); ++x) {
+                const QRgb a = shownBefore.pixel(x, y), b = shownAfter.pixel(x, y);
+                worst = std::max({worst, std::abs(qRed(a) - qRed(b)),
+                                  std::abs(qGreen(a) - qGreen(b)), std::abs(qBlue(a) - qBlue(b))});
+            }
+        qInfo("the view at rest with the panel open against before it: worst %d/255", worst);
+        QVERIFY2(worst <= 2, qPrintable(QString::number(worst)));
         // The viewport's side of the split is the settled mean through the reference's display.
         const int height = panel->view()->composed().height();
         std::string error;
