@@ -128,24 +128,16 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     // As the editor's refinement at rest draws it: kRefinementFrames frames, each reading the
     // light of the one before where it traces the mesh's light (one bounce more a frame), and
     // their mean; a frame that traces nothing (a convex mesh) is the same every time, drawn once.
-    Image linear;
-    int frames = 0;
+    ImageMean linear;
     for (int k = 0; k < render::kRefinementFrames; ++k) {
         fs.accumulation = k;
         if (!renderer.render(fs, m_impl->target->framebuffer(), error))
             return false;
-        const Image one = renderer.readLinear();
-        if (frames++ == 0)
-            linear = one;
-        else
-            for (size_t i = 0; i < linear.pixels.size(); ++i)
-                linear.pixels[i] += one.pixels[i];
+        linear.add(renderer.readLinear());
         if (!renderer.lastFramePasses().screenSpaceReflections)
             break;
     }
-    for (float& v : linear.pixels)
-        v /= float(frames);
-    const Image frame = boxDownsample(linear, ss);
+    const Image frame = boxDownsample(linear.mean(), ss);
     Image viewport(n, n, 3);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {

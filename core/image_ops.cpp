@@ -75,6 +75,33 @@ Image resize(const Image& image, int width, int height, std::string* error, Resi
     return out;
 }
 
+void ImageMean::add(const Image& image) {
+    if (m_count == 0 || image.width != m_sum.width || image.height != m_sum.height ||
+        image.channels != m_sum.channels || image.pixels.size() != m_sum.pixels.size()) {
+        m_sum = image;
+        m_count = 1;
+        return;
+    }
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        m_sum.pixels[i] += image.pixels[i];
+    ++m_count;
+}
+
+void ImageMean::clear() {
+    m_sum = Image();
+    m_count = 0;
+}
+
+Image ImageMean::mean() const {
+    Image out = m_sum;
+    if (m_count > 1) {
+        const float scale = 1.0f / float(m_count);
+        for (float& v : out.pixels)
+            v *= scale;
+    }
+    return out;
+}
+
 Image boxDownsample(Image image, int factor) {
     if (factor < 1 || !consistent(image) || image.width % factor || image.height % factor)
         return {};

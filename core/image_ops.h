@@ -3,12 +3,12 @@
 /// Resizing, mip chains and GPU-limit fitting of float images, through OpenImageIO's
 /// ImageBufAlgo (OIIO headers stay in image_ops.cpp).
 
+#include "core/image.h"
+
 #include <string>
 #include <vector>
 
 namespace velvet {
-
-struct Image;
 
 /// Reconstruction filter of resize() (OpenImageIO's filter names, ImageBufAlgo::resize).
 enum class ResizeFilter {
@@ -47,5 +47,22 @@ Image boxDownsample(Image image, int factor);
 /// sizes, when it did; returns false and leaves @p image alone when it already fits (or, for an
 /// inconsistent image, when it cannot be resized: @p warning then says why).
 bool fitToLimit(Image& image, int maxSide, std::string* warning, const std::string& fileName = {});
+
+/// The running mean of images of one size and channel count: frames averaged in linear light
+/// (the editor's refinement at rest, `velvet compare --table`'s viewport). An image of another
+/// shape starts the mean again from it.
+class ImageMean {
+public:
+    void add(const Image& image);
+    void clear();
+    /// Images in the mean (0 before the first add and after clear()).
+    int count() const { return m_count; }
+    /// Their mean (empty when there is none).
+    Image mean() const;
+
+private:
+    Image m_sum;
+    int m_count = 0;
+};
 
 } // namespace velvet

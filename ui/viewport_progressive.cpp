@@ -19,8 +19,7 @@ void ViewportWidget::restartProgressive() {
     m_progressiveIndex = -1;
     m_progressiveShown = 0; // the mean on screen is the last view's, gone at the next frame
     m_progressiveTimer->stop();
-    m_linearSum = Image();
-    m_linearFrames = 0;
+    m_linearMean.clear();
     m_settledLinear = Image();
 }
 
@@ -28,8 +27,7 @@ void ViewportWidget::setKeepsSettledLinear(bool keep) {
     if (keep == m_keepSettledLinear)
         return;
     m_keepSettledLinear = keep;
-    m_linearSum = Image();
-    m_linearFrames = 0;
+    m_linearMean.clear();
     m_settledLinear = Image();
     // A refinement under way or ended drew its frames without their linear images: draw it
     // again (the plain frame first, as after a change), this time keeping them.
@@ -45,26 +43,16 @@ void ViewportWidget::keepLinearFrame(const render::FrameSettings& settings) {
     const Image frame = m_renderer->readLinear();
     if (frame.empty())
         return;
-    // The renderer's mean restarts at its frame 0 (and when the size changed): so does ours.
-    const bool first = m_renderer->accumulatedSamples() == 1 || m_linearFrames == 0 ||
-                       frame.width != m_linearSum.width || frame.height != m_linearSum.height ||
-                       frame.channels != m_linearSum.channels;
-    if (first) {
-        m_linearSum = frame;
-        m_linearFrames = 1;
-    } else {
-        for (size_t i = 0; i < frame.pixels.size(); ++i)
-            m_linearSum.pixels[i] += frame.pixels[i];
-        ++m_linearFrames;
-    }
-    if (m_linearFrames < kProgressiveSamples || m_renderer->accumulatedSamples() != m_linearFrames)
+    // The renderer's mean restarts at its frame 0 (and when the size changed, which ImageMean
+    // notices itself): so does ours.
+    if (m_renderer->accumulatedSamples() == 1)
+        m_linearMean.clear();
+    m_linearMean.add(frame);
+    if (m_linearMean.count() < kProgressiveSamples ||
+        m_renderer->accumulatedSamples() != m_linearMean.count())
         return;
-    m_settledLinear = std::move(m_linearSum);
-    m_linearSum = Image();
-    m_linearFrames = 0;
-    const float scale = 1.0f / float(kProgressiveSamples);
-    for (float& v : m_settledLinear.pixels)
-        v *= scale;
+    m_settledLinear = m_linearMean.mean();
+    m_linearMean.clear();
     emit settledLinearReady();
 }
 

@@ -18,6 +18,7 @@
 /// QWidget::grab does not capture it, so screenshots compose grabFramebuffer() themselves
 /// (ui/screenshot.h).
 
+#include "core/image_ops.h"
 #include "core/scene.h"
 #include "core/scene_parts.h"
 #include "render/graph_preview.h"
@@ -330,8 +331,7 @@ private:
     int m_progressiveShown = 0; ///< frames in the mean on screen (0: a plain frame)
     QSize m_progressiveSize;    ///< the frame size the refinement's mean has
     bool m_keepSettledLinear = false;
-    Image m_linearSum;      ///< the refinement's linear frames so far, summed
-    int m_linearFrames = 0; ///< frames in m_linearSum
+    ImageMean m_linearMean; ///< the refinement's linear frames so far
     Image m_settledLinear;  ///< their mean once the refinement has ended
     QTimer* m_progressiveTimer;
     /// Draws a frame when a texture file the material uses changes on disk (an idle viewport

@@ -244,9 +244,9 @@ void main() {
     // white in a white furnace as the path tracer's do.
     vec3 specularAlbedoMix = mix(specDielectric, specMetal, s.metallic);
     vec3 diffuseAlbedo = (1.0 - s.metallic) * (1.0 - max3(specDielectric)) * s.baseColor;
+    vec3 hiddenLight = meshReflection(surroundings, diffuseAlbedo + specularAlbedoMix);
     vec3 reflected = specular * specularOcclusion +
-                     specularAlbedoMix * (1.0 - specularOcclusion) *
-                         meshReflection(surroundings, diffuseAlbedo + specularAlbedoMix);
+                     specularAlbedoMix * (1.0 - specularOcclusion) * hiddenLight;
     // The diffuse light: the environment's under the occlusions (the screen-space one applied
     // with the rest of the ambient light below), or, traced, outside them.
     vec3 diffuseLight = irradiance * diffuseOcclusion;
@@ -267,13 +267,7 @@ void main() {
         // rougher lobe keeps its sampled reflection: no rays, a loop run no times, which
         // llvmpipe skips for a whole block (it runs both sides of an `if`).
         int rays = rough <= SAMPLED_REFLECTION_MAX_ROUGHNESS ? screenSpaceReflectionRays() : 0;
-        vec3 sum = vec3(0.0);
-        for (int i = 0; i < rays; ++i) {
-            vec4 hit = screenSpaceReflection(p, t, alpha, NdotV, pixel, i);
-            sum += hit.a > 0.0 ? specularAlbedoMix * hit.rgb : reflected;
-        }
-        if (rays > 0)
-            reflected = sum / float(rays);
+        reflected = tracedReflection(p, t, alpha, NdotV, pixel, rays, specularAlbedoMix, reflected);
     }
 #endif
     {
@@ -335,24 +329,18 @@ void main() {
         // surface itself, which sends back its own light (meshReflection), not black: a glazed
         // ceramic's coat under the shader ball's ring mirrors the lit ball, as the path tracer's
         // does (BENCHMARKS.md, "The coat reflects the mesh").
-        vec3 coatReflected =
-            reflectedRadiance(reflect(-v, nc), NdotVc, cr) * specularOcclusion +
-            (1.0 - specularOcclusion) * meshReflection(surroundings, diffuseAlbedo + specularAlbedoMix);
+        vec3 coatReflected = reflectedRadiance(reflect(-v, nc), NdotVc, cr) * specularOcclusion +
+                             (1.0 - specularOcclusion) * hiddenLight;
 #if WITH_SCREEN_SPACE_REFLECTIONS && WITH_SAMPLED_REFLECTIONS
         {
             // And traced where the base's reflection is (its rays above): GGX visible normals of
             // the coat's lobe about its own normal, the mesh's light where they meet it.
             ShadingPoint coat = p;
             coat.n = nc;
-            vec3 tc = incidencePlaneTangent(nc, v, NdotVc);
             int rays = cr <= SAMPLED_REFLECTION_MAX_ROUGHNESS ? screenSpaceReflectionRays() : 0;
-            vec3 sum = vec3(0.0);
-            for (int i = 0; i < rays; ++i) {
-                vec4 hit = screenSpaceReflection(coat, tc, vec2(cr * cr), NdotVc, pixel, i);
-                sum += hit.a > 0.0 ? hit.rgb : coatReflected;
-            }
-            if (rays > 0)
-                coatReflected = sum / float(rays);
+            coatReflected = tracedReflection(coat, incidencePlaneTangent(nc, v, NdotVc),
+                                             vec2(cr * cr), NdotVc, pixel, rays, vec3(1.0),
+                                             coatReflected);
         }
 #endif
         ambient = ambient * (1.0 - fc) + s.clearcoat * (0.04 * abc.x + abc.y) * coatReflected;

@@ -154,6 +154,20 @@ vec4 screenSpaceReflection(ShadingPoint p, vec3 t, vec2 alpha, float NdotV, ivec
     return ssrTrace(p, l, pixel, index.x, SSR_STEPS);
 }
 
+// The mean of @p rays of screenSpaceReflection's rays of a lobe (alpha along t and n x t about
+// p.n): @p albedo times the mesh's light where a ray meets it, @p missed where it does not (the
+// lobe's environment light, occluded). @p rays 0: a loop run no times, which llvmpipe skips for
+// a whole block; the caller keeps its own estimate then.
+vec3 tracedReflection(ShadingPoint p, vec3 t, vec2 alpha, float NdotV, ivec2 pixel, int rays,
+                      vec3 albedo, vec3 missed) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < rays; ++i) {
+        vec4 hit = screenSpaceReflection(p, t, alpha, NdotV, pixel, i);
+        sum += hit.a > 0.0 ? albedo * hit.rgb : missed;
+    }
+    return rays > 0 ? sum / float(rays) : missed;
+}
+
 // Ray @p ray of screenSpaceReflectionRays(): a sample of the cosine lobe about the face (the
 // diffuse light's directions), as ssrTrace.
 vec4 screenSpaceGather(ShadingPoint p, ivec2 pixel, int ray) {

@@ -98,6 +98,29 @@ private slots:
         QVERIFY(boxDownsample(image, 0).empty());
     }
 
+    // The running mean of frames: each pixel the average of the images added; an image of
+    // another size starts it again; clear() empties it.
+    void imageMeanAveragesAndRestartsOnAnotherSize() {
+        ImageMean mean;
+        QCOMPARE(mean.count(), 0);
+        QVERIFY(mean.mean().empty());
+        Image a(2, 1, 1), b(2, 1, 1), c(3, 1, 1);
+        a.pixels = {1.0f, 2.0f};
+        b.pixels = {3.0f, 6.0f};
+        c.pixels = {5.0f, 5.0f, 5.0f};
+        mean.add(a);
+        QCOMPARE(mean.mean().pixels, a.pixels);
+        mean.add(b);
+        QCOMPARE(mean.count(), 2);
+        QCOMPARE(mean.mean().pixels, (std::vector<float>{2.0f, 4.0f}));
+        mean.add(c);
+        QCOMPARE(mean.count(), 1);
+        QCOMPARE(mean.mean().pixels, c.pixels);
+        mean.clear();
+        QCOMPARE(mean.count(), 0);
+        QVERIFY(mean.mean().empty());
+    }
+
     // Full chain: floor(log2(max side)) + 1 levels, each side halved rounding down (OpenGL 4.5
     // section 8.14.3), down to 1x1; a checkerboard averages to its mean.
     void mipChainHasEveryLevel() {

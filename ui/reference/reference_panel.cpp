@@ -298,9 +298,11 @@ void ReferencePanel::restart() {
     const bool debugView = m_viewport->frameSettings().view != render::DebugView::Final;
     m_noComparison = debugView ? tr("the viewport shows a debug view: no ΔE") : QString();
     const bool settled = !debugView && !m_viewport->settledLinear().empty();
-    Image linear = settled ? m_viewport->settledLinear() : Image();
-    const QImage grabbed = settled ? QImage() : m_viewport->grabFramebuffer(&linear);
-    const Image viewportDisplay = debugView ? Image() : comparisonImage(linear, height);
+    Image grabbedLinear;
+    const QImage grabbed = settled ? QImage() : m_viewport->grabFramebuffer(&grabbedLinear);
+    const Image viewportDisplay =
+        debugView ? Image()
+                  : comparisonImage(settled ? m_viewport->settledLinear() : grabbedLinear, height);
     m_snapshot = viewportDisplay.empty() ? grabbed.scaled(kWidth, height, Qt::IgnoreAspectRatio,
                                                           Qt::SmoothTransformation)
                                          : ReferenceJob::toQImage(viewportDisplay);
