@@ -177,6 +177,8 @@ bool stageFigures(int width, int height, int frames,
     figures.emplace_back("stage_occlusion_kept_frames", double(stage.occlusionKeptFrames));
     figures.emplace_back("stage_shadow_overhead", stage.shadowOverhead);
     figures.emplace_back("stage_shadow_ao_overhead", stage.stageOverhead);
+    figures.emplace_back("stage_frame_shadow_ao_own_upsample_ms", stage.frameStageOwnUpsampleMs);
+    figures.emplace_back("stage_shadow_ao_own_upsample_overhead", stage.stageOwnUpsampleOverhead);
     figures.emplace_back("shadow_map_pass_ms", stage.shadowMapMs);
     figures.emplace_back("occlusion_pass_ms", stage.occlusionMs);
     figures.emplace_back("shadow_mask_pass_ms", stage.shadowMaskMs);

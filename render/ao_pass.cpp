@@ -52,9 +52,10 @@ PixelRect occlusionRect(const MeshBounds& bounds, float radius, const glm::mat4&
 bool OcclusionPass::build(std::string* error) {
     if (!m_gtao[0].build("fullscreen.vert", "ao_gtao.frag", {"WITH_GEOMETRIC_HORIZON 0"}, error) ||
         !m_gtao[1].build("fullscreen.vert", "ao_gtao.frag", {}, error) ||
-        !m_blur.build("fullscreen.vert", "ao_blur.frag", {}, error))
+        !m_blur.build("fullscreen.vert", "ao_blur.frag", {}, error) ||
+        !m_pack.build("fullscreen.vert", "ao_pack.frag", {}, error))
         return false;
-    m_compileCount += 3;
+    m_compileCount += 4;
     return true;
 }
 
@@ -84,6 +85,30 @@ bool OcclusionPass::run(int width, int height, int downsample, const PixelRect& 
     drawInto(m_blurred, blurRect);
     glBindTextureUnit(stage_binding::kOcclusionRawTex, 0);
     return true;
+}
+
+void OcclusionPass::packInto(unsigned maskFramebuffer, const PixelRect& texels, unsigned emptyVao) {
+    glBindFramebuffer(GL_FRAMEBUFFER, maskFramebuffer);
+    glViewport(0, 0, m_blurred.width(), m_blurred.height());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    // Alpha alone, of the mask and the ground's mask (not the key between them).
+    glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glColorMaski(2, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+    const float open[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    glClearBufferfv(GL_COLOR, 0, open); // the clears honour the colour masks
+    glClearBufferfv(GL_COLOR, 2, open);
+    if (texels.width > 0 && texels.height > 0) {
+        bind();
+        glBindVertexArray(emptyVao);
+        glUseProgram(m_pack.id());
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(texels.x, texels.y, texels.width, texels.height);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_SCISSOR_TEST);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void OcclusionPass::bind() const {

@@ -58,10 +58,17 @@ public:
     void invalidate() { m_reuse.invalidate(); }
     /// The blurred occlusion at stage_binding::kOcclusionTex.
     void bind() const;
+    /// The blurred occlusion into the alpha of the shadow masks of @p maskFramebuffer
+    /// (FrameTargets::shadowMaskFramebuffer(), the same texel grid), when no shadow slot takes
+    /// their fourth channel: the lighting passes then read it with the shadows' upsample, not
+    /// their own (stage_shading.glsl's stageOcclusion, StageBlock::counts.z; ao_pack.frag). Over
+    /// @p texels (run()'s), alpha 1 elsewhere. Expects the frame and stage blocks and the
+    /// G-buffer's textures bound, after run() and the masks' passes of this frame.
+    void packInto(unsigned maskFramebuffer, const PixelRect& texels, unsigned emptyVao);
 
 private:
     ShaderProgram m_gtao[2]; // [1]: the geometric normal for materials that bend theirs
-    ShaderProgram m_blur;
+    ShaderProgram m_blur, m_pack;
     ColorTarget m_raw, m_blurred;
     FrameReuse m_reuse;
     int m_compileCount = 0;

@@ -64,6 +64,7 @@ std::vector<std::string> LightingFeatures::defines() const {
         out.push_back("WITH_SCREEN_SPACE_REFLECTIONS 1");
     fixed("FIXED_IBL_BAKED", iblBaked);
     fixed("FIXED_MULTIPLE_SCATTERING", multipleScattering);
+    fixed("FIXED_OCCLUSION_IN_MASK", occlusionInMask);
     return out;
 }
 

@@ -79,6 +79,10 @@ struct LightingFeatures {
     bool screenSpaceReflections = false;
     /// The environment's irradiance cube (render/irradiance_map.h) is ready: the SH9 compiles out.
     bool irradianceMap = true;
+    /// Whether the occlusion rides in the shadow masks' fourth channel (1: read with the shadows'
+    /// upsample; 0: its own upsample; Stage::packsOcclusion), or kAnyTerm: StageBlock::counts.z
+    /// at run time. llvmpipe pays for the own upsample's code even where a uniform skips it.
+    int occlusionInMask = kAnyTerm;
     /// The baked IBL (prefiltered cube and DFG LUT) is ready: the approximate path compiles out.
     /// Unknown (-1), 0 or 1; the same for the multiple-scattering energy switch.
     int iblBaked = -1;

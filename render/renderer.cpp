@@ -278,7 +278,8 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     // before anything binds the units it borrows.
     d.irradiance.update(*d.environment);
     d.stage.beginFrame(d.scene, fs.width, fs.height,
-                       fs.navigating ? kNavigatingStageDownsample : kStageDownsample);
+                       fs.navigating ? kNavigatingStageDownsample : kStageDownsample,
+                       fs.packOcclusion);
     d.materials.bind();
 
     // Known state: a host (Qt) may leave anything bound or enabled.
@@ -575,6 +576,7 @@ FrameTimings Renderer::lastTimings() const {
     }
     d.timings.shadowMaskPasses = d.stage.lastShadowMaskPasses();
     d.timings.occlusionKept = d.stage.lastOcclusionKept();
+    d.timings.occlusionInMask = d.stage.occlusionInMask();
     d.timings.shadowMaskKept = d.stage.lastShadowMaskKept();
     return d.timings;
 }

@@ -123,6 +123,11 @@ struct FrameSettings {
     /// (render/shadow_depth_bounds.h). The result is the same either way; off filters every
     /// texel: the reference the settled mask is tested against, and the bench's "before".
     bool settleShadows = true;
+    /// Lets the occlusion ride in the shadow masks' free fourth channel, read with the shadows'
+    /// upsample (render/ao_pass.h, OcclusionPass::packInto). The result is the same up to the two
+    /// upsamples' weights and 8 bits; off gives the occlusion its own upsample: the bench's
+    /// "before" and the reference the packed one is tested against.
+    bool packOcclusion = true;
     /// @name OpenColorIO display (docs/color-management.md)
     /// The display encoding is always OCIO's own GPU shader. An empty display is the config's
     /// default display (sRGB in the shipped config), an empty displayView that display's default
@@ -277,6 +282,9 @@ struct FrameTimings {
     /// The frame kept the last frame's occlusion (render/ao_pass.h: the camera, the depth and the
     /// normals as they were; occlusionMs is then 0). Counted, not timed: always set.
     bool occlusionKept = false;
+    /// The frame's occlusion rode in the shadow masks' fourth channel (FrameSettings::
+    /// packOcclusion, Stage::packsOcclusion). Counted, not timed: always set.
+    bool occlusionInMask = false;
     /// The screen-space shadow mask's passes (render/shadow_mask.h; 0 without a shadowed light,
     /// and when the frame kept the last frame's masks).
     double shadowMaskMs = 0;

@@ -105,13 +105,23 @@ bool Stage::shadowsLocalLight(const std::vector<Light>& lights) const {
                        });
 }
 
+bool Stage::packsOcclusion(const Scene& scene, bool allowed) const {
+    // A channel is free with at most three slots, and the mesh's pixels read the mask where a
+    // directional light has a slot (WITH_DIRECTIONAL_SHADOWS; the catcher and the plain ground
+    // read it with any slot).
+    const size_t slots = m_shadows.slots().size();
+    return allowed && scene.environment.ambientOcclusion && slots > 0 &&
+           slots < size_t(kMaxShadowLights) && shadowsDirectionalLight(scene.lights);
+}
+
 void Stage::drawShadows(const GpuMesh& mesh) {
     glQueryCounter(m_queries[0], GL_TIMESTAMP);
     m_shadowTimed = m_shadows.draw(mesh);
     glQueryCounter(m_queries[1], GL_TIMESTAMP);
 }
 
-void Stage::beginFrame(const Scene& scene, int width, int height, int downsample) {
+void Stage::beginFrame(const Scene& scene, int width, int height, int downsample,
+                       bool packOcclusion) {
     StageBlock b{};
     m_shadows.fill(b, scene.lights);
     const Environment& env = scene.environment;
@@ -122,6 +132,7 @@ void Stage::beginFrame(const Scene& scene, int width, int height, int downsample
     b.meshSphere = glm::vec4(sphere.center, r);
     b.groundSquare = glm::vec4(sphere.center.x, 0.0f, sphere.center.z, groundHalfSize(r));
     b.counts.y = std::max(downsample, 1);
+    b.counts.z = packsOcclusion(scene, packOcclusion) ? 1 : 0;
     b.occlusion =
         glm::vec4(env.ambientOcclusion ? 1.0f : 0.0f, std::max(env.occlusionRadius, 0.0f),
                   float(maskSize(width, b.counts.y)), float(maskSize(height, b.counts.y)));
@@ -209,13 +220,25 @@ void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned 
     frameKey.add(m_block).add(m_shadows.drawCount()).add(environment.ground).add(m_bounds);
     frameKey.add(settle).add(bentNormals).add(framebuffer).add(maskTexture).add(keyTexture);
     frameKey.add(groundMaskTexture);
-    if ((m_maskKept = m_maskReuse.reuse(std::move(frameKey))))
-        return; // the passes and their timers are the frame's that drew the masks
+    const PixelRect occlusionTexels{m_block.occlusionTexels.x, m_block.occlusionTexels.y,
+                                    m_block.occlusionTexels.z - m_block.occlusionTexels.x,
+                                    m_block.occlusionTexels.w - m_block.occlusionTexels.y};
+    if ((m_maskKept = m_maskReuse.reuse(std::move(frameKey)))) {
+        // The passes and their timers are the frame's that drew the masks; an occlusion drawn
+        // again (for a reason no key sees: invalidateScreenPasses()) goes into them again.
+        if (m_block.counts.z != 0 && !m_occlusionKept)
+            m_occlusion.packInto(framebuffer, occlusionTexels, emptyVao);
+        return;
+    }
     m_shadows.bind();
     glQueryCounter(m_queries[4], GL_TIMESTAMP);
     m_maskPasses =
         m_mask.run(framebuffer, m_shadows.slots(), m_bounds, environment.ground != GroundMode::Off,
                    height0, viewProj, width, height, downsample(), emptyVao, settle, bentNormals);
+    // The masks' clear has reset the fourth channel: the occlusion, kept or drawn, goes back in
+    // (timed with the masks).
+    if (m_block.counts.z != 0)
+        m_occlusion.packInto(framebuffer, occlusionTexels, emptyVao);
     glQueryCounter(m_queries[5], GL_TIMESTAMP);
     m_shadows.unbind();
 }

@@ -53,12 +53,21 @@ public:
     /// Whether a directional light the frame block carries has a shadow map (annotate()).
     bool shadowsDirectionalLight(const std::vector<Light>& lights) const;
 
+    /// Whether the occlusion of a frame of @p scene rides in the shadow masks' free fourth
+    /// channel (OcclusionPass::packInto, StageBlock::counts.z): @p allowed
+    /// (FrameSettings::packOcclusion), occlusion on, one to three shadow slots, one of them a
+    /// directional light's.
+    bool packsOcclusion(const Scene& scene, bool allowed) const;
+    /// Whether this frame's occlusion rides in the shadow masks (beginFrame()'s packsOcclusion).
+    bool occlusionInMask() const { return m_block.counts.z != 0; }
     /// Before the geometry pass: the shadow maps, when the lights or the mesh changed (timed).
     void drawShadows(const GpuMesh& mesh);
     /// The frame's StageBlock, uploaded and bound at stage_binding::kStageUbo; @p downsample is
     /// the masks' and the occlusion's (kStageDownsample, or kNavigatingStageDownsample in a frame
-    /// drawn while the camera moves).
-    void beginFrame(const Scene& scene, int width, int height, int downsample);
+    /// drawn while the camera moves). @p packOcclusion lets the occlusion ride in the shadow
+    /// masks where a channel is free (FrameSettings::packOcclusion).
+    void beginFrame(const Scene& scene, int width, int height, int downsample,
+                    bool packOcclusion = true);
     /// The downsample beginFrame() took.
     int downsample() const { return m_block.counts.y; }
     /// After the geometry pass, into its (still bound) framebuffer: the ground, if any.

@@ -88,7 +88,7 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     report.occlusionKeptFrames = 0;
     std::vector<double> offMs, shadowMs, fullMs, valueEditMs, mapMs, maskMs, occlusionMs, offCpu,
         shadowCpu, fullCpu, unsettledCpu, texels, filteredShare, shadowRestMs, fullRestMs,
-        maskRestMs, occlusionRestMs;
+        maskRestMs, occlusionRestMs, ownUpsampleMs;
     for (int i = 0; i < frames; ++i) {
         double ms = 0.0, cpu = 0.0;
         if (!frame(off, ScenePart::Lights | ScenePart::Environment, nullptr) ||
@@ -121,6 +121,12 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
         fullMs.push_back(ms);
         fullCpu.push_back(cpu);
         occlusionMs.push_back(renderer.lastTimings().occlusionMs);
+        fs.packOcclusion = false;
+        const bool ownUpsample = frame(full, ScenePart::None, &ms);
+        fs.packOcclusion = true;
+        if (!ownUpsample)
+            return false;
+        ownUpsampleMs.push_back(ms);
         // The same orbit steps with the stage at its resolution at rest.
         fs.navigating = false;
         if (!frame(shadow, ScenePart::Lights | ScenePart::Environment, nullptr) ||
@@ -178,6 +184,8 @@ bool measureStage(int width, int height, int frames, StageBenchReport& report, s
     report.frameShadowMs = median(shadowMs);
     report.frameStageMs = median(fullMs);
     report.frameStageValueEditMs = median(valueEditMs);
+    report.frameStageOwnUpsampleMs = median(ownUpsampleMs);
+    report.stageOwnUpsampleOverhead = overhead(report.frameStageOwnUpsampleMs, report.frameOffMs);
     report.shadowOverhead = overhead(report.frameShadowMs, report.frameOffMs);
     report.stageOverhead = overhead(report.frameStageMs, report.frameOffMs);
     report.shadowMapMs = median(mapMs);

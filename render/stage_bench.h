@@ -17,6 +17,10 @@ struct StageBenchReport {
     /// keeps the last frame's occlusion (render/ao_pass.h); and the frames that kept it.
     double frameStageValueEditMs = 0;
     int occlusionKeptFrames = 0;
+    /// The shadows-and-occlusion frame with the occlusion upsampled on its own
+    /// (FrameSettings::packOcclusion off: the "before" of its ride in the shadow masks), and
+    /// its overhead over frameOffMs.
+    double frameStageOwnUpsampleMs = 0, stageOwnUpsampleOverhead = 0;
     double shadowOverhead = 0; ///< frameShadowMs / frameOffMs - 1
     double stageOverhead = 0;  ///< frameStageMs / frameOffMs - 1
     double shadowMapMs = 0;    ///< GPU time of drawing the shadow map (a light or mesh edit)

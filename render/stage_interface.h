@@ -75,7 +75,8 @@ struct StageBlock {
     glm::vec4 occlusion;
     /// x: shadow slots in use; y: the frame's stage downsample (kStageDownsample or
     /// kNavigatingStageDownsample: the masks' and the occlusion's texel t stands for pixel y t);
-    /// zw unused
+    /// z: 1 where the occlusion rides in the shadow masks' fourth channel (render/ao_pass.h,
+    /// OcclusionPass::packInto), else 0; w unused
     glm::ivec4 counts;
     /// The ground's square (stage.cpp): x, z its centre, w its half size (m); y unused. The
     /// shadow lookups test a light under the floor against it (shadow_sampling.glsl).

@@ -96,8 +96,8 @@ void main() {
     vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
     vec3 posView = viewPositionFromDepth(ndcXY, texelFetch(gDepthTex, pixel, 0).r);
     vec3 posWorld = (frame.invViewMatrix * vec4(posView, 1.0)).xyz;
-    float ssao = screenSpaceOcclusion(pixel, -posView.z);
     vec4 shadows = groundShadowMask(pixel);
+    float ssao = stageOcclusion(shadows, pixel, -posView.z);
     outColor = vec4(background(ndcXY) * catcherTransmission(posWorld, ssao, shadows), 1.0);
 }
 #else
@@ -146,11 +146,11 @@ void main() {
                      : view == DEBUG_SPECULAR  ? s.specularColor * s.specularWeight
                      : view == DEBUG_CLEARCOAT ? vec3(s.clearcoat, s.clearcoatRoughness, 0.0)
                      : view == DEBUG_SHEEN     ? s.sheenColor
-                     : view == DEBUG_OCCLUSION ? vec3(occlusion * screenSpaceOcclusion(pixel, -posView.z))
+                     : view == DEBUG_OCCLUSION ? vec3(occlusion * stageOcclusion(shadows, pixel, -posView.z))
                      : view == DEBUG_EMISSIVE  ? vec3(0.0)
                      : view == DEBUG_ANISOTROPY ? s.anisotropyDirection * s.anisotropyStrength
                      : view == DEBUG_SPECULAR_OCCLUSION
-                         ? vec3(p.specularOcclusion * screenSpaceOcclusion(pixel, -posView.z))
+                         ? vec3(p.specularOcclusion * stageOcclusion(shadows, pixel, -posView.z))
                                                : vec3(float(p.materialId));
         // Alpha 0 replaces the emission the geometry pass wrote; the emissive view keeps it
         // (alpha 1, nothing added): the per-pixel emission itself.
@@ -159,7 +159,7 @@ void main() {
 #else
 
     // The stage (stage_shading.glsl): screen-space occlusion of the environment's light.
-    float ssao = screenSpaceOcclusion(pixel, -posView.z);
+    float ssao = stageOcclusion(shadows, pixel, -posView.z);
     vec2 ndcXY = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
 
     // The sheen's albedo along the view: every light's scaling and the image-based sheen read it.

@@ -28,8 +28,10 @@ float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
     // the upsample is a loop run once or not at all, which llvmpipe leaves for a whole block of
     // such pixels (the shadow catcher's ground far from the mesh), where it runs both sides of
     // an `if`.
+    // Nor where the occlusion rides in the shadow masks (stage.counts.z: stageOcclusion()).
     ivec4 drawn = stage.occlusionTexels;
-    bool reads = all(greaterThanEqual(ivec2(b) + 1, drawn.xy)) && all(lessThan(ivec2(b), drawn.zw));
+    bool reads = stage.counts.z == 0 && all(greaterThanEqual(ivec2(b) + 1, drawn.xy)) &&
+                 all(lessThan(ivec2(b), drawn.zw));
     float result = 1.0;
     for (int once = 0; once < (reads ? 1 : 0); ++once) {
         // The 2x2 texels b .. b + 1 in two gathers, (0,1), (1,1), (1,0), (0,0) from b (clamped
@@ -45,6 +47,27 @@ float screenSpaceOcclusion(ivec2 pixel, float viewDepth) {
         result = total > 0.0 ? dot(vis, w) / total : 1.0;
     }
     return result;
+}
+
+// The occlusion at @p pixel, @p mask the shadow mask read there (frameShadowMask,
+// surfaceShadowMask or groundShadowMask): where the frame has a shadow mask with a channel to
+// spare (stage.counts.z = 1), the occlusion is in its fourth (render/ao_pass.h, packInto), and
+// the mask's upsample, which the pixel pays for anyway, has brought it here: the occlusion's own
+// upsample above (two gathers, a quarter of the stage's cost on llvmpipe: BENCHMARKS.md, "The
+// occlusion rides in the shadow mask") runs no times.
+// FIXED_OCCLUSION_IN_MASK 1 or 0 (render/lighting_features.h) compiles the other way out: llvmpipe
+// pays for the own upsample's code even in blocks whose uniform skips it.
+float stageOcclusion(vec4 mask, ivec2 pixel, float viewDepth) {
+#if !WITH_OCCLUSION
+    return 1.0;
+#elif defined(FIXED_OCCLUSION_IN_MASK) && FIXED_OCCLUSION_IN_MASK
+    return mask.a;
+#elif defined(FIXED_OCCLUSION_IN_MASK)
+    return screenSpaceOcclusion(pixel, viewDepth);
+#else
+    float own = screenSpaceOcclusion(pixel, viewDepth);
+    return stage.counts.z != 0 ? mask.a : own;
+#endif
 }
 
 #ifndef WITH_LOCAL_SHADOWS

@@ -17,6 +17,9 @@ namespace velvet::test {
 /// The frames drawn as while the camera moves (FrameSettings::navigating): the `navigating` rows.
 inline bool navigatingFrames = false;
 
+/// Whether the frames let the occlusion ride in the shadow masks (FrameSettings::packOcclusion).
+inline bool packOcclusionFrames = true;
+
 /// The frame's size over the test's: 2 in the navigating rows, whose stage is drawn at a quarter
 /// of the frame each way, not half, so that its texels cover what the rows at rest's do and the
 /// known answers' margins (in world units) mean the same; at 1280 x 720 a quarter is 320 x 180.
@@ -49,6 +52,7 @@ inline Image drawLinear(test::OffscreenRenderer* r, int size,
     fs.view = view;
     fs.lightPath = path;
     fs.navigating = navigatingFrames;
+    fs.packOcclusion = packOcclusionFrames;
     if (!r->renderer->render(fs, r->target->framebuffer(), &error))
         qFatal("render failed: %s", error.c_str());
     return r->renderer->readLinear();

@@ -57,7 +57,10 @@ private slots:
     void cleanupTestCase() {
         test::stopProcessRenderer(); // while the context is current
     }
-    void init() { navigatingFrames = false; }
+    void init() {
+        navigatingFrames = false;
+        packOcclusionFrames = true;
+    }
 
     // The occlusion term alone (the occlusion view: material occlusion x GTAO).
     void occlusionIsOneOnAnOpenPlane_data() { addNavigatingRows(); }
@@ -265,6 +268,111 @@ private slots:
             else // the dark one about its visibility
                 QVERIFY(std::abs(ratioSum - visibilitySum) / crease < 0.02);
         }
+    }
+
+    // Under a shadowed light the occlusion rides in the shadow masks' free channel, read with
+    // the shadows' upsample (render/ao_pass.h, packInto): the light it keeps is the light its own
+    // upsample keeps, on the plain ground (the mask proper) and on the shadow catcher (the
+    // ground's mask), at rest and while the camera moves; and the crease is still darker than
+    // without the occlusion, so the channel holds the occlusion and not the clear's 1.
+    void occlusionRidingInTheShadowMaskKeepsItsOwnLight_data() {
+        QTest::addColumn<bool>("navigating");
+        QTest::addColumn<bool>("catcher");
+        QTest::newRow("plain ground at rest") << false << false;
+        QTest::newRow("plain ground navigating") << true << false;
+        QTest::newRow("shadow catcher at rest") << false << true;
+        QTest::newRow("shadow catcher navigating") << true << true;
+    }
+    void occlusionRidingInTheShadowMaskKeepsItsOwnLight() {
+        QFETCH(bool, navigating);
+        QFETCH(bool, catcher);
+        navigatingFrames = navigating;
+        Scene scene = creaseScene();
+        scene.environment.color = glm::vec3(1.0f);
+        scene.environment.ground = catcher ? GroundMode::ShadowCatcher : GroundMode::Plain;
+        Light key;
+        key.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+        key.intensity = 0.5f;
+        key.castShadows = true;
+        scene.lights = {key};
+        const int size = 128 * framePixelsPerStagePixel();
+        const Image pos = renderLinear(scene, size, render::DebugView::Position);
+        const Image packed = renderLinear(scene, size);
+        QVERIFY(rig()->renderer->lastTimings().occlusionInMask);
+        packOcclusionFrames = false;
+        const Image own = renderLinear(scene, size);
+        QVERIFY(!rig()->renderer->lastTimings().occlusionInMask);
+        scene.environment.ambientOcclusion = false;
+        const Image open = renderLinear(scene, size);
+        double packedSum = 0.0, ownSum = 0.0, openSum = 0.0, differenceSum = 0.0;
+        int crease = 0, ground = 0, apart = 0;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const float d = distanceFromCube(glm::vec3(pos.rgba(x, y)));
+                if (d < 0.0f)
+                    continue;
+                const float a = luminance(packed.rgba(x, y)), b = luminance(own.rgba(x, y));
+                const float difference = std::abs(a - b) / std::max(b, 1e-3f);
+                differenceSum += difference;
+                apart += difference > 0.05f;
+                ++ground;
+                if (d > 0.01f && d < 0.06f) {
+                    packedSum += a;
+                    ownSum += b;
+                    openSum += luminance(open.rgba(x, y));
+                    ++crease;
+                }
+            }
+        qInfo("%d ground pixels, mean difference %.4f, %d more than 5 %% apart; crease (%d "
+              "pixels): packed %.4f, own %.4f, without occlusion %.4f",
+              ground, differenceSum / std::max(ground, 1), apart, crease,
+              packedSum / std::max(crease, 1), ownSum / std::max(crease, 1),
+              openSum / std::max(crease, 1));
+        QVERIFY(ground > 1000 && crease >= 10);
+        // The plain ground reads both through depth-aware upsamples, only their weights differ.
+        // The catcher reads the ground's mask bilinearly, whose texels under the cube hold the
+        // ground's own occlusion about them (ao_pack.frag), where the occlusion's upsample mixed
+        // in the cube's face beside the crease at a like depth: its crease comes out 1 to 2 %
+        // darker, and a line of pixels along the cube's base and sides differs by more than 5 %.
+        const double meanLimit = catcher ? 0.008 : 0.003, apartShare = catcher ? 0.015 : 0.005;
+        const double creaseLimit = catcher ? 0.03 : 0.02;
+        QVERIFY(differenceSum / ground < meanLimit);
+        QVERIFY(apart <= apartShare * ground);
+        QVERIFY(std::abs(packedSum - ownSum) / ownSum < creaseLimit);
+        QVERIFY(packedSum < 0.95 * openSum);
+    }
+
+    // With every channel of the masks taken (four shadowed lights) the occlusion keeps its own
+    // upsample and still darkens the crease.
+    void occlusionKeepsItsOwnUpsampleWhenTheMasksAreFull() {
+        Scene scene = creaseScene();
+        scene.environment.color = glm::vec3(1.0f);
+        for (int i = 0; i < 4; ++i) {
+            Light l;
+            l.direction = glm::normalize(glm::vec3(std::cos(1.6f * i), -2.0f, std::sin(1.6f * i)));
+            l.intensity = 0.2f;
+            l.castShadows = true;
+            scene.lights.push_back(l);
+        }
+        const int size = 128;
+        const Image pos = renderLinear(scene, size, render::DebugView::Position);
+        const Image occluded = renderLinear(scene, size);
+        QVERIFY(!rig()->renderer->lastTimings().occlusionInMask);
+        scene.environment.ambientOcclusion = false;
+        const Image open = renderLinear(scene, size);
+        double occludedSum = 0.0, openSum = 0.0;
+        int crease = 0;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const float d = distanceFromCube(glm::vec3(pos.rgba(x, y)));
+                if (d > 0.01f && d < 0.06f) {
+                    occludedSum += luminance(occluded.rgba(x, y));
+                    openSum += luminance(open.rgba(x, y));
+                    ++crease;
+                }
+            }
+        QVERIFY(crease >= 10);
+        QVERIFY(occludedSum < 0.95 * openSum);
     }
 };
 
