@@ -366,25 +366,9 @@ bool Renderer::render(const FrameSettings& fs, unsigned targetFbo, std::string* 
     d.warnSpecialisationFailures();
     d.stage.drawGround(d.scene.environment); // into the same G-buffer, after the mesh
     glQueryCounter(d.queries[1], GL_TIMESTAMP);
-    // Screen-space occlusion of the G-buffer, at the stage's downsample (off: nothing runs).
-    d.targets.gbuffer().bindTextures();
-    // One key for both screen-space passes: it also notes what no key sees (screenPassKey).
-    const FrameKey screenKey = d.screenPassKey(fs, block);
-    // Both passes take the face's normal, not the bent one, for the materials that bend theirs.
-    const bool bentNormals = d.frameFeatures(fs).geometricHorizon;
-    if (!d.stage.drawOcclusion(d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                               bentNormals, screenKey, d.emptyVao, error))
+    // The occlusion and the shadow masks of the G-buffer, at the stage's downsample.
+    if (!d.drawStageScreenPasses(fs, block, error))
         return false;
-    // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
-    // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).
-    unsigned maskFbo = 0;
-    if (d.stage.hasShadows() &&
-        !(maskFbo = d.targets.shadowMaskFramebuffer(d.stage.downsample(), error)))
-        return false;
-    d.stage.drawShadowMask(maskFbo, d.targets.shadowMask().texture(),
-                           d.targets.shadowKey().texture(), d.targets.groundShadowMask().texture(),
-                           d.scene.environment, block.viewProjMatrix, fs.width, fs.height,
-                           screenKey, d.emptyVao, fs.settleShadows, bentNormals);
     glViewport(0, 0, fs.width, fs.height);
 
     // 2. Background, then 3. lighting, into the HDR target with the G-buffer depth read-only

@@ -274,6 +274,29 @@ FrameKey Renderer::Impl::screenPassKey(const FrameSettings& fs, const FrameBlock
     return key;
 }
 
+bool Renderer::Impl::drawStageScreenPasses(const FrameSettings& fs, const FrameBlock& block,
+                                           std::string* error) {
+    // Screen-space occlusion of the G-buffer, at the stage's downsample (off: nothing runs).
+    targets.gbuffer().bindTextures();
+    // One key for both screen-space passes: it also notes what no key sees (screenPassKey).
+    const FrameKey screenKey = screenPassKey(fs, block);
+    // Both passes take the face's normal, not the bent one, for the materials that bend theirs.
+    const bool bentNormals = frameFeatures(fs).geometricHorizon;
+    if (!stage.drawOcclusion(scene.environment, block.viewProjMatrix, fs.width, fs.height,
+                             bentNormals, screenKey, emptyVao, error))
+        return false;
+    // The screen-space shadow mask: every shadowed light's visibility per pixel, which the
+    // lighting passes read instead of filtering the maps themselves (render/shadow_mask.h).
+    unsigned maskFbo = 0;
+    if (stage.hasShadows() && !(maskFbo = targets.shadowMaskFramebuffer(stage.downsample(), error)))
+        return false;
+    stage.drawShadowMask(maskFbo, targets.shadowMask().texture(), targets.shadowKey().texture(),
+                         targets.groundShadowMask().texture(), scene.environment,
+                         block.viewProjMatrix, fs.width, fs.height, screenKey, emptyVao,
+                         fs.settleShadows, bentNormals);
+    return true;
+}
+
 bool Renderer::Impl::keepsGBuffer(const FrameSettings& fs, const FrameBlock& b,
                                   unsigned framebuffer, bool emission, bool lobeTargets) {
     const bool steady = steadySince(gbufferUploadedBytes);

@@ -415,6 +415,11 @@ struct Renderer::Impl {
     /// what it cannot see (steadySince()) invalidates what they kept. Once a frame: it notes the
     /// uploads.
     FrameKey screenPassKey(const FrameSettings& fs, const FrameBlock& b);
+    /// After the geometry pass and the ground: the stage's screen-space passes, the occlusion
+    /// (render/ao_pass.h) and the shadow masks (render/shadow_mask.h, with the occlusion packed
+    /// in where it rides there), under one screenPassKey(). Leaves the viewport for the caller.
+    bool drawStageScreenPasses(const FrameSettings& fs, const FrameBlock& block,
+                               std::string* error);
     /// Whether this frame may keep the last one's G-buffer instead of drawing it: nothing the
     /// geometry pass writes depends on A's values (its record reads its base colour, metallic
     /// and roughness from the table: kRecordValuesPerMaterial; no graph, no lobe map, no
