@@ -137,7 +137,7 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
         if (!renderer.lastFramePasses().screenSpaceReflections)
             break;
     }
-    const Image frame = boxDownsample(linear.mean(), ss);
+    const Image frame = boxDownsample(linear.takeMean(), ss);
     Image viewport(n, n, 3);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace velvet {
 namespace {
@@ -93,12 +94,18 @@ void ImageMean::clear() {
 }
 
 Image ImageMean::mean() const {
-    Image out = m_sum;
+    ImageMean copy = *this;
+    return copy.takeMean();
+}
+
+Image ImageMean::takeMean() {
+    Image out = std::move(m_sum);
     if (m_count > 1) {
         const float scale = 1.0f / float(m_count);
         for (float& v : out.pixels)
             v *= scale;
     }
+    clear();
     return out;
 }
 

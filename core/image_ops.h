@@ -59,6 +59,8 @@ public:
     int count() const { return m_count; }
     /// Their mean (empty when there is none).
     Image mean() const;
+    /// Their mean, moved out of the sum (no copy of a frame-sized image); the mean is then empty.
+    Image takeMean();
 
 private:
     Image m_sum;

@@ -279,8 +279,7 @@ struct Renderer::Impl {
         if (!fs.splitMaterial && scene.environment.ground != GroundMode::Plain)
             f.materialId = 0; // the scene's material's record (ids: render/stage_interface.h)
         f.shadowMask = stage.hasShadows();
-        f.occlusionInMask =
-            scene.environment.ambientOcclusion && stage.packsOcclusion(scene, fs.packOcclusion);
+        f.occlusionInMask = stage.packsOcclusion(scene, fs.packOcclusion);
         f.localShadows = stage.shadowsLocalLight(scene.lights);
         f.irradianceMap = irradiance.texture() != 0;
         // Only where a lobe may be glossy enough: a rough velvet's refinement compiles nothing.

@@ -179,6 +179,7 @@ bool Stage::drawOcclusion(const Environment& environment, const glm::mat4& viewP
     glQueryCounter(m_queries[2], GL_TIMESTAMP);
     const int d = downsample();
     const PixelRect texels = OcclusionPass::texelRect(near, width, height, d);
+    m_occlusionTexels = texels;
     m_block.occlusionTexels =
         glm::ivec4(texels.x, texels.y, texels.x + texels.width, texels.y + texels.height);
     glNamedBufferSubData(m_ubo, offsetof(StageBlock, occlusionTexels), sizeof(glm::ivec4),
@@ -220,14 +221,11 @@ void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned 
     frameKey.add(m_block).add(m_shadows.drawCount()).add(environment.ground).add(m_bounds);
     frameKey.add(settle).add(bentNormals).add(framebuffer).add(maskTexture).add(keyTexture);
     frameKey.add(groundMaskTexture);
-    const PixelRect occlusionTexels{m_block.occlusionTexels.x, m_block.occlusionTexels.y,
-                                    m_block.occlusionTexels.z - m_block.occlusionTexels.x,
-                                    m_block.occlusionTexels.w - m_block.occlusionTexels.y};
     if ((m_maskKept = m_maskReuse.reuse(std::move(frameKey)))) {
         // The passes and their timers are the frame's that drew the masks; an occlusion drawn
         // again (for a reason no key sees: invalidateScreenPasses()) goes into them again.
         if (m_block.counts.z != 0 && !m_occlusionKept)
-            m_occlusion.packInto(framebuffer, occlusionTexels, emptyVao);
+            m_occlusion.packInto(framebuffer, m_occlusionTexels, emptyVao);
         return;
     }
     m_shadows.bind();
@@ -238,7 +236,7 @@ void Stage::drawShadowMask(unsigned framebuffer, unsigned maskTexture, unsigned 
     // The masks' clear has reset the fourth channel: the occlusion, kept or drawn, goes back in
     // (timed with the masks).
     if (m_block.counts.z != 0)
-        m_occlusion.packInto(framebuffer, occlusionTexels, emptyVao);
+        m_occlusion.packInto(framebuffer, m_occlusionTexels, emptyVao);
     glQueryCounter(m_queries[5], GL_TIMESTAMP);
     m_shadows.unbind();
 }

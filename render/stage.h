@@ -146,6 +146,7 @@ private:
     unsigned m_keyTexture = 0;        ///< its key (view depth, material id per texel)
     unsigned m_groundMaskTexture = 0; ///< the ground's mask, read by the shadow catcher
     int m_maskPasses = 0;
+    PixelRect m_occlusionTexels; ///< the occlusion's drawn texels this frame (packInto's)
     FrameReuse m_maskReuse;
     bool m_maskKept = false;
     StageBlock m_block{}; ///< the frame's, as beginFrame() uploaded it (the mask's key)

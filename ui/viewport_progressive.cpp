@@ -51,8 +51,7 @@ void ViewportWidget::keepLinearFrame(const render::FrameSettings& settings) {
     if (m_linearMean.count() < kProgressiveSamples ||
         m_renderer->accumulatedSamples() != m_linearMean.count())
         return;
-    m_settledLinear = m_linearMean.mean();
-    m_linearMean.clear();
+    m_settledLinear = m_linearMean.takeMean();
     emit settledLinearReady();
 }
 

@@ -27,15 +27,20 @@ bool isGround(ivec2 texel) {
 void main() {
     ivec2 t = ivec2(gl_FragCoord.xy);
     ivec2 last = textureSize(uOcclusion, 0) - 1;
-    float own = texelFetch(uOcclusion, t, 0).r;
-    float sum = 0.0, count = 0.0;
+    // The 3x3 about t (k = 4 is t itself): its own occlusion and whether it is the ground's.
+    float own = 1.0, ownGround = 0.0, sum = 0.0, count = 0.0;
     for (int k = 0; k < 9; ++k) {
         ivec2 q = clamp(t + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), last);
         float ground = isGround(q) ? 1.0 : 0.0;
-        sum += ground * texelFetch(uOcclusion, q, 0).r;
+        float occlusion = texelFetch(uOcclusion, q, 0).r;
+        sum += ground * occlusion;
         count += ground;
+        if (k == 4) {
+            own = occlusion;
+            ownGround = ground;
+        }
     }
-    float groundOcclusion = isGround(t) ? own : count > 0.0 ? sum / count : 1.0;
+    float groundOcclusion = ownGround > 0.5 ? own : count > 0.0 ? sum / count : 1.0;
     outMask = vec4(own);
     outGroundMask = vec4(groundOcclusion);
 }

@@ -116,6 +116,12 @@ private slots:
         mean.add(c);
         QCOMPARE(mean.count(), 1);
         QCOMPARE(mean.mean().pixels, c.pixels);
+        // takeMean() gives the same mean and leaves it empty.
+        mean.add(c);
+        QCOMPARE(mean.takeMean().pixels, c.pixels);
+        QCOMPARE(mean.count(), 0);
+        QVERIFY(mean.mean().empty());
+        mean.add(a);
         mean.clear();
         QCOMPARE(mean.count(), 0);
         QVERIFY(mean.mean().empty());
