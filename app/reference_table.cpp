@@ -9,6 +9,7 @@
 #include "reference/reference_renderer.h"
 #include "render/headless_context.h"
 #include "render/offscreen.h"
+#include "render/progressive_accumulation.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -125,17 +126,17 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     fs.reflectionSampleTotal = options.reflectionSamples * ss * ss;
     fs.reflectionSampleBlock = ss;
     fs.screenSpaceReflections = options.screenSpaceReflections;
-    // As the editor's refinement at rest draws it: kRefinementFrames frames, each reading the
-    // light of the one before where it traces the mesh's light (one bounce more a frame), and
-    // their mean; a frame that traces nothing (a convex mesh) is the same every time, drawn once.
+    // As the editor's refinement at rest draws it: kRefinementFrames frames, each offset by its
+    // sub-pixel jitter (a weave's threads finer than a sample average over the pixel, as the
+    // reference's samples do) and reading the light of the one before where it traces the mesh's
+    // light (one bounce more a frame), and their mean.
     ImageMean linear;
     for (int k = 0; k < render::kRefinementFrames; ++k) {
         fs.accumulation = k;
+        fs.jitter = render::progressiveJitter(k);
         if (!renderer.render(fs, m_impl->target->framebuffer(), error))
             return false;
         linear.add(renderer.readLinear());
-        if (!renderer.lastFramePasses().screenSpaceReflections)
-            break;
     }
     const Image frame = boxDownsample(linear.takeMean(), ss);
     Image viewport(n, n, 3);
