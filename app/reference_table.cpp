@@ -123,7 +123,7 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     render::FrameSettings fs;
     fs.width = fs.height = n * ss;
     fs.reflectionSamples = options.reflectionSamples;
-    fs.reflectionSampleTotal = options.reflectionSamples * ss * ss;
+    fs.reflectionSampleTotal = options.reflectionSamples * ss * ss * render::kRefinementFrames;
     fs.reflectionSampleBlock = ss;
     fs.screenSpaceReflections = options.screenSpaceReflections;
     // As the editor's refinement at rest draws it: kRefinementFrames frames, each offset by its
@@ -134,6 +134,7 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     for (int k = 0; k < render::kRefinementFrames; ++k) {
         fs.accumulation = k;
         fs.jitter = render::progressiveJitter(k);
+        fs.reflectionSampleSet = k;
         if (!renderer.render(fs, m_impl->target->framebuffer(), error))
             return false;
         linear.add(renderer.readLinear());
