@@ -128,8 +128,10 @@ bool ReferenceTable::measure(const ReferenceTableCase& c, const ReferenceTableOp
     fs.screenSpaceReflections = options.screenSpaceReflections;
     // As the editor's refinement at rest draws it: kRefinementFrames frames, each offset by its
     // sub-pixel jitter (a weave's threads finer than a sample average over the pixel, as the
-    // reference's samples do) and reading the light of the one before where it traces the mesh's
-    // light (one bounce more a frame), and their mean.
+    // reference's samples do), drawing its own set of reflection samples (the mean's total
+    // above sets their filtering) and reading the light of the one before where it traces the
+    // mesh's light (one bounce more a frame), and their mean: the editor at rest at ss times
+    // the table's size, box-filtered.
     ImageMean linear;
     for (int k = 0; k < render::kRefinementFrames; ++k) {
         fs.accumulation = k;

@@ -76,19 +76,24 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // a single frame traces): plastic on the ball under the HDRI met the goal (1.89 / 4.53) and left
 // the list, under the rig it reads 1.80 / 5.26; gold on the ball under the HDRI rose from
 // 7.60 / 35.94 to 8.75 / 34.51 (its rings' rims, already brighter than the path tracer's, gain
-// the bounces), under the rig it reads 10.20 / 46.59.
+// the bounces), under the rig it reads 10.20 / 46.59; and on 2026-12-08 when each of those 16
+// frames took the refinement's sub-pixel jitter and its own set of reflection samples, as the
+// editor's do (before, all 16 drew the same samples at the pixels' centres): brushed aluminium
+// on the sphere under the HDRI met the goal (2.38 / 6.77 to 1.38 / 3.72) and left the list, so
+// the test fails if the frames draw the same samples again; plastic on the ball under the rig
+// (1.69 / 4.97) and crushed velvet on the ball under the HDRI (2.00 / 4.91) sit on the line at
+// this size and stay listed; the other bounds were re-recorded.
 const Miss kMisses[] = {
-    {"brushed_aluminium", kSphere, "environment", 2.38, 6.77},
-    {"cotton", kSphere, "environment", 1.97, 4.41}, // on the line at this size (met at 48x48)
-    {"denim", kSphere, "three-point", 2.45, 5.98},
-    {"tweed", kSphere, "environment", 2.44, 4.87},
-    {"tweed", kSphere, "three-point", 2.69, 6.19},
-    {"wool", kSphere, "environment", 2.20, 5.52},
-    {"plastic", kBall, "three-point", 1.80, 5.26},
-    {"gold", kBall, "environment", 8.75, 34.51},
-    {"gold", kBall, "three-point", 10.20, 46.59},
-    {"crushed_velvet", kBall, "environment", 2.06, 4.74},
-    {"leather", kBall, "three-point", 1.20, 5.32}, // meets the goal at 48x48 (1.32 / 4.63)
+    {"cotton", kSphere, "environment", 2.02, 4.43}, // met at 48x48
+    {"denim", kSphere, "three-point", 2.25, 5.39},  // met at 48x48 (1.40 / 4.65)
+    {"tweed", kSphere, "environment", 2.38, 4.96},  // met at 48x48
+    {"tweed", kSphere, "three-point", 2.58, 6.01},  // met at 48x48
+    {"wool", kSphere, "environment", 2.17, 5.69},
+    {"plastic", kBall, "three-point", 1.69, 4.97}, // on the line at this size
+    {"gold", kBall, "environment", 8.28, 34.07},
+    {"gold", kBall, "three-point", 9.91, 48.06},
+    {"crushed_velvet", kBall, "environment", 2.00, 4.91}, // on the line at this size
+    {"leather", kBall, "three-point", 1.10, 5.32},
 };
 
 const Miss* knownMiss(const ReferenceTableCase& c) {
