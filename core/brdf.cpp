@@ -215,6 +215,9 @@ float sheenLambdaHelper(float x, float alphaG) {
     const float c = glm::mix(0.19823f, 0.16801f, t);
     const float d = glm::mix(-1.97760f, -1.27393f, t);
     const float e = glm::mix(-4.32054f, -4.85967f, t);
+    // x is 1 - cos above cos 0.5: a cosine that rounds above 1 (a direction along the normal)
+    // would take the power of a negative number, NaN, and the path tracer drops a NaN sample.
+    x = std::max(x, 0.0f);
     return a / (1.0f + b * std::pow(x, c)) + d * x + e;
 }
 float sheenLambda(float cosTheta, float alphaG) {

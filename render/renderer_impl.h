@@ -253,13 +253,16 @@ struct Renderer::Impl {
         texturesB.reset();
         texturesBRefs = {};
     }
-    /// Whether @p m may have a lobe glossy enough for sampled reflections
-    /// (kSampledReflectionMaxRoughness): its roughness, or one that varies per pixel (a roughness
-    /// texture, a graph, which may drive it).
+    /// Whether @p m may have a lobe that the frames at rest sample
+    /// (FrameSettings::reflectionSamples): a base glossy enough (kSampledReflectionMaxRoughness) by
+    /// its roughness, or by one that varies per pixel (a roughness texture, a graph, which may
+    /// drive it); or a sheen (common_environment.glsl's sampledSheenLight), which a graph may also
+    /// bring.
     static bool mayReflectSampled(const Material& m) {
         return m.scalar(ParamId::Roughness) <= kSampledReflectionMaxRoughness ||
                !m.texture(TextureSlot::MetallicRoughness).empty() ||
-               !m.texture(TextureSlot::SpecRoughMetal).empty() || bool(m.graph);
+               !m.texture(TextureSlot::SpecRoughMetal).empty() || bool(m.graph) ||
+               m.scalar(ParamId::SheenWeight) > 0.0f;
     }
     /// The features of the records this frame draws (A, B when split, the ground when shown) with
     /// the lights' shadows, the occlusion switch and the bake. While the environment bakes the

@@ -200,6 +200,7 @@ float sheenLambdaHelper(float x, float alphaG) {
     float c = mix(0.19823, 0.16801, t);
     float d = mix(-1.97760, -1.27393, t);
     float e = mix(-4.32054, -4.85967, t);
+    x = max(x, 0.0); // as the twin: a cosine rounded above 1 would take pow of a negative number
     return a / (1.0 + b * pow(x, c)) + d * x + e;
 }
 // Lambda(cos) = exp(L(cos)) below cos 0.5, exp(2 L(0.5) - L(1 - cos)) above (the twin's two

@@ -405,6 +405,53 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
     return sum;
 }
 
+// The sheen lobe's reflected environment light at rest, by ibl.reflection.x samples per pixel
+// (the frames of sampledReflection; lighting.frag): directions drawn from the cosine lobe about
+// the shading normal, each weighted by f n.l / pdf = pi D V (the Charlie distribution and the
+// material's sheen visibility, Estevez & Kulla 2017), returned over the sheen's directional
+// albedo @p e, so that sheenColor e times it is the lobe's light, as with the irradiance about
+// the lobe's mean direction it replaces (sheenLightDirection). That one direction misplaces the
+// lobe where the light is not smooth about it: satin and crushed velvet under the studio HDRI's
+// lamp read half the mean ΔE2000 against the path tracer sampled (BENCHMARKS.md, "The sheen
+// sampled at rest"). A sample below the face's plane (@p ng) brings no light, as in the path
+// tracer, which also clips the lobe by a bent normal's horizon. Each sample reads the mip where
+// a texel covers its share of the sphere, as sampledReflection's (a level blurrier brought wool
+// on the sphere under the HDRI from 2.27 to 1.87 mean ΔE2000, but read a lamp 13 % off the
+// lobe's integral where this reads it 5 % off: test_render_sampled_reflections).
+vec3 sampledSheenLight(vec3 n, vec3 ng, vec3 v, float NdotV, float sheenRoughness, int model,
+                       float e, vec2 pixel) {
+    int count = reflectionSamplesThisFrame();
+    float total = max(ibl.reflection.y, float(count));
+    // The samples of one output pixel take consecutive blocks of one scrambled sequence, as
+    // sampledReflection's, scrambled apart from the base lobe's.
+    uint block = uint(max(ibl.reflection.w, 1.0));
+    uvec2 outputPixel = uvec2(pixel) / block, sub = uvec2(pixel) % block;
+    uint set = uint(ibl.reflection.z) * block * block + sub.y * block + sub.x;
+    uvec2 scramble = pcg2d(outputPixel ^ uvec2(0x27D4EB2Du, 0x165667B1u));
+    vec3 t = normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : vec3(1.0, 0.0, 0.0));
+    vec3 b = cross(n, t);
+    float width = frame.post.z;
+    float texelSolidAngle = 4.0 * PI * PI / (width * width); // as sampledReflection's
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < count; ++i) {
+        vec2 u = reflectionSample(set * uint(count) + uint(i), scramble);
+        float r = sqrt(u.x), phi = 2.0 * PI * u.y;
+        vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(1.0 - u.x, 0.0));
+        float NdotL = dot(n, l);
+        if (NdotL <= 1e-4 || dot(ng, l) <= 0.0)
+            continue;
+        vec3 h = normalize(l + v);
+        float NdotH = dot(n, h);
+        float D = distributionCharlie(NdotH, max(1.0 - NdotH * NdotH, 0.0), sheenRoughness);
+        float V = visibilitySheen(model, NdotL, NdotV, sheenRoughness);
+        float pdf = NdotL / PI;
+        float sinTheta = sqrt(max(1.0 - l.y * l.y, 1e-4)); // the equirect's pole is world +Y
+        float lod = 0.5 * log2(1.0 / (total * pdf * texelSolidAngle * sinTheta)) + 0.5;
+        sum += PI * D * V * environmentRadiance(l, clamp(lod, 0.0, frame.envParams.w));
+    }
+    return sum / float(max(count, 1)) / max(e, 1e-4);
+}
+
 // The isotropic lobe's frame: x along the plane of incidence (any azimuth would do).
 vec3 incidencePlaneTangent(vec3 n, vec3 v, float NdotV) {
     vec3 across = v - n * NdotV;

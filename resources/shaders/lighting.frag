@@ -296,8 +296,17 @@ void main() {
         // radiance along the reflection at the sheen roughness (Filament's evaluateSheenIBL),
         // which lit velvet with a lamp highlight its lobe does not have.
         float e = sheenAlbedoV;
+        vec3 sheenLight;
+#if WITH_SAMPLED_REFLECTIONS
+        // At rest the lobe itself is sampled (sampledSheenLight), its samples clipped by the face.
+        if (reflectionSamplesThisFrame() > 0) {
+            sheenLight = sampledSheenLight(n, p.ng, v, NdotV, s.sheenRoughness, s.sheenModel, e,
+                                           gl_FragCoord.xy);
+        } else
+#endif
+        {
         vec3 sheenDirection = sheenLightDirection(n, v, NdotV, s.sheenRoughness);
-        vec3 sheenLight = irradianceOverPi(sheenDirection);
+        sheenLight = irradianceOverPi(sheenDirection);
 #if WITH_GEOMETRIC_HORIZON
         // Under a bent normal the face's horizon cuts the lobe too: of a cosine lobe about d, the
         // share above a plane through its origin with normal m is (1 + d.m) / 2 under uniform
@@ -310,6 +319,7 @@ void main() {
             sheenLight *= saturate((1.0 + dot(sheenDirection, p.ng)) /
                                    max(1.0 + dot(sheenDirection, n), 1e-4));
 #endif
+        }
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
                   s.sheenColor * e * sheenLight * diffuseOcclusion;
         tracedDiffuse *= 1.0 - max3(s.sheenColor) * e;

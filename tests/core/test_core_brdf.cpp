@@ -275,6 +275,23 @@ private slots:
             }
     }
 
+    // A cosine that rounds just above 1 (a direction along the normal, as a path tracer's
+    // sample may be) gives Conty & Kulla's sheen visibility the value at 1, not NaN: its fitted
+    // lambda took the power of 1 - cos, negative there, and the reference dropped the sample.
+    void sheenVisibilityAtACosineRoundedAboveOne() {
+        const float above = std::nextafter(1.0f, 2.0f);
+        for (float rough : {0.3f, 0.6f, 0.9f})
+            for (float other : {0.1f, 0.5f, 1.0f}) {
+                const float at = brdf::visibilitySheenContyKulla(1.0f, other, rough);
+                const float l = brdf::visibilitySheenContyKulla(above, other, rough);
+                const float v = brdf::visibilitySheenContyKulla(other, above, rough);
+                QVERIFY(std::isfinite(l) && std::isfinite(v));
+                QVERIFY(std::abs(l - at) <= 1e-4f * at &&
+                        std::abs(v - brdf::visibilitySheenContyKulla(other, 1.0f, rough)) <=
+                            1e-4f * at + 1e-6f);
+            }
+    }
+
     // The term dispatch picks the named function; with every choice at its default the model is
     // glTF Appendix B (the golden image guards the GPU side).
     /// The shipped sheen albedo tables (core/sheen_albedo_table.inc, issue 16) are the
