@@ -82,17 +82,21 @@ constexpr PreviewMeshKind kBall = PreviewMeshKind::ShaderBall;
 // on the sphere under the HDRI met the goal (2.38 / 6.77 to 1.38 / 3.72) and left the list, so
 // the test fails if the frames draw the same samples again; plastic on the ball under the rig
 // (1.69 / 4.97) and crushed velvet on the ball under the HDRI (2.00 / 4.91) sit on the line at
-// this size and stay listed; the other bounds were re-recorded.
+// this size and stay listed; the other bounds were re-recorded; and again when the frames at
+// rest sampled the sheen's lobe (common_environment.glsl's sampledSheenLight) in place of the
+// irradiance about its mean direction: crushed velvet on the ball under the HDRI met the goal
+// (1.43 / 3.17) and left the list, so the test fails if the sheen's samples go; cotton on the
+// sphere under the HDRI meets it on the line (1.94 / 4.13) and stays listed; the knits and
+// weaves on the sphere rose a little (wool under the HDRI 2.17 / 5.69 to 2.51 / 6.28).
 const Miss kMisses[] = {
-    {"cotton", kSphere, "environment", 2.02, 4.43}, // met at 48x48
-    {"denim", kSphere, "three-point", 2.25, 5.39},  // met at 48x48 (1.40 / 4.65)
-    {"tweed", kSphere, "environment", 2.38, 4.96},  // met at 48x48
-    {"tweed", kSphere, "three-point", 2.58, 6.01},  // met at 48x48
-    {"wool", kSphere, "environment", 2.17, 5.69},
+    {"cotton", kSphere, "environment", 1.94, 4.13}, // on the line at this size (met at 48x48)
+    {"denim", kSphere, "three-point", 2.24, 5.67},  // met at 48x48
+    {"tweed", kSphere, "environment", 2.40, 5.18},  // met at 48x48
+    {"tweed", kSphere, "three-point", 2.58, 5.87},  // met at 48x48
+    {"wool", kSphere, "environment", 2.51, 6.28},
     {"plastic", kBall, "three-point", 1.69, 4.97}, // on the line at this size
     {"gold", kBall, "environment", 8.28, 34.07},
     {"gold", kBall, "three-point", 9.91, 48.06},
-    {"crushed_velvet", kBall, "environment", 2.00, 4.91}, // on the line at this size
     {"leather", kBall, "three-point", 1.10, 5.32},
 };
 

@@ -81,6 +81,28 @@ float mean3(glm::vec4 c) {
     return (c.x + c.y + c.z) / 3.0f;
 }
 
+/// A sphere under the bright lamp (test::lampEnvironment, written to @p envPath), no lights,
+/// seen by an orthographic camera from the front.
+Scene lampScene(const std::string& envPath) {
+    Scene scene;
+    scene.lights.clear();
+    scene.environment.hdri = envPath;
+    scene.camera.orthographic = true;
+    scene.camera.yawDeg = 0.0f;
+    scene.camera.pitchDeg = 0.0f;
+    return scene;
+}
+
+/// A white sheen of @p sheenRoughness alone: a black base with no specular.
+Material sheenOnlyMaterial(float sheenRoughness) {
+    Material m = test::whiteMaterial(0.0f, 0.9f, 0.0f);
+    m.setColor(ParamId::BaseColor, glm::vec3(0.0f));
+    m.setScalar(ParamId::SheenWeight, 1.0f);
+    m.setColor(ParamId::SheenColor, glm::vec3(1.0f));
+    m.setScalar(ParamId::SheenRoughness, sheenRoughness);
+    return m;
+}
+
 } // namespace
 
 class TestRenderSampledReflections : public QObject {
@@ -135,12 +157,7 @@ private slots:
         const std::string envPath = (m_dir.path() + "/lamp.exr").toStdString();
         QVERIFY2(writeImage(envPath, test::lampEnvironment(), PixelFormat::Float, &error),
                  error.c_str());
-        Scene scene;
-        scene.lights.clear();
-        scene.environment.hdri = envPath;
-        scene.camera.orthographic = true;
-        scene.camera.yawDeg = 0.0f;
-        scene.camera.pitchDeg = 0.0f;
+        Scene scene = lampScene(envPath);
         const float roughness = 0.3f, alpha = roughness * roughness;
         scene.material = test::whiteMaterial(1.0f, roughness);
         render::FrameSettings fs;
@@ -188,12 +205,7 @@ private slots:
     void sampledSheenKeepsTheFurnacesAlbedo() {
         Scene scene = test::uniformEnvironmentScene(glm::vec3(1.0f));
         for (float sheenRoughness : {0.3f, 0.6f, 0.9f}) {
-            Material m = test::whiteMaterial(0.0f, 0.9f, 0.0f);
-            m.setColor(ParamId::BaseColor, glm::vec3(0.0f));
-            m.setScalar(ParamId::SheenWeight, 1.0f);
-            m.setColor(ParamId::SheenColor, glm::vec3(1.0f));
-            m.setScalar(ParamId::SheenRoughness, sheenRoughness);
-            scene.material = m;
+            scene.material = sheenOnlyMaterial(sheenRoughness);
             render::FrameSettings fs;
             const Rendered irradiance = renderSphere(scene, 48, fs);
             fs.reflectionSamples = 256;
@@ -231,17 +243,8 @@ private slots:
         const std::string envPath = (m_dir.path() + "/lamp_sheen.exr").toStdString();
         QVERIFY2(writeImage(envPath, test::lampEnvironment(), PixelFormat::Float, &error),
                  error.c_str());
-        Scene scene;
-        scene.lights.clear();
-        scene.environment.hdri = envPath;
-        scene.camera.orthographic = true;
-        scene.camera.yawDeg = 0.0f;
-        scene.camera.pitchDeg = 0.0f;
-        Material m = test::whiteMaterial(0.0f, 0.9f, 0.0f);
-        m.setColor(ParamId::BaseColor, glm::vec3(0.0f));
-        m.setScalar(ParamId::SheenWeight, 1.0f);
-        m.setColor(ParamId::SheenColor, glm::vec3(1.0f));
-        m.setScalar(ParamId::SheenRoughness, 0.5f);
+        Scene scene = lampScene(envPath);
+        const Material m = sheenOnlyMaterial(0.5f);
         scene.material = m;
         render::FrameSettings fs;
         const Rendered irradiance = renderSphere(scene, 64, fs);
