@@ -406,18 +406,21 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
 }
 
 // The sheen lobe's reflected environment light at rest, by ibl.reflection.x samples per pixel
-// (the frames of sampledReflection; lighting.frag): directions drawn from the cosine lobe about
-// the shading normal, each weighted by f n.l / pdf = pi D V (the Charlie distribution and the
-// material's sheen visibility, Estevez & Kulla 2017), returned over the sheen's directional
-// albedo @p e, so that sheenColor e times it is the lobe's light, as with the irradiance about
-// the lobe's mean direction it replaces (sheenLightDirection). That one direction misplaces the
-// lobe where the light is not smooth about it: satin and crushed velvet under the studio HDRI's
-// lamp read half the mean ΔE2000 against the path tracer sampled (BENCHMARKS.md, "The sheen
-// sampled at rest"). A sample below the face's plane (@p ng) brings no light, as in the path
-// tracer, which also clips the lobe by a bent normal's horizon. Each sample reads the mip where
-// a texel covers its share of the sphere, as sampledReflection's (a level blurrier brought wool
-// on the sphere under the HDRI from 2.27 to 1.87 mean ΔE2000, but read a lamp 13 % off the
-// lobe's integral where this reads it 5 % off: test_render_sampled_reflections).
+// (the frames of sampledReflection; lighting.frag): directions drawn uniformly over the
+// hemisphere about the shading normal, each weighted by f n.l / pdf = 2 pi D V n.l (the Charlie
+// distribution and the material's sheen visibility, Estevez & Kulla 2017), returned over the
+// sheen's directional albedo @p e, so that sheenColor e times it is the lobe's light, as with
+// the irradiance about the lobe's mean direction it replaces (sheenLightDirection). That one
+// direction misplaces the lobe where the light is not smooth about it: satin and crushed velvet
+// under the studio HDRI's lamp read half the mean ΔE2000 against the path tracer sampled
+// (BENCHMARKS.md, "The table as the editor shows it at rest; the sheen sampled at rest").
+// Uniform rather than cosine directions, as the lobe peaks towards grazing light: under the
+// lamp of test_render_sampled_reflections 2.1 % off the lobe's integral against 4.9 %, and a
+// velvet's rim visibly less grainy in a 2 x 2 supersampled still. A sample below the face's
+// plane (@p ng) brings no light, as in the path tracer, which also clips the lobe by a bent
+// normal's horizon. Each sample reads the mip where a texel covers its share of the sphere, as
+// sampledReflection's (a level blurrier brought wool on the sphere under the HDRI from 2.27 to
+// 1.87 mean ΔE2000 but read that lamp 13 % off the lobe's integral, with cosine directions).
 vec3 sampledSheenLight(vec3 n, vec3 ng, vec3 v, float NdotV, float sheenRoughness, int model,
                        float e, vec2 pixel) {
     int count = reflectionSamplesThisFrame();
@@ -435,8 +438,8 @@ vec3 sampledSheenLight(vec3 n, vec3 ng, vec3 v, float NdotV, float sheenRoughnes
     vec3 sum = vec3(0.0);
     for (int i = 0; i < count; ++i) {
         vec2 u = reflectionSample(set * uint(count) + uint(i), scramble);
-        float r = sqrt(u.x), phi = 2.0 * PI * u.y;
-        vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(1.0 - u.x, 0.0));
+        float z = u.x, r = sqrt(max(1.0 - z * z, 0.0)), phi = 2.0 * PI * u.y;
+        vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + n * z;
         float NdotL = dot(n, l);
         if (NdotL <= 1e-4 || dot(ng, l) <= 0.0)
             continue;
@@ -444,10 +447,10 @@ vec3 sampledSheenLight(vec3 n, vec3 ng, vec3 v, float NdotV, float sheenRoughnes
         float NdotH = dot(n, h);
         float D = distributionCharlie(NdotH, max(1.0 - NdotH * NdotH, 0.0), sheenRoughness);
         float V = visibilitySheen(model, NdotL, NdotV, sheenRoughness);
-        float pdf = NdotL / PI;
+        float pdf = 1.0 / (2.0 * PI); // uniform over the hemisphere
         float sinTheta = sqrt(max(1.0 - l.y * l.y, 1e-4)); // the equirect's pole is world +Y
         float lod = 0.5 * log2(1.0 / (total * pdf * texelSolidAngle * sinTheta)) + 0.5;
-        sum += PI * D * V * environmentRadiance(l, clamp(lod, 0.0, frame.envParams.w));
+        sum += 2.0 * PI * NdotL * D * V * environmentRadiance(l, clamp(lod, 0.0, frame.envParams.w));
     }
     return sum / float(max(count, 1)) / max(e, 1e-4);
 }

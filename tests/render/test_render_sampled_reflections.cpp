@@ -195,12 +195,12 @@ private slots:
     }
 
     // The sheen sampled at rest (common_environment.glsl's sampledSheenLight) under a uniform
-    // white environment: its cosine samples weighted by pi D V must add up to the sheen's
+    // white environment: its samples weighted by 2 pi D V n.l must add up to the sheen's
     // directional albedo, which the interactive frames' irradiance path gives exactly there
     // (sheenColor E(n.v) times 1). A black base with no specular leaves the sheen alone. At every
     // sheen roughness the means agree within 1 %, and each pixel within 10 % and 0.0005: where
     // the smooth sheen's albedo (roughness 0.3) is small and steep in n.v, facing the camera, the
-    // samples read up to 9 % below the fit of E that the shaders tabulate (sheenDirectionalAlbedo),
+    // samples read up to 7 % off the fit of E that the shaders tabulate (sheenDirectionalAlbedo),
     // and a wrong weight, pdf or normalisation is off by far more.
     void sampledSheenKeepsTheFurnacesAlbedo() {
         Scene scene = test::uniformEnvironmentScene(glm::vec3(1.0f));
