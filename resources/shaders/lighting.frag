@@ -305,19 +305,19 @@ void main() {
         } else
 #endif
         {
-        vec3 sheenDirection = sheenLightDirection(n, v, NdotV, s.sheenRoughness);
-        sheenLight = irradianceOverPi(sheenDirection);
+            vec3 sheenDirection = sheenLightDirection(n, v, NdotV, s.sheenRoughness);
+            sheenLight = irradianceOverPi(sheenDirection);
 #if WITH_GEOMETRIC_HORIZON
-        // Under a bent normal the face's horizon cuts the lobe too: of a cosine lobe about d, the
-        // share above a plane through its origin with normal m is (1 + d.m) / 2 under uniform
-        // light. The lobe's model was fitted about n (sheenLightDirection), which the shading
-        // normal's own horizon already bounds, so what the face takes away is the share above ng
-        // over the share above n (1 where n = ng): a knit's loops and a crushed pile's tilted
-        // fibres, which face away from the face, lose the light from below it that the path
-        // tracer never gives them (BENCHMARKS.md, "The sheen under the face's horizon").
-        if (p.bentShading)
-            sheenLight *= saturate((1.0 + dot(sheenDirection, p.ng)) /
-                                   max(1.0 + dot(sheenDirection, n), 1e-4));
+            // Under a bent normal the face's horizon cuts the lobe too: of a cosine lobe about d,
+            // the share above a plane through its origin with normal m is (1 + d.m) / 2 under
+            // uniform light. The lobe's model was fitted about n (sheenLightDirection), which the
+            // shading normal's own horizon already bounds, so what the face takes away is the share
+            // above ng over the share above n (1 where n = ng): a knit's loops and a crushed pile's
+            // tilted fibres, which face away from the face, lose the light from below it that the
+            // path tracer never gives them (BENCHMARKS.md, "The sheen under the face's horizon").
+            if (p.bentShading)
+                sheenLight *= saturate((1.0 + dot(sheenDirection, p.ng)) /
+                                       max(1.0 + dot(sheenDirection, n), 1e-4));
 #endif
         }
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
