@@ -329,6 +329,33 @@ float smithLambdaGgx(vec3 w, vec2 alpha) {
 // render_interface.glsl; a frame whose materials are all rougher compiles the sampling out).
 int reflectionSamplesThisFrame() { return WITH_SAMPLED_REFLECTIONS != 0 ? int(ibl.reflection.x) : 0; }
 
+// The block of samples pixel @p pixel draws within its output pixel's mean (a frame of the
+// progressive mean, or one of a still's ss x ss samples of a pixel: consecutive blocks of one
+// scrambled sequence, reflectionSample), and that output pixel, whose hash scrambles it.
+uint reflectionSampleSetOf(vec2 pixel, out uvec2 outputPixel) {
+    uint block = uint(max(ibl.reflection.w, 1.0));
+    outputPixel = uvec2(pixel) / block;
+    uvec2 sub = uvec2(pixel) % block;
+    return uint(ibl.reflection.z) * block * block + sub.y * block + sub.x;
+}
+
+// The equirect's mip level for a sample along @p l of density @p pdf, one of @p total in the
+// mean: where a texel covers its share 1 / (total pdf) of the sphere (Colbert & Krivanek 2007,
+// "GPU-Based Importance Sampling", GPU Gems 3 ch. 20, eq. 13; an equirect texel spans
+// (2 pi / W)(pi / H) sin(theta) steradians), half a level blurrier (sampledReflection says why).
+float environmentSampleLod(vec3 l, float pdf, float total) {
+    float width = frame.post.z;
+    float texelSolidAngle = 4.0 * PI * PI / (width * width); // (2 pi / W)(pi / (W / 2))
+    float sinTheta = sqrt(max(1.0 - l.y * l.y, 1e-4));      // the equirect's pole is world +Y
+    float lod = 0.5 * log2(1.0 / (total * pdf * texelSolidAngle * sinTheta)) + 0.5;
+    return clamp(lod, 0.0, frame.envParams.w);
+}
+
+// Some unit vector perpendicular to @p n (a frame's tangent where no direction is preferred).
+vec3 anyTangent(vec3 n) {
+    return normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : vec3(1.0, 0.0, 0.0));
+}
+
 // Point j of the two-dimensional Sobol sequence (van der Corput and Sobol's second dimension,
 // Kollig & Keller 2002, "Efficient Multidimensional Sampling", section 3), scrambled by XOR with
 // a per-pixel word (a random digit scramble, which keeps the nets). Every aligned block of 2^m
@@ -364,14 +391,9 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
     float total = max(ibl.reflection.y, float(count));
     vec3 b = cross(n, t);
     vec3 vt = vec3(dot(v, t), dot(v, b), NdotV);
-    // The samples of one output pixel (a frame of the mean, or a still's ss x ss samples of a
-    // pixel) take consecutive blocks of one scrambled sequence (reflectionSample).
-    uint block = uint(max(ibl.reflection.w, 1.0));
-    uvec2 outputPixel = uvec2(pixel) / block, sub = uvec2(pixel) % block;
-    uint set = uint(ibl.reflection.z) * block * block + sub.y * block + sub.x;
+    uvec2 outputPixel;
+    uint set = reflectionSampleSetOf(pixel, outputPixel);
     uvec2 scramble = pcg2d(outputPixel);
-    float width = frame.post.z;
-    float texelSolidAngle = 4.0 * PI * PI / (width * width); // (2 pi / W)(pi / (W / 2)), sin(theta) aside
     float lambdaV = smithLambdaGgx(vt, alpha);
     VisibleNormals visible = visibleNormalsOf(vt, alpha);
     SweptReflection sum = SweptReflection(vec3(0.0), vec3(0.0));
@@ -386,8 +408,6 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
         float VdotH = max(dot(v, h), 1e-4);
         float D = distributionGGXAnisotropic(ht.z, ht.x, ht.y, alpha.x, alpha.y); // GGX when equal
         float pdf = D / (4.0 * NdotV * (1.0 + lambdaV)); // G1(v) D / (4 n.v)
-        float sinTheta = sqrt(max(1.0 - l.y * l.y, 1e-4)); // the equirect's pole is world +Y
-        float lod = 0.5 * log2(1.0 / (total * pdf * texelSolidAngle * sinTheta)) + 0.5;
         // G2 / G1(v) = V 4 (n.l)(n.v) (1 + Lambda(v)): V the material's chosen visibility, or for
         // a stretched lobe the anisotropic Smith term (the extension's, as direct light has it).
         float V = alpha.x != alpha.y
@@ -395,7 +415,7 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
                                                                 dot(b, l), alpha.x, alpha.y)
                       : visibility(visibilityTerm, NdotL, NdotV, ht.z, VdotH, alpha.x);
         float masking = V * 4.0 * NdotL * NdotV * (1.0 + lambdaV);
-        vec3 light = environmentRadiance(l, clamp(lod, 0.0, frame.envParams.w)) * masking;
+        vec3 light = environmentRadiance(l, environmentSampleLod(l, pdf, total)) * masking;
         float c = 1.0 - VdotH, c2 = c * c;
         sum.radiance += light;
         sum.grazing += light * (c2 * c2 * c);
@@ -408,9 +428,9 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
 // The sheen lobe's reflected environment light at rest, by ibl.reflection.x samples per pixel
 // (the frames of sampledReflection; lighting.frag): directions drawn uniformly over the
 // hemisphere about the shading normal, each weighted by f n.l / pdf = 2 pi D V n.l (the Charlie
-// distribution and the material's sheen visibility, Estevez & Kulla 2017), returned over the
-// sheen's directional albedo @p e, so that sheenColor e times it is the lobe's light, as with
-// the irradiance about the lobe's mean direction it replaces (sheenLightDirection). That one
+// distribution and the material's sheen visibility, Estevez & Kulla 2017): the lobe's light for
+// a white sheen, in place of the sheen's albedo times the irradiance about the lobe's mean
+// direction (sheenLightDirection). That one
 // direction misplaces the lobe where the light is not smooth about it: satin and crushed velvet
 // under the studio HDRI's lamp read half the mean ΔE2000 against the path tracer sampled
 // (BENCHMARKS.md, "The table as the editor shows it at rest; the sheen sampled at rest").
@@ -422,19 +442,15 @@ SweptReflection sampledReflection(vec3 n, vec3 ng, vec3 t, vec3 v, float NdotV, 
 // sampledReflection's (a level blurrier brought wool on the sphere under the HDRI from 2.27 to
 // 1.87 mean ΔE2000 but read that lamp 13 % off the lobe's integral, with cosine directions).
 vec3 sampledSheenLight(vec3 n, vec3 ng, vec3 v, float NdotV, float sheenRoughness, int model,
-                       float e, vec2 pixel) {
+                       vec2 pixel) {
     int count = reflectionSamplesThisFrame();
     float total = max(ibl.reflection.y, float(count));
-    // The samples of one output pixel take consecutive blocks of one scrambled sequence, as
-    // sampledReflection's, scrambled apart from the base lobe's.
-    uint block = uint(max(ibl.reflection.w, 1.0));
-    uvec2 outputPixel = uvec2(pixel) / block, sub = uvec2(pixel) % block;
-    uint set = uint(ibl.reflection.z) * block * block + sub.y * block + sub.x;
+    uvec2 outputPixel; // scrambled apart from the base lobe's samples
+    uint set = reflectionSampleSetOf(pixel, outputPixel);
     uvec2 scramble = pcg2d(outputPixel ^ uvec2(0x27D4EB2Du, 0x165667B1u));
-    vec3 t = normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : vec3(1.0, 0.0, 0.0));
+    vec3 t = anyTangent(n);
     vec3 b = cross(n, t);
-    float width = frame.post.z;
-    float texelSolidAngle = 4.0 * PI * PI / (width * width); // as sampledReflection's
+    const float pdf = 1.0 / (2.0 * PI); // uniform over the hemisphere
     vec3 sum = vec3(0.0);
     for (int i = 0; i < count; ++i) {
         vec2 u = reflectionSample(set * uint(count) + uint(i), scramble);
@@ -443,25 +459,19 @@ vec3 sampledSheenLight(vec3 n, vec3 ng, vec3 v, float NdotV, float sheenRoughnes
         float NdotL = dot(n, l);
         if (NdotL <= 1e-4 || dot(ng, l) <= 0.0)
             continue;
-        vec3 h = normalize(l + v);
-        float NdotH = dot(n, h);
+        float NdotH = dot(n, normalize(l + v));
         float D = distributionCharlie(NdotH, max(1.0 - NdotH * NdotH, 0.0), sheenRoughness);
         float V = visibilitySheen(model, NdotL, NdotV, sheenRoughness);
-        float pdf = 1.0 / (2.0 * PI); // uniform over the hemisphere
-        float sinTheta = sqrt(max(1.0 - l.y * l.y, 1e-4)); // the equirect's pole is world +Y
-        float lod = 0.5 * log2(1.0 / (total * pdf * texelSolidAngle * sinTheta)) + 0.5;
-        sum += 2.0 * PI * NdotL * D * V * environmentRadiance(l, clamp(lod, 0.0, frame.envParams.w));
+        sum += NdotL * D * V / pdf * environmentRadiance(l, environmentSampleLod(l, pdf, total));
     }
-    return sum / float(max(count, 1)) / max(e, 1e-4);
+    return sum / float(max(count, 1));
 }
 
 // The isotropic lobe's frame: x along the plane of incidence (any azimuth would do).
 vec3 incidencePlaneTangent(vec3 n, vec3 v, float NdotV) {
     vec3 across = v - n * NdotV;
     float len = length(across);
-    return len > 1e-4 ? across / len
-                      : normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n)
-                                                   : vec3(1.0, 0.0, 0.0));
+    return len > 1e-4 ? across / len : anyTangent(n);
 }
 
 // Where image-based light's sheen looks the environment up (lighting.frag). The Charlie lobe

@@ -296,17 +296,17 @@ void main() {
         // radiance along the reflection at the sheen roughness (Filament's evaluateSheenIBL),
         // which lit velvet with a lamp highlight its lobe does not have.
         float e = sheenAlbedoV;
-        vec3 sheenLight;
+        vec3 sheenLight; // the lobe's light for a white sheen
 #if WITH_SAMPLED_REFLECTIONS
         // At rest the lobe itself is sampled (sampledSheenLight), its samples clipped by the face.
         if (reflectionSamplesThisFrame() > 0) {
-            sheenLight = sampledSheenLight(n, p.ng, v, NdotV, s.sheenRoughness, s.sheenModel, e,
+            sheenLight = sampledSheenLight(n, p.ng, v, NdotV, s.sheenRoughness, s.sheenModel,
                                            gl_FragCoord.xy);
         } else
 #endif
         {
             vec3 sheenDirection = sheenLightDirection(n, v, NdotV, s.sheenRoughness);
-            sheenLight = irradianceOverPi(sheenDirection);
+            sheenLight = e * irradianceOverPi(sheenDirection);
 #if WITH_GEOMETRIC_HORIZON
             // Under a bent normal the face's horizon cuts the lobe too: of a cosine lobe about d,
             // the share above a plane through its origin with normal m is (1 + d.m) / 2 under
@@ -321,7 +321,7 @@ void main() {
 #endif
         }
         ambient = ambient * (1.0 - max3(s.sheenColor) * e) +
-                  s.sheenColor * e * sheenLight * diffuseOcclusion;
+                  s.sheenColor * sheenLight * diffuseOcclusion;
         tracedDiffuse *= 1.0 - max3(s.sheenColor) * e;
     }
 #endif

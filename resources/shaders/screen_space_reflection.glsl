@@ -114,9 +114,8 @@ int screenSpaceReflectionRays() {
 // output pixel's stratified set (x), and the set's per-pixel scramble for the kind (yz), so the
 // reflection's and the diffuse light's rays are not the lobe samples of sampledReflection.
 uvec3 ssrRayIndex(ivec2 pixel, int ray, uvec2 kind) {
-    uint block = uint(max(ibl.reflection.w, 1.0));
-    uvec2 outputPixel = uvec2(pixel) / block, sub = uvec2(pixel) % block;
-    uint set = uint(ibl.reflection.z) * block * block + sub.y * block + sub.x;
+    uvec2 outputPixel;
+    uint set = reflectionSampleSetOf(vec2(pixel), outputPixel);
     return uvec3(set * uint(screenSpaceReflectionRays()) + uint(ray), pcg2d(outputPixel ^ kind));
 }
 
@@ -174,7 +173,7 @@ vec4 screenSpaceGather(ShadingPoint p, ivec2 pixel, int ray) {
     uvec3 index = ssrRayIndex(pixel, ray, uvec2(0x68E31DA4u, 0xB5297A4Du));
     vec2 u = reflectionSample(index.x, index.yz);
     vec3 n = p.ng;
-    vec3 t = normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : vec3(1.0, 0.0, 0.0));
+    vec3 t = anyTangent(n);
     vec3 b = cross(n, t);
     float r = sqrt(u.x), phi = 2.0 * PI * u.y;
     vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(1.0 - u.x, 0.0));
