@@ -291,10 +291,11 @@ void main() {
     vec3 ambient = diffuseAlbedo * diffuseLight + reflected;
 #if WITH_SHEEN // (common_brdf.glsl's specialisation)
     if (max3(s.sheenColor) > 0.0) {
-        // The sheen model's own albedo for both the scaling and the sheen lobe, lit by the
-        // irradiance about the lobe's mean direction (sheenLightDirection): not the prefiltered
-        // radiance along the reflection at the sheen roughness (Filament's evaluateSheenIBL),
-        // which lit velvet with a lamp highlight its lobe does not have.
+        // The sheen model's own albedo scales the layers below it; the lobe itself is lit by the
+        // irradiance about its mean direction (sheenLightDirection) times that albedo, or at rest
+        // sampled: not the prefiltered radiance along the reflection at the sheen roughness
+        // (Filament's evaluateSheenIBL), which lit velvet with a lamp highlight its lobe does not
+        // have.
         float e = sheenAlbedoV;
         vec3 sheenLight; // the lobe's light for a white sheen
 #if WITH_SAMPLED_REFLECTIONS
